@@ -1,0 +1,7 @@
+#pragma once
+/// The whole math layer.
+#include "quack/math/aabb.hpp"
+#include "quack/math/rot.hpp"
+#include "quack/math/sweep.hpp"
+#include "quack/math/transform.hpp"
+#include "quack/math/vec2.hpp"

@@ -1,0 +1,123 @@
+#include "quack/geometry/shapes.hpp"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "support/random_shapes.hpp"
+
+namespace quack {
+namespace {
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+template <class T>
+void expectError(const Result<T>& r, const std::string& fragment) {
+  ASSERT_FALSE(r.ok()) << "expected an error containing '" << fragment << "'";
+  EXPECT_NE(r.error().message.find(fragment), std::string::npos) << r.error().message;
+}
+
+TEST(Shapes, BadNumbersAreNamed) {
+  expectError(makeCircle({kNaN, 0}, 1), "circle center is not finite");
+  expectError(makeCircle({}, -1), "circle radius must be > 0, got -1");
+  expectError(makeCircle({}, 0), "circle radius must be > 0");
+  expectError(makeCircle({}, kInf), "circle radius is not finite");
+  expectError(makeCapsule({0, 0}, {1, kInf}, 1), "capsule p2 is not finite");
+  expectError(makeCapsule({0, 0}, {1, 0}, -0.5f), "capsule radius must be > 0");
+  expectError(makeCapsule({0, 0}, {1, 0}, 0), "a capsule of radius 0 is a segment");
+  expectError(makeCapsule({1, 1}, {1, 1}, 0.5f), "use a circle");
+  expectError(makeSegment({kNaN, 0}, {1, 0}), "segment p1 is not finite");
+  expectError(makeSegment({1, 2}, {1, 2}), "zero length");
+  expectError(makeBox(0, 1), "half-extents must be finite and > 0");
+  expectError(makeBox(1, kNaN), "half-extents");
+  expectError(makeBox(1, 1, {}, kNaN), "box angle is not finite");
+  expectError(makeBox(1, 1, {}, 0, -1), "box radius must be >= 0");
+  const Vec2 tri[] = {{0, 0}, {1, 0}, {0, 1}};
+  expectError(makePolygon(tri, -0.1f), "polygon radius must be >= 0");
+  expectError(makePolygon(tri, kNaN), "polygon radius is not finite");
+  const Vec2 flat[] = {{0, 0}, {1, 0}, {2, 0}};
+  expectError(makePolygon(flat), "collinear");
+  const Vec2 nan[] = {{0, 0}, {1, 0}, {0, kNaN}};
+  expectError(makePolygon(nan), "points[2] is not finite");
+}
+
+TEST(Shapes, ConcavePointSetIsRejectedWithAHint) {
+  // An L: the inner corner (1, 1) lies inside the hull.
+  const Vec2 ell[] = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+  expectError(makePolygon(ell),
+              "points[3] (1, 1) lies inside the hull of the others (use a concave");
+}
+
+TEST(Shapes, ConvexPointSetInAnyOrderGivesCounterClockwisePolygon) {
+  // Clockwise, with an extra point on an edge and a duplicate.
+  const Vec2 cw[] = {{0, 0}, {0, 1}, {1, 1}, {1, 0.5f}, {1, 0}, {0, 0}};
+  Result<Polygon> p = makePolygon(cw, 0.1f);
+  ASSERT_TRUE(p.ok()) << p.error().message;
+  EXPECT_EQ(p->count, 4);
+  EXPECT_FLOAT_EQ(p->radius, 0.1f);
+  EXPECT_TRUE(validatePolygon(p.value()).ok()) << validatePolygon(p.value()).message();
+  EXPECT_FLOAT_EQ(p->centroid.x, 0.5f);
+  EXPECT_FLOAT_EQ(p->centroid.y, 0.5f);
+  EXPECT_EQ(p->normals[0], (Vec2{0, -1}));  // bottom edge from (0,0) to (1,0)
+}
+
+TEST(Shapes, BoxByHand) {
+  Result<Polygon> b = makeBox(2, 1, {5, 5}, 0.5f * kPi);
+  ASSERT_TRUE(b.ok());
+  EXPECT_TRUE(validatePolygon(b.value()).ok()) << validatePolygon(b.value()).message();
+  EXPECT_EQ(b->count, 4);
+  // Turned a quarter: the first corner (-2, -1) goes to (1, -2) + (5, 5).
+  EXPECT_NEAR(b->vertices[0].x, 6.0f, 1e-5f);
+  EXPECT_NEAR(b->vertices[0].y, 3.0f, 1e-5f);
+  EXPECT_EQ(b->centroid, (Vec2{5, 5}));
+}
+
+TEST(Shapes, ValidatePolygonCatchesBrokenInvariants) {
+  Polygon p = makeBox(1, 1).value();
+  Polygon flipped = p;
+  flipped.normals[1] = -flipped.normals[1];
+  EXPECT_FALSE(validatePolygon(flipped).ok());
+  Polygon clockwise = p;
+  std::swap(clockwise.vertices[1], clockwise.vertices[3]);
+  EXPECT_FALSE(validatePolygon(clockwise).ok());
+  Polygon negative = p;
+  negative.radius = -1;
+  EXPECT_FALSE(validatePolygon(negative).ok());
+  Polygon outside = p;
+  outside.centroid = {5, 5};
+  EXPECT_FALSE(validatePolygon(outside).ok());
+  Polygon tooMany = p;
+  tooMany.count = kMaxPolygonVertices + 1;
+  EXPECT_FALSE(validatePolygon(tooMany).ok());
+}
+
+TEST(Shapes, SixtyFourVertexPolygon) {
+  std::vector<Vec2> pts;
+  for (int i = 0; i < kMaxPolygonVertices; ++i) {
+    float a = 2.0f * kPi * static_cast<float>(i) / kMaxPolygonVertices;
+    pts.push_back({3 * std::cos(a), 3 * std::sin(a)});
+  }
+  Result<Polygon> p = makePolygon(pts, 0.05f);
+  ASSERT_TRUE(p.ok()) << p.error().message;
+  EXPECT_EQ(p->count, kMaxPolygonVertices);
+  EXPECT_TRUE(validatePolygon(p.value()).ok());
+}
+
+TEST(Shapes, RandomPolygonsValidate) {
+  const unsigned seed = 99;
+  std::mt19937 rng(seed);
+  for (int i = 0; i < 500; ++i) {
+    SCOPED_TRACE(::testing::Message() << "seed " << seed << " i " << i);
+    int n = 3 + static_cast<int>(rng() % 30);
+    float size = std::pow(10.0f, testing::uniform(rng, -3, 3));
+    Polygon p = testing::randomPolygon(rng, n, size, {size * 5, -size * 3});
+    EXPECT_TRUE(validatePolygon(p).ok()) << validatePolygon(p).message();
+  }
+}
+
+}  // namespace
+}  // namespace quack
