@@ -1,0 +1,8 @@
+#pragma once
+/// The whole collision layer.
+#include "quack/collision/epa.hpp"
+#include "quack/collision/gjk.hpp"
+#include "quack/collision/minkowski.hpp"
+#include "quack/collision/proxy.hpp"
+#include "quack/collision/sat.hpp"
+#include "quack/collision/simplex2.hpp"

@@ -1,0 +1,193 @@
+#include "quack/collision/gjk.hpp"
+
+#include "gjk_internal.hpp"
+
+namespace quack {
+
+const char* toString(GjkStatus status) noexcept {
+  switch (status) {
+    case GjkStatus::converged:
+      return "converged";
+    case GjkStatus::repeatedSupport:
+      return "repeated_support";
+    case GjkStatus::stalled:
+      return "stalled";
+    case GjkStatus::overlap:
+      return "overlap";
+    case GjkStatus::maxIterations:
+      return "max_iterations";
+  }
+  return "unknown";
+}
+
+namespace detail {
+namespace {
+
+SupportPoint supportFromIndices(const ShapeProxy& a, const ShapeProxy& b, Transform aFromB,
+                                int indexA, int indexB) noexcept {
+  SupportPoint s;
+  s.indexA = indexA;
+  s.indexB = indexB;
+  s.pointA = a.points()[indexA];
+  s.pointB = transformPoint(aFromB, b.points()[indexB]);
+  s.w = s.pointB - s.pointA;
+  return s;
+}
+
+bool loadCache(const GjkCache* cache, const ShapeProxy& a, const ShapeProxy& b, Transform aFromB,
+               Simplex2& s) noexcept {
+  if (cache == nullptr || cache->count < 1 || cache->count > 3) return false;
+  for (int i = 0; i < cache->count; ++i) {
+    if (cache->indexA[i] >= a.count() || cache->indexB[i] >= b.count()) return false;
+    s.vertices[i].support = supportFromIndices(a, b, aFromB, cache->indexA[i], cache->indexB[i]);
+  }
+  s.count = cache->count;
+  return true;
+}
+
+}  // namespace
+
+GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, Transform aFromB, GjkCache* cache,
+              float earlyOutRadius) noexcept {
+  GjkRun run;
+  Simplex2& s = run.simplex;
+  if (!loadCache(cache, a, b, aFromB, s)) {
+    // Start from the support point towards the origin as seen from the centre of B - A:
+    // on a cold start it is usually one edge away from the answer (the seeds' "direction
+    // between the centres").
+    Vec2 c = transformPoint(aFromB, b.center()) - a.center();
+    if (c == Vec2{}) c = {1.0f, 0.0f};
+    s.vertices[0].support = supportMinkowski(a, b, aFromB, -c);
+    s.count = 1;
+  }
+
+  Simplex2 previous;
+  Vec2 previousClosest;
+  float previousVV = std::numeric_limits<float>::infinity();
+  const float earlyOutSq = earlyOutRadius * earlyOutRadius;
+  int unchangedSteps = 0;
+  for (;;) {
+    SimplexSolution solution = solveSimplex2(s);
+    if (solution.holdsOrigin) {
+      run.closest = {};
+      run.status = GjkStatus::overlap;
+      break;
+    }
+    Vec2 v = solution.closest;
+    float vv = lengthSquared(v);
+    float maxWW = 0.0f;
+    for (int i = 0; i < s.count; ++i)
+      maxWW = maxf(maxWW, lengthSquared(s.vertices[i].support.w));
+    if (vv <= kGjkContactRelativeTolerance * kGjkContactRelativeTolerance * maxWW) {
+      run.closest = {};
+      run.status = GjkStatus::overlap;
+      break;
+    }
+    // |v| must fall every iteration. When it rose (or is NaN), rounding has the last word
+    // and the previous simplex is better. When it is unchanged in float, keep going: near a
+    // vertex |v| changes to second order while its direction still changes to first order
+    // (the normal would be off by 1e-4 if GJK stopped here); the repeated-support test or
+    // a third unchanged step ends it.
+    if (vv == previousVV && ++unchangedSteps <= 2) {
+      // fall through with the new simplex
+    } else if (!(vv < previousVV)) {
+      if (previous.count > 0) {
+        s = previous;
+        run.closest = previousClosest;
+      }
+      run.status = GjkStatus::stalled;
+      break;
+    }
+    run.closest = v;
+    if (earlyOutRadius >= 0.0f && vv <= earlyOutSq) {
+      run.status = GjkStatus::overlap;
+      break;
+    }
+    if (run.iterations >= kGjkMaxIterations) {
+      run.status = GjkStatus::maxIterations;
+      break;
+    }
+    previous = s;
+    previousClosest = v;
+    previousVV = vv;
+
+    SupportPoint w = supportMinkowski(a, b, aFromB, -v);
+    ++run.iterations;
+    float vw = dot(v, w.w);
+    if (earlyOutRadius >= 0.0f && vw > 0.0f && vw * vw > earlyOutSq * vv) {
+      run.separatedEarly = true;
+      run.status = GjkStatus::converged;
+      break;
+    }
+    bool repeated = false;
+    for (int i = 0; i < s.count; ++i) {
+      repeated |=
+          s.vertices[i].support.indexA == w.indexA && s.vertices[i].support.indexB == w.indexB;
+    }
+    if (repeated) {
+      run.status = GjkStatus::repeatedSupport;
+      break;
+    }
+    if (vw >= vv) {
+      run.status = GjkStatus::converged;
+      break;
+    }
+    s.vertices[s.count].support = w;
+    ++s.count;
+  }
+
+  if (cache != nullptr) {
+    cache->count = s.count;
+    for (int i = 0; i < s.count; ++i) {
+      cache->indexA[i] = static_cast<std::uint8_t>(s.vertices[i].support.indexA);
+      cache->indexB[i] = static_cast<std::uint8_t>(s.vertices[i].support.indexB);
+    }
+  }
+  return run;
+}
+
+}  // namespace detail
+
+DistanceOutput computeDistance(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
+                               Transform worldFromB, GjkCache* cache) noexcept {
+  Transform aFromB = invMul(worldFromA, worldFromB);
+  detail::GjkRun run = detail::runGjk(a, b, aFromB, cache, -1.0f);
+  WitnessPoints witness = computeWitnessPoints(run.simplex);
+  DistanceOutput out;
+  out.iterations = run.iterations;
+  out.status = run.status;
+  float radii = a.radius() + b.radius();
+  if (run.status == GjkStatus::overlap) {
+    // The weights make pointA and pointB the same point of both cores.
+    Vec2 p = 0.5f * (witness.pointA + witness.pointB);
+    out.pointA = out.pointB = transformPoint(worldFromA, p);
+    return out;
+  }
+  float core = length(run.closest);
+  Vec2 n = (1.0f / core) * run.closest;
+  out.coreDistance = core;
+  out.normal = rotate(worldFromA.q, n);
+  Vec2 pa = witness.pointA + a.radius() * n;
+  Vec2 pb = witness.pointB - b.radius() * n;
+  if (core > radii) {
+    out.distance = core - radii;
+    out.pointA = transformPoint(worldFromA, pa);
+    out.pointB = transformPoint(worldFromA, pb);
+  } else {
+    // Only the rounding overlaps: the shared point halfway between the surface points.
+    out.pointA = out.pointB = transformPoint(worldFromA, 0.5f * (pa + pb));
+  }
+  return out;
+}
+
+bool testOverlap(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
+                 Transform worldFromB, GjkCache* cache) noexcept {
+  Transform aFromB = invMul(worldFromA, worldFromB);
+  float radii = a.radius() + b.radius();
+  detail::GjkRun run = detail::runGjk(a, b, aFromB, cache, radii);
+  if (run.separatedEarly) return false;
+  if (run.status == GjkStatus::overlap) return true;
+  return length(run.closest) <= radii;
+}
+
+}  // namespace quack

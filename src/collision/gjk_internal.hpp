@@ -1,0 +1,23 @@
+#pragma once
+// GJK's inner loop, shared by computeDistance, testOverlap and EPA (which starts from the
+// final simplex).
+
+#include "quack/collision/gjk.hpp"
+#include "quack/collision/simplex2.hpp"
+
+namespace quack::detail {
+
+struct GjkRun {
+  Simplex2 simplex;  // final simplex, A frame, weights set
+  Vec2 closest;      // the point of B - A closest to the origin (zero on overlap), A frame
+  int iterations = 0;
+  GjkStatus status = GjkStatus::converged;
+  bool separatedEarly = false;  // earlyOutRadius was given and a separating axis found
+};
+
+// With earlyOutRadius >= 0 the loop also stops as soon as the distance is proven above
+// it (separatedEarly) or below it (status overlap with a non-zero closest point).
+GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, Transform aFromB, GjkCache* cache,
+              float earlyOutRadius) noexcept;
+
+}  // namespace quack::detail

@@ -1,0 +1,46 @@
+#include "quack/collision/proxy.hpp"
+
+namespace quack {
+
+ShapeProxy ShapeProxy::fromPoints(const Vec2* points, int count, float radius) noexcept {
+  Vec2 sum;
+  for (int i = 0; i < count; ++i)
+    sum += points[i];
+  return fromPoints(points, count, radius, (1.0f / static_cast<float>(count)) * sum);
+}
+
+ShapeProxy ShapeProxy::fromPoints(const Vec2* points, int count, float radius,
+                                  Vec2 center) noexcept {
+  QUACK_ASSERT(count >= 1 && count <= kMaxPolygonVertices);
+  ShapeProxy proxy;
+  proxy.count_ = count;
+  proxy.radius_ = radius;
+  if (count <= 2) {
+    for (int i = 0; i < count; ++i)
+      proxy.local_[i] = points[i];
+  } else {
+    proxy.external_ = points;
+  }
+  proxy.center_ = center;
+  return proxy;
+}
+
+ShapeProxy makeProxy(const Circle& circle) noexcept {
+  return ShapeProxy::fromPoints(&circle.center, 1, circle.radius);
+}
+
+ShapeProxy makeProxy(const Capsule& capsule) noexcept {
+  const Vec2 points[2] = {capsule.p1, capsule.p2};
+  return ShapeProxy::fromPoints(points, 2, capsule.radius);
+}
+
+ShapeProxy makeProxy(const Segment& segment) noexcept {
+  const Vec2 points[2] = {segment.p1, segment.p2};
+  return ShapeProxy::fromPoints(points, 2, 0.0f);
+}
+
+ShapeProxy makeProxy(const Polygon& polygon) noexcept {
+  return ShapeProxy::fromPoints(polygon.vertices, polygon.count, polygon.radius, polygon.centroid);
+}
+
+}  // namespace quack
