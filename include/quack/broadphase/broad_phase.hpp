@@ -1,0 +1,283 @@
+#pragma once
+/// `BroadPhase`: one interface over the five broad-phase structures, with the move buffer,
+/// pair finding, filters and queries that the world, the tests and the benchmarks share.
+///
+/// ```
+/// Result<BroadPhase> made = BroadPhase::create({.kind = BroadPhaseKind::kTree});
+/// BroadPhase& bp = made.value();
+/// ProxyId a = bp.createProxy(box, shapeIndex).value();
+/// ... each step: bp.moveProxy(a, newBox, displacement);
+/// std::vector<ProxyPair> pairs;
+/// bp.updatePairs(pairs);  // candidate pairs of this step
+/// ```
+///
+/// Enlarged ("fat") boxes: a proxy's structure box is its tight box grown by `margin` on
+/// every side and stretched by `displacementScale` times its last displacement. `moveProxy`
+/// re-inserts the proxy only when the tight box leaves the fat box (or the fat box has grown
+/// much larger than needed), so slowly moving proxies cost one containment test a step.
+///
+/// Pairs: `updatePairs` reports every pair {a, b} such that at least one of a and b was
+/// created, re-inserted or touched since the last call, their fat boxes overlap (and, with
+/// `checkTightBoxes`, their tight boxes too), they are not both static, their filters
+/// accept each other and the user pair filter, if any, agrees. Each pair once, `a.index <
+/// b.index`, in an order that depends on the structure (sort them for cross-structure
+/// determinism). This is Box2D's contract: pairs that stayed in contact without re-insertion
+/// are not reported again; the world keeps its contacts until their fat boxes part.
+///
+/// Dispatch: the structure is a `std::variant` member, selected once by name; each public
+/// operation does one `std::visit` (a jump through a table, the cost of a virtual call), and
+/// the per-pair and per-hit work inside is templated and inlined: no indirect call per pair
+/// except the optional user pair filter.
+///
+/// Error policy: bad input at this boundary — a NaN, infinite, inverted or out-of-range box
+/// (any coordinate beyond +-`kMaxCoordinate`), a null, unknown or stale `ProxyId` (the slot
+/// was destroyed and maybe reused: the generation differs) — is rejected with an `Error`
+/// that names the argument, and nothing changes. Queries given NaN input report no hits.
+/// Internal invariants are `QUACK_ASSERT`s; `validate()` checks the whole structure.
+///
+/// Frames and units: all boxes, points and translations are in the world frame, metres.
+/// Not thread-safe; queries may run concurrently with each other only when no change is
+/// pending (after `updatePairs`), because sweep-and-prune sorts lazily.
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string_view>
+#include <type_traits>
+#include <variant>
+#include <vector>
+
+#include "quack/broadphase/brute_force.hpp"
+#include "quack/broadphase/dynamic_tree.hpp"
+#include "quack/broadphase/proxy.hpp"
+#include "quack/broadphase/quadtree.hpp"
+#include "quack/broadphase/spatial_hash.hpp"
+#include "quack/broadphase/sweep_and_prune.hpp"
+#include "quack/core/result.hpp"
+#include "quack/math/aabb.hpp"
+
+namespace quack {
+
+/// The five structures, named `tree`, `quadtree`, `sap`, `hash`, `brute`.
+enum class BroadPhaseKind : std::uint8_t { kTree, kQuadtree, kSap, kHash, kBrute };
+
+/// Every kind, in declaration order (for tests and benchmarks that try them all).
+inline constexpr BroadPhaseKind kAllBroadPhaseKinds[] = {
+    BroadPhaseKind::kTree, BroadPhaseKind::kQuadtree, BroadPhaseKind::kSap, BroadPhaseKind::kHash,
+    BroadPhaseKind::kBrute};
+
+/// The short name of a kind ("tree", "quadtree", "sap", "hash", "brute").
+std::string_view nameOf(BroadPhaseKind kind) noexcept;
+/// The kind with that short name, or an error listing the valid names.
+Result<BroadPhaseKind> parseBroadPhaseKind(std::string_view name);
+
+/// Boxes must lie within +-kMaxCoordinate metres of the origin: beyond it a float cannot
+/// tell centimetres apart anyway (its spacing is 64 m at 1e9), and cell indices of the
+/// quadtree and hash stay well inside their integers.
+inline constexpr float kMaxCoordinate = 1.0e9f;
+
+/// How a `BroadPhase` is made. Every field has a default that suits boxes of about 1 m.
+struct BroadPhaseConfig {
+  BroadPhaseKind kind = BroadPhaseKind::kTree;
+  /// Metres added to every side of a tight box to make its fat box (>= 0). Larger means fewer
+  /// re-insertions but more candidate pairs. 0.1 m is Box2D's value for metre-sized bodies.
+  float margin = 0.1f;
+  /// The fat box is also stretched by this times the displacement passed to `moveProxy`
+  /// (>= 0), so a steadily moving proxy stays inside it longer.
+  float displacementScale = 1.0f;
+  /// Report a pair only when the tight boxes overlap as well as the fat boxes.
+  bool checkTightBoxes = false;
+  /// Cell side of the hash and smallest cell side of the quadtree, metres (> 0): about the
+  /// typical fat box size.
+  float cellSize = 1.0f;
+};
+
+/// The user pair filter: called for each candidate pair that passed the built-in rules
+/// (static-static, groups, categories and masks, tight boxes); return false to drop it.
+/// `context` is the pointer given to `setPairFilter`.
+using PairFilterFn = bool (*)(void* context, ProxyId a, std::uint64_t userA, ProxyId b,
+                              std::uint64_t userB);
+
+/// One hit of a ray or box cast against the tight boxes.
+struct BroadPhaseHit {
+  ProxyId proxy;
+  std::uint64_t userData = 0;
+  /// Fraction of the translation at which the ray (or moving box) first touches the tight
+  /// box; 0 when it starts inside (or overlapping).
+  float fraction = 1.0f;
+};
+
+/// Size and shape figures of a `BroadPhase`.
+struct BroadPhaseStats {
+  std::uint32_t proxyCount = 0;
+  /// Bytes held by the structure itself (nodes, cells, buckets, sorted arrays).
+  std::size_t structureBytes = 0;
+  /// Bytes held by the shared per-proxy records (tight and fat boxes, filters, user data,
+  /// generations, move buffer), the same for every structure.
+  std::size_t recordBytes = 0;
+  /// Tree height, or quadtree depth; 0 for the others.
+  int height = 0;
+  /// Tree only: sum of internal node perimeters over the root's; 0 for the others.
+  float areaRatio = 0.0f;
+};
+
+class BroadPhase {
+ public:
+  /// A broad phase using `config`; fails on a non-finite or negative margin or displacement
+  /// scale, or a non-positive cell size, naming the field.
+  static Result<BroadPhase> create(BroadPhaseConfig config = {});
+
+  BroadPhaseKind kind() const noexcept { return config_.kind; }
+  const BroadPhaseConfig& config() const noexcept { return config_; }
+
+  /// Adds a proxy for the tight box `box` (world frame). `userData` is returned with pairs and
+  /// hits. The new proxy is in the move buffer: its pairs come out of the next
+  /// `updatePairs`. Fails on an invalid or out-of-range box.
+  Result<ProxyId> createProxy(Aabb box, std::uint64_t userData = 0, Filter filter = {},
+                              ProxyKind kind = ProxyKind::kDynamic);
+  /// Removes a proxy. Fails on a null, unknown or stale id.
+  Status destroyProxy(ProxyId id);
+  /// Gives a proxy its new tight box (world frame) and the displacement since the last
+  /// move (metres, used to stretch the fat box ahead of the motion; pass zero for a
+  /// teleport). Returns whether the proxy was re-inserted (and so buffered for pairs).
+  /// Fails on a bad id, box or displacement.
+  Result<bool> moveProxy(ProxyId id, Aabb box, Vec2 displacement);
+  /// Replaces a proxy's filter and buffers it, so the next `updatePairs` re-reports its
+  /// pairs under the new rules.
+  Status setFilter(ProxyId id, Filter filter);
+  /// Buffers a proxy as if it had moved (its pairs come out of the next `updatePairs`).
+  Status touchProxy(ProxyId id);
+
+  /// True when `id` names a live proxy.
+  bool isValid(ProxyId id) const noexcept {
+    return id.index < records_.size() && records_[id.index].generation == id.generation &&
+           (flags_[id.index] & kAlive) != 0;
+  }
+  /// Precondition `isValid(id)` (asserted): the user data given at creation.
+  std::uint64_t userData(ProxyId id) const;
+  /// Precondition `isValid(id)` (asserted): the proxy's filter.
+  Filter filter(ProxyId id) const;
+  /// Precondition `isValid(id)` (asserted): the last tight box given.
+  Aabb tightBox(ProxyId id) const;
+  /// Precondition `isValid(id)` (asserted): the enlarged box stored in the structure.
+  Aabb fatBox(ProxyId id) const;
+  /// Number of live proxies.
+  std::uint32_t proxyCount() const noexcept { return liveCount_; }
+
+  /// Installs the user pair filter (null removes it).
+  void setPairFilter(PairFilterFn userFilter, void* context) noexcept {
+    pairFilter_ = userFilter;
+    pairFilterContext_ = context;
+  }
+
+  /// Replaces the contents of `pairs` with this step's candidate pairs (see the contract
+  /// above) and empties the move buffer.
+  void updatePairs(std::vector<ProxyPair>& pairs);
+
+  /// Calls `visit(ProxyId, userData) -> bool` for each proxy whose tight box overlaps `box`
+  /// (touching counts); return false to stop.
+  template <class Visit>
+  void queryAabb(Aabb box, Visit&& visit) const;
+  /// Calls `visit(ProxyId, userData) -> bool` for each proxy whose tight box contains `point`.
+  template <class Visit>
+  void queryPoint(Vec2 point, Visit&& visit) const {
+    queryAabb(Aabb{point, point}, visit);
+  }
+  /// Casts the ray `origin + t * translation`, t in [0, 1], against the tight boxes. Calls
+  /// `callback(ProxyId, userData, fraction) -> float` for boxes it reaches (fraction 0 when
+  /// it starts inside), and the return value steers the cast: a value in (0, current max)
+  /// clips the ray there, 0 stops, anything else (1, or -1 to ignore the proxy) goes on
+  /// unclipped. Return `fraction` for the closest hit, 1 for all hits.
+  template <class Callback>
+  void rayCast(Vec2 origin, Vec2 translation, Callback&& callback) const {
+    castImpl(origin, translation, Vec2{}, callback);
+  }
+  /// As `rayCast` for the box `box` moving by `translation` (a sweep of a box, no
+  /// rotation): `fraction` is when it first touches a tight box.
+  template <class Callback>
+  void boxCast(Aabb box, Vec2 translation, Callback&& callback) const {
+    if (!quack::isValid(box)) return;
+    castImpl(center(box), translation, extents(box), callback);
+  }
+  /// The first tight box the ray meets, if any (of boxes met at the same fraction, any one).
+  std::optional<BroadPhaseHit> rayCastClosest(Vec2 origin, Vec2 translation) const;
+  /// Every tight box the ray meets, sorted by fraction (then by index).
+  std::vector<BroadPhaseHit> rayCastAll(Vec2 origin, Vec2 translation) const;
+  /// The first tight box the moving box meets, if any (ties: any one).
+  std::optional<BroadPhaseHit> boxCastClosest(Aabb box, Vec2 translation) const;
+
+  /// Rebuilds the structure from scratch (the tree by binned SAH): after a bulk load.
+  void rebuild();
+  /// Sizes and quality figures.
+  BroadPhaseStats stats() const;
+  /// Checks the structure's invariants and that it agrees with the proxy records.
+  Status validate() const;
+
+  /// The structure, for tests and tools that need its own interface.
+  const DynamicTree* tree() const noexcept { return std::get_if<DynamicTree>(&index_); }
+
+ private:
+  using Index = std::variant<DynamicTree, Quadtree, SweepAndPrune, SpatialHash, BruteForce>;
+  static constexpr std::uint8_t kAlive = 1;
+  static constexpr std::uint8_t kStatic = 2;
+  static constexpr std::uint8_t kBuffered = 4;  // in the move buffer
+  static constexpr std::uint8_t kInPass = 8;    // being paired by the current updatePairs
+
+  struct Record {
+    Filter filter;
+    std::uint64_t userData;
+    std::uint32_t generation;
+  };
+
+  explicit BroadPhase(BroadPhaseConfig config);
+  Status checkId(ProxyId id, const char* function) const;
+  void buffer(std::uint32_t proxy);
+  void addPair(std::uint32_t a, std::uint32_t b, std::vector<ProxyPair>& pairs) const;
+  ProxyId idOf(std::uint32_t proxy) const noexcept { return {proxy, records_[proxy].generation}; }
+
+  template <class Callback>
+  void castImpl(Vec2 origin, Vec2 translation, Vec2 inflation, Callback& callback) const;
+
+  BroadPhaseConfig config_;
+  Index index_;
+  std::vector<Aabb> fat_;
+  std::vector<Aabb> tight_;
+  std::vector<std::uint8_t> flags_;
+  std::vector<Record> records_;
+  std::vector<std::uint32_t> free_;
+  std::vector<std::uint32_t> moveBuffer_;
+  std::uint32_t liveCount_ = 0;
+  PairFilterFn pairFilter_ = nullptr;
+  void* pairFilterContext_ = nullptr;
+};
+
+template <class Visit>
+void BroadPhase::queryAabb(Aabb box, Visit&& visit) const {
+  if (!quack::isValid(box)) return;
+  std::visit(
+      [&](const auto& index) {
+        index.query(box, [&](std::uint32_t p) {
+          if (!overlaps(tight_[p], box)) return true;
+          return static_cast<bool>(visit(idOf(p), records_[p].userData));
+        });
+      },
+      index_);
+}
+
+template <class Callback>
+void BroadPhase::castImpl(Vec2 origin, Vec2 translation, Vec2 inflation, Callback& callback) const {
+  if (!isFinite(origin) || !isFinite(translation) || !isFinite(inflation)) return;
+  std::visit(
+      [&](const auto& index) {
+        index.rayCast(
+            origin, translation, 1.0f, inflation, [&](std::uint32_t p, float maxFraction) -> float {
+              const Aabb grown{tight_[p].lower - inflation, tight_[p].upper + inflation};
+              const AabbRayHit h = quack::rayCast(grown, origin, translation, maxFraction);
+              if (!h.hit) return maxFraction;
+              return static_cast<float>(callback(idOf(p), records_[p].userData, h.fraction));
+            });
+      },
+      index_);
+}
+
+}  // namespace quack

@@ -1,0 +1,370 @@
+#include "quack/broadphase/broad_phase.hpp"
+
+#include <algorithm>
+#include <string>
+
+namespace quack {
+
+namespace {
+
+// Re-insert a proxy whose fat box has grown past its wanted fat box plus this many margins
+// on a side (after a fast move or a teleport), so stale huge boxes do not linger.
+constexpr float kShrinkMargins = 4.0f;
+
+std::string describe(ProxyId id) {
+  return "{index " + std::to_string(id.index) + ", generation " + std::to_string(id.generation) +
+         "}";
+}
+
+Status checkBox(Aabb b, const char* function, const char* argument) {
+  const char* problem = nullptr;
+  if (!isFinite(b.lower) || !isFinite(b.upper)) {
+    problem = "has a NaN or infinite coordinate";
+  } else if (b.lower.x > b.upper.x || b.lower.y > b.upper.y) {
+    problem = "is inverted (lower > upper)";
+  } else if (b.lower.x < -kMaxCoordinate || b.lower.y < -kMaxCoordinate ||
+             b.upper.x > kMaxCoordinate || b.upper.y > kMaxCoordinate) {
+    problem = "lies beyond kMaxCoordinate (1e9 m) from the origin";
+  }
+  if (problem == nullptr) return {};
+  return fail(std::string(function) + ": " + argument + " " + problem);
+}
+
+}  // namespace
+
+std::string_view nameOf(BroadPhaseKind kind) noexcept {
+  switch (kind) {
+    case BroadPhaseKind::kTree:
+      return "tree";
+    case BroadPhaseKind::kQuadtree:
+      return "quadtree";
+    case BroadPhaseKind::kSap:
+      return "sap";
+    case BroadPhaseKind::kHash:
+      return "hash";
+    case BroadPhaseKind::kBrute:
+      return "brute";
+  }
+  return "unknown";
+}
+
+Result<BroadPhaseKind> parseBroadPhaseKind(std::string_view name) {
+  for (BroadPhaseKind k : kAllBroadPhaseKinds) {
+    if (nameOf(k) == name) return k;
+  }
+  return fail("unknown broad phase '" + std::string(name) +
+              "' (expected tree, quadtree, sap, hash or brute)");
+}
+
+Result<BroadPhase> BroadPhase::create(BroadPhaseConfig config) {
+  if (!isFinite(config.margin) || config.margin < 0.0f) {
+    return fail("BroadPhaseConfig.margin must be finite and >= 0");
+  }
+  if (!isFinite(config.displacementScale) || config.displacementScale < 0.0f) {
+    return fail("BroadPhaseConfig.displacementScale must be finite and >= 0");
+  }
+  if (!isFinite(config.cellSize) || config.cellSize <= 0.0f) {
+    return fail("BroadPhaseConfig.cellSize must be finite and > 0");
+  }
+  switch (config.kind) {
+    case BroadPhaseKind::kTree:
+    case BroadPhaseKind::kQuadtree:
+    case BroadPhaseKind::kSap:
+    case BroadPhaseKind::kHash:
+    case BroadPhaseKind::kBrute:
+      return BroadPhase(config);
+  }
+  return fail("BroadPhaseConfig.kind is not a BroadPhaseKind");
+}
+
+BroadPhase::BroadPhase(BroadPhaseConfig config) : config_(config) {
+  switch (config.kind) {
+    case BroadPhaseKind::kTree:
+      index_.emplace<DynamicTree>();
+      break;
+    case BroadPhaseKind::kQuadtree:
+      index_.emplace<Quadtree>(config.cellSize);
+      break;
+    case BroadPhaseKind::kSap:
+      index_.emplace<SweepAndPrune>();
+      break;
+    case BroadPhaseKind::kHash:
+      index_.emplace<SpatialHash>(config.cellSize);
+      break;
+    case BroadPhaseKind::kBrute:
+      index_.emplace<BruteForce>();
+      break;
+  }
+}
+
+Status BroadPhase::checkId(ProxyId id, const char* function) const {
+  if (isValid(id)) return {};
+  if (id.index == kNullIndex) return fail(std::string(function) + ": proxy id is null");
+  if (id.index >= records_.size()) {
+    return fail(std::string(function) + ": proxy id " + describe(id) + " was never created");
+  }
+  return fail(std::string(function) + ": proxy id " + describe(id) +
+              " is stale (that proxy was destroyed)");
+}
+
+void BroadPhase::buffer(std::uint32_t proxy) {
+  if ((flags_[proxy] & kBuffered) != 0) return;
+  flags_[proxy] |= kBuffered;
+  moveBuffer_.push_back(proxy);
+}
+
+Result<ProxyId> BroadPhase::createProxy(Aabb box, std::uint64_t userData, Filter filter,
+                                        ProxyKind kind) {
+  if (Status s = checkBox(box, "createProxy", "box"); !s) return fail(s.message());
+  std::uint32_t p;
+  if (!free_.empty()) {
+    p = free_.back();
+    free_.pop_back();
+  } else {
+    if (records_.size() >= 0x7fffffffu) return fail("createProxy: too many proxies (2^31)");
+    p = static_cast<std::uint32_t>(records_.size());
+    // Generation 1 for a fresh slot, so the default (null) id never matches a live proxy.
+    records_.push_back({{}, 0, 1});
+    fat_.push_back({});
+    tight_.push_back({});
+    flags_.push_back(0);
+  }
+  Record& r = records_[p];
+  r.filter = filter;
+  r.userData = userData;
+  flags_[p] = static_cast<std::uint8_t>(kAlive | (kind == ProxyKind::kStatic ? kStatic : 0));
+  tight_[p] = box;
+  fat_[p] = inflate(box, config_.margin);
+  std::visit([&](auto& index) { index.insert(p, fat_[p]); }, index_);
+  buffer(p);
+  ++liveCount_;
+  return ProxyId{p, r.generation};
+}
+
+Status BroadPhase::destroyProxy(ProxyId id) {
+  if (Status s = checkId(id, "destroyProxy"); !s) return s;
+  const std::uint32_t p = id.index;
+  std::visit([&](auto& index) { index.remove(p); }, index_);
+  // A stale move-buffer entry is skipped by updatePairs (kBuffered is cleared here), and if
+  // the slot is reused before then, the new proxy's entry is deduplicated there.
+  flags_[p] = 0;
+  ++records_[p].generation;
+  free_.push_back(p);
+  --liveCount_;
+  return {};
+}
+
+Result<bool> BroadPhase::moveProxy(ProxyId id, Aabb box, Vec2 displacement) {
+  if (!isValid(id)) return fail(checkId(id, "moveProxy").message());
+  if (Status s = checkBox(box, "moveProxy", "box"); !s) return fail(s.message());
+  if (!isFinite(displacement)) return fail("moveProxy: displacement is NaN or infinite");
+  const std::uint32_t p = id.index;
+  tight_[p] = box;
+  const Aabb wanted = sweep(inflate(box, config_.margin), config_.displacementScale * displacement);
+  const Aabb fat = fat_[p];
+  if (contains(fat, box) && contains(inflate(wanted, kShrinkMargins * config_.margin), fat)) {
+    return false;
+  }
+  // The stretched box may leave the coordinate range even when the tight box does not.
+  const Aabb clamped{maxv(wanted.lower, Vec2{-kMaxCoordinate, -kMaxCoordinate}),
+                     minv(wanted.upper, Vec2{kMaxCoordinate, kMaxCoordinate})};
+  fat_[p] = clamped;
+  std::visit([&](auto& index) { index.move(p, clamped); }, index_);
+  buffer(p);
+  return true;
+}
+
+Status BroadPhase::setFilter(ProxyId id, Filter f) {
+  if (Status s = checkId(id, "setFilter"); !s) return s;
+  records_[id.index].filter = f;
+  buffer(id.index);
+  return {};
+}
+
+Status BroadPhase::touchProxy(ProxyId id) {
+  if (Status s = checkId(id, "touchProxy"); !s) return s;
+  buffer(id.index);
+  return {};
+}
+
+std::uint64_t BroadPhase::userData(ProxyId id) const {
+  QUACK_ASSERT_MSG(isValid(id), "BroadPhase::userData: invalid proxy id");
+  return isValid(id) ? records_[id.index].userData : 0;
+}
+
+Filter BroadPhase::filter(ProxyId id) const {
+  QUACK_ASSERT_MSG(isValid(id), "BroadPhase::filter: invalid proxy id");
+  return isValid(id) ? records_[id.index].filter : Filter{};
+}
+
+Aabb BroadPhase::tightBox(ProxyId id) const {
+  QUACK_ASSERT_MSG(isValid(id), "BroadPhase::tightBox: invalid proxy id");
+  return isValid(id) ? tight_[id.index] : Aabb{};
+}
+
+Aabb BroadPhase::fatBox(ProxyId id) const {
+  QUACK_ASSERT_MSG(isValid(id), "BroadPhase::fatBox: invalid proxy id");
+  return isValid(id) ? fat_[id.index] : Aabb{};
+}
+
+void BroadPhase::addPair(std::uint32_t a, std::uint32_t b, std::vector<ProxyPair>& pairs) const {
+  if ((flags_[a] & flags_[b] & kStatic) != 0) return;
+  const Record& ra = records_[a];
+  const Record& rb = records_[b];
+  if (!shouldCollide(ra.filter, rb.filter)) return;
+  if (config_.checkTightBoxes && !overlaps(tight_[a], tight_[b])) return;
+  ProxyId ia{a, ra.generation};
+  ProxyId ib{b, rb.generation};
+  if (a > b) std::swap(ia, ib);
+  if (pairFilter_ != nullptr && !pairFilter_(pairFilterContext_, ia, records_[ia.index].userData,
+                                             ib, records_[ib.index].userData)) {
+    return;
+  }
+  pairs.push_back({ia, ib});
+}
+
+void BroadPhase::updatePairs(std::vector<ProxyPair>& pairs) {
+  pairs.clear();
+  // Keep live, buffered entries once each (a destroyed proxy lost kBuffered; a reused slot
+  // may appear twice).
+  std::size_t kept = 0;
+  for (std::uint32_t p : moveBuffer_) {
+    if ((flags_[p] & kBuffered) == 0 || (flags_[p] & kInPass) != 0) continue;
+    flags_[p] |= kInPass;
+    moveBuffer_[kept++] = p;
+  }
+  moveBuffer_.resize(kept);
+
+  auto inPass = [this](std::uint32_t p) { return (flags_[p] & kInPass) != 0; };
+  std::visit(
+      [&](auto& index) {
+        using Structure = std::decay_t<decltype(index)>;
+        if constexpr (std::is_same_v<Structure, SweepAndPrune>) {
+          if (index.prefersSweep(moveBuffer_.size())) {
+            index.sweepPairs(inPass,
+                             [&](std::uint32_t a, std::uint32_t b) { addPair(a, b, pairs); });
+            return;
+          }
+        }
+        for (std::uint32_t m : moveBuffer_) {
+          index.query(fat_[m], [&](std::uint32_t o) {
+            // When both moved, the pair is reported from the lower index only.
+            if (o == m || (inPass(o) && o < m)) return true;
+            addPair(m, o, pairs);
+            return true;
+          });
+        }
+      },
+      index_);
+
+  for (std::uint32_t p : moveBuffer_) {
+    flags_[p] = static_cast<std::uint8_t>(flags_[p] & ~(kBuffered | kInPass));
+  }
+  moveBuffer_.clear();
+}
+
+std::optional<BroadPhaseHit> BroadPhase::rayCastClosest(Vec2 origin, Vec2 translation) const {
+  std::optional<BroadPhaseHit> best;
+  rayCast(origin, translation, [&](ProxyId id, std::uint64_t user, float fraction) {
+    if (!best || fraction < best->fraction) best = BroadPhaseHit{id, user, fraction};
+    // Clipping to the hit leaves only nearer boxes to visit; 0 (starting inside) stops.
+    return fraction;
+  });
+  return best;
+}
+
+std::vector<BroadPhaseHit> BroadPhase::rayCastAll(Vec2 origin, Vec2 translation) const {
+  std::vector<BroadPhaseHit> hits;
+  rayCast(origin, translation, [&](ProxyId id, std::uint64_t user, float fraction) {
+    hits.push_back({id, user, fraction});
+    return 1.0f;
+  });
+  std::sort(hits.begin(), hits.end(), [](const BroadPhaseHit& a, const BroadPhaseHit& b) {
+    return a.fraction != b.fraction ? a.fraction < b.fraction : a.proxy.index < b.proxy.index;
+  });
+  return hits;
+}
+
+std::optional<BroadPhaseHit> BroadPhase::boxCastClosest(Aabb box, Vec2 translation) const {
+  std::optional<BroadPhaseHit> best;
+  boxCast(box, translation, [&](ProxyId id, std::uint64_t user, float fraction) {
+    if (!best || fraction < best->fraction) best = BroadPhaseHit{id, user, fraction};
+    return fraction;
+  });
+  return best;
+}
+
+void BroadPhase::rebuild() {
+  std::visit([](auto& index) { index.rebuild(); }, index_);
+}
+
+BroadPhaseStats BroadPhase::stats() const {
+  BroadPhaseStats s;
+  s.proxyCount = liveCount_;
+  s.structureBytes = std::visit([](const auto& index) { return index.bytesUsed(); }, index_);
+  s.recordBytes = (fat_.capacity() + tight_.capacity()) * sizeof(Aabb) +
+                  flags_.capacity() * sizeof(std::uint8_t) + records_.capacity() * sizeof(Record) +
+                  (free_.capacity() + moveBuffer_.capacity()) * sizeof(std::uint32_t);
+  if (const auto* t = std::get_if<DynamicTree>(&index_)) {
+    s.height = t->height();
+    s.areaRatio = t->areaRatio();
+  } else if (const auto* q = std::get_if<Quadtree>(&index_)) {
+    s.height = q->depth();
+  }
+  return s;
+}
+
+Status BroadPhase::validate() const {
+  if (Status s = std::visit([](const auto& index) { return index.validate(); }, index_); !s) {
+    return fail(std::string(nameOf(kind())) + ": " + s.message());
+  }
+  std::uint32_t live = 0;
+  Status result;
+  std::visit(
+      [&](const auto& index) {
+        if (index.proxyCount() != liveCount_) {
+          result = fail("structure proxy count differs from the live proxy count");
+          return;
+        }
+        for (std::uint32_t p = 0; p < records_.size(); ++p) {
+          const bool alive = (flags_[p] & kAlive) != 0;
+          if (alive != index.contains(p)) {
+            result = fail("proxy " + std::to_string(p) + " is live in one place only");
+            return;
+          }
+          if (!alive) continue;
+          ++live;
+          if (!(index.box(p) == fat_[p])) {
+            result = fail("structure box of proxy " + std::to_string(p) + " is not its fat box");
+            return;
+          }
+          // The fat box may have been clamped to the coordinate range, never shrunk inside it.
+          if (!contains(fat_[p], tight_[p])) {
+            result = fail("fat box of proxy " + std::to_string(p) + " does not hold its tight box");
+            return;
+          }
+        }
+      },
+      index_);
+  if (!result) return result;
+  if (live != liveCount_) return fail("live count is wrong");
+  for (std::uint32_t p : free_) {
+    if (p >= records_.size() || (flags_[p] & kAlive) != 0)
+      return fail("free list holds a live slot");
+  }
+  if (free_.size() + liveCount_ != records_.size()) return fail("free + live slots != slots");
+  std::vector<bool> inBuffer(records_.size(), false);
+  for (std::uint32_t p : moveBuffer_) {
+    if (p >= records_.size()) return fail("move buffer entry out of range");
+    inBuffer[p] = true;
+  }
+  for (std::uint32_t p = 0; p < records_.size(); ++p) {
+    if ((flags_[p] & kInPass) != 0) return fail("pass flag left set on a proxy");
+    if ((flags_[p] & kBuffered) != 0 && !inBuffer[p]) {
+      return fail("proxy " + std::to_string(p) + " flagged as buffered but not in the buffer");
+    }
+  }
+  return {};
+}
+
+}  // namespace quack

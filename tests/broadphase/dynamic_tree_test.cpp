@@ -1,0 +1,164 @@
+#include "quack/broadphase/dynamic_tree.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "broadphase/oracle.hpp"
+
+namespace quack {
+namespace {
+
+std::vector<std::uint32_t> queryAll(const DynamicTree& t, Aabb q) {
+  std::vector<std::uint32_t> out;
+  t.query(q, [&](std::uint32_t p) {
+    out.push_back(p);
+    return true;
+  });
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+TEST(DynamicTree, ThreeLeavesByHand) {
+  DynamicTree t;
+  EXPECT_EQ(t.height(), 0);
+  t.insert(0, {{0, 0}, {1, 1}});
+  EXPECT_EQ(t.height(), 0);
+  t.insert(1, {{10, 0}, {11, 1}});
+  EXPECT_EQ(t.height(), 1);
+  // Next to leaf 0: the SAH pairs it with 0, not with the far leaf.
+  t.insert(2, {{1.5f, 0}, {2.5f, 1}});
+  EXPECT_EQ(t.height(), 2);
+  ASSERT_TRUE(t.validate().ok()) << t.validate().message();
+  EXPECT_EQ(queryAll(t, {{0.5f, 0.5f}, {2, 0.6f}}), (std::vector<std::uint32_t>{0, 2}));
+  EXPECT_EQ(queryAll(t, {{11, 1}, {12, 2}}), (std::vector<std::uint32_t>{1}));  // touching
+  EXPECT_TRUE(queryAll(t, {{5, 5}, {6, 6}}).empty());
+  // Root perimeter 2 * (11 + 1) = 24, inner node {0..2.5, 0..1}: 7.
+  EXPECT_FLOAT_EQ(t.areaRatio(), (24.0f + 7.0f) / 24.0f);
+  t.remove(1);
+  EXPECT_EQ(t.height(), 1);
+  t.remove(0);
+  t.remove(2);
+  EXPECT_EQ(t.proxyCount(), 0u);
+  ASSERT_TRUE(t.validate().ok());
+}
+
+TEST(DynamicTree, RotationsKeepSortedInsertionsShallow) {
+  // Inserting boxes along a line is the classic worst case for an unbalanced tree (height
+  // n - 1); with rotations it stays logarithmic.
+  DynamicTree t;
+  const int n = 1024;
+  for (int i = 0; i < n; ++i) {
+    const float x = static_cast<float>(i);
+    t.insert(static_cast<std::uint32_t>(i), {{x, 0}, {x + 0.5f, 0.5f}});
+  }
+  ASSERT_TRUE(t.validate().ok()) << t.validate().message();
+  EXPECT_LE(t.height(), 2 * 10 + 2);
+}
+
+TEST(DynamicTree, RandomInsertRemoveMoveStaysValidAndMatchesBruteForce) {
+  for (std::uint32_t seed : {21u, 22u}) {
+    SCOPED_TRACE("seed=" + std::to_string(seed));
+    std::mt19937 rng(seed);
+    DynamicTree t;
+    std::vector<std::optional<Aabb>> model(300);
+    std::uniform_int_distribution<std::uint32_t> pick(0, 299);
+    std::uniform_real_distribution<float> unit(0, 1);
+    for (int i = 0; i < 4000; ++i) {
+      const std::uint32_t p = pick(rng);
+      const Aabb b = test::randomBox(rng, 30.0f, 0.1f, 2.0f);
+      if (!model[p]) {
+        t.insert(p, b);
+        model[p] = b;
+      } else if (unit(rng) < 0.4f) {
+        t.remove(p);
+        model[p].reset();
+      } else {
+        t.move(p, b);
+        model[p] = b;
+      }
+      if (i % 500 == 250) t.rebuild();
+      const Status v = t.validate();
+      ASSERT_TRUE(v.ok()) << "step " << i << ": " << v.message();
+      if (i % 20 == 0) {
+        const Aabb q = test::randomBox(rng, 30.0f, 0.5f, 5.0f);
+        std::vector<std::uint32_t> expected;
+        for (std::uint32_t k = 0; k < model.size(); ++k) {
+          if (model[k] && overlaps(*model[k], q)) expected.push_back(k);
+        }
+        ASSERT_EQ(queryAll(t, q), expected) << "step " << i;
+      }
+    }
+    // AVL-style rotations bound the height near 1.44 log2(n); allow 2 log2(n) + 2.
+    const double bound = 2.0 * std::log2(std::max<double>(2.0, t.proxyCount())) + 2.0;
+    EXPECT_LE(t.height(), bound);
+  }
+}
+
+TEST(DynamicTree, RebuildKeepsProxiesAndImprovesOrKeepsQuality) {
+  std::mt19937 rng(31);
+  DynamicTree t;
+  // Clustered input inserted in a bad order.
+  std::vector<Aabb> boxes;
+  for (int i = 0; i < 2000; ++i) {
+    const float cx = static_cast<float>(i % 10) * 100.0f;
+    const Aabb b = test::randomBox(rng, 3.0f, 0.25f, 0.5f);
+    boxes.push_back({b.lower + Vec2{cx, 0}, b.upper + Vec2{cx, 0}});
+    t.insert(static_cast<std::uint32_t>(i), boxes.back());
+  }
+  const float before = t.areaRatio();
+  t.rebuild();
+  ASSERT_TRUE(t.validate().ok()) << t.validate().message();
+  EXPECT_EQ(t.proxyCount(), 2000u);
+  for (std::uint32_t i = 0; i < 2000; ++i)
+    ASSERT_EQ(t.box(i), boxes[i]);
+  EXPECT_LE(t.areaRatio(), before * 1.05f);
+  EXPECT_LE(t.height(), 40);
+}
+
+TEST(DynamicTree, RebuildOfIdenticalBoxesIsBalanced) {
+  // Every centroid equal: the SAH cannot split, the median split must.
+  DynamicTree t;
+  for (std::uint32_t i = 0; i < 1000; ++i)
+    t.insert(i, {{0, 0}, {1, 1}});
+  t.rebuild();
+  ASSERT_TRUE(t.validate().ok()) << t.validate().message();
+  EXPECT_EQ(t.height(), 10);
+  EXPECT_EQ(queryAll(t, {{0.5f, 0.5f}, {0.5f, 0.5f}}).size(), 1000u);
+}
+
+TEST(DynamicTree, BytesPerProxyAtMost64) {
+  DynamicTree t;
+  std::mt19937 rng(4);
+  for (std::uint32_t i = 0; i < 10000; ++i)
+    t.insert(i, test::randomBox(rng, 100.0f, 0.25f, 0.5f));
+  t.rebuild();  // exact capacity
+  const double perProxy = static_cast<double>(t.bytesUsed()) / 10000.0;
+  EXPECT_LE(perProxy, 64.0);
+  EXPECT_GE(perProxy, 52.0 - 0.01);
+}
+
+TEST(DynamicTree, RayCastVisitsNearestFirstAndClips) {
+  DynamicTree t;
+  for (std::uint32_t i = 0; i < 50; ++i) {
+    const float x = static_cast<float>(i) * 2.0f;
+    t.insert(i, {{x, -0.5f}, {x + 1.0f, 0.5f}});
+  }
+  std::vector<std::uint32_t> seen;
+  // Clip at each hit: the ray visits only the first box's leaf (others start beyond it).
+  t.rayCast({-1, 0}, {200, 0}, 1.0f, {}, [&](std::uint32_t p, float maxFraction) {
+    seen.push_back(p);
+    const AabbRayHit h = rayCast(t.box(p), {-1, 0}, {200, 0}, maxFraction);
+    return h.hit ? h.fraction : maxFraction;
+  });
+  ASSERT_FALSE(seen.empty());
+  EXPECT_EQ(seen.front(), 0u);
+  EXPECT_LE(seen.size(), 3u);
+}
+
+}  // namespace
+}  // namespace quack
