@@ -149,7 +149,7 @@ PenetrationOutput computePenetration(const ShapeProxy& a, Transform worldFromA, 
   if (run.status != GjkStatus::overlap) {
     WitnessPoints witness = computeWitnessPoints(run.simplex);
     float core = length(run.closest);
-    Vec2 n = (1.0f / core) * run.closest;
+    Vec2 n = detail::closestDirection(run.simplex, run.closest);
     out.normal = rotate(worldFromA.q, n);
     out.pointA = transformPoint(worldFromA, witness.pointA + a.radius() * n);
     out.pointB = transformPoint(worldFromA, witness.pointB - b.radius() * n);

@@ -47,6 +47,17 @@ bool loadCache(const GjkCache* cache, const ShapeProxy& a, const ShapeProxy& b, 
 
 }  // namespace
 
+Vec2 closestDirection(const Simplex2& simplex, Vec2 v) noexcept {
+  if (simplex.count == 2) {
+    Vec2 a = simplex.vertices[0].support.w;
+    Vec2 n = normalize(leftPerp(simplex.vertices[1].support.w - a));
+    float side = dot(n, a);
+    if (side < 0.0f) return -n;
+    if (side > 0.0f) return n;
+  }
+  return normalize(v);
+}
+
 GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, Transform aFromB, GjkCache* cache,
               float earlyOutRadius) noexcept {
   GjkRun run;
@@ -111,9 +122,14 @@ GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, Transform aFromB, GjkCac
     previousClosest = v;
     previousVV = vv;
 
-    SupportPoint w = supportMinkowski(a, b, aFromB, -v);
+    // Search along the exact edge normal rather than -v (see closestDirection): with a
+    // thin B - A and the origin near it, -v can be off by 1e-3 rad and find the wrong
+    // support point, stopping GJK on a diagonal instead of an edge.
+    Vec2 dir = closestDirection(s, v);
+    SupportPoint w = supportMinkowski(a, b, aFromB, -dir);
     ++run.iterations;
-    float vw = dot(v, w.w);
+    // v.w measured along the exact direction: |v| * (dir . w).
+    float vw = length(v) * dot(dir, w.w);
     if (earlyOutRadius >= 0.0f && vw > 0.0f && vw * vw > earlyOutSq * vv) {
       run.separatedEarly = true;
       run.status = GjkStatus::converged;
@@ -164,7 +180,7 @@ DistanceOutput computeDistance(const ShapeProxy& a, Transform worldFromA, const 
     return out;
   }
   float core = length(run.closest);
-  Vec2 n = (1.0f / core) * run.closest;
+  Vec2 n = detail::closestDirection(run.simplex, run.closest);
   out.coreDistance = core;
   out.normal = rotate(worldFromA.q, n);
   Vec2 pa = witness.pointA + a.radius() * n;

@@ -15,6 +15,12 @@ struct GjkRun {
   bool separatedEarly = false;  // earlyOutRadius was given and a separating axis found
 };
 
+// The direction from the origin to the closest point of a solved simplex: along v for a
+// point; for a segment the unit normal of the segment on v's side, which is exact to the
+// rounding of the segment's own direction however small |v| is (v / |v| is not: its
+// direction error grows like size / |v|). Zero when v is zero.
+Vec2 closestDirection(const Simplex2& simplex, Vec2 v) noexcept;
+
 // With earlyOutRadius >= 0 the loop also stops as soon as the distance is proven above
 // it (separatedEarly) or below it (status overlap with a non-zero closest point).
 GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, Transform aFromB, GjkCache* cache,

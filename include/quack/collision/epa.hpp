@@ -38,8 +38,10 @@ inline constexpr int kEpaMaxVertices = 2 * kMaxPolygonVertices + 4;
 inline constexpr float kEpaRelativeTolerance = 1e-5f;
 
 /// Two edges whose distances to the origin differ by less than this fraction of the
-/// polytope's size count as equally near, and the tie-break above decides.
-inline constexpr float kEpaTieRelativeTolerance = 1e-5f;
+/// polytope's size count as equally near, and the tie-break above decides. About 8 float
+/// ulps: just above the rounding of the distances, so a tie is a real tie (the chosen
+/// depth is at most this much above the least one).
+inline constexpr float kEpaTieRelativeTolerance = 1e-6f;
 
 /// How computePenetration reached its answer.
 enum class EpaStatus : std::uint8_t {
