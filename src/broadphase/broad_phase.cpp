@@ -7,10 +7,6 @@ namespace quack {
 
 namespace {
 
-// Re-insert a proxy whose fat box has grown past its wanted fat box plus this many margins
-// on a side (after a fast move or a teleport), so stale huge boxes do not linger.
-constexpr float kShrinkMargins = 4.0f;
-
 std::string describe(ProxyId id) {
   return "{index " + std::to_string(id.index) + ", generation " + std::to_string(id.generation) +
          "}";
@@ -154,24 +150,20 @@ Status BroadPhase::destroyProxy(ProxyId id) {
   return {};
 }
 
-Result<bool> BroadPhase::moveProxy(ProxyId id, Aabb box, Vec2 displacement) {
+Error BroadPhase::rejectMove(ProxyId id, Aabb box, Vec2 displacement) const {
   if (!isValid(id)) return fail(checkId(id, "moveProxy").message());
   if (Status s = checkBox(box, "moveProxy", "box"); !s) return fail(s.message());
   if (!isFinite(displacement)) return fail("moveProxy: displacement is NaN or infinite");
-  const std::uint32_t p = id.index;
-  tight_[p] = box;
-  const Aabb wanted = sweep(inflate(box, config_.margin), config_.displacementScale * displacement);
-  const Aabb fat = fat_[p];
-  if (contains(fat, box) && contains(inflate(wanted, kShrinkMargins * config_.margin), fat)) {
-    return false;
-  }
+  return fail("moveProxy: rejected");
+}
+
+void BroadPhase::reinsert(std::uint32_t p, Aabb wanted) {
   // The stretched box may leave the coordinate range even when the tight box does not.
   const Aabb clamped{maxv(wanted.lower, Vec2{-kMaxCoordinate, -kMaxCoordinate}),
                      minv(wanted.upper, Vec2{kMaxCoordinate, kMaxCoordinate})};
   fat_[p] = clamped;
   std::visit([&](auto& index) { index.move(p, clamped); }, index_);
   buffer(p);
-  return true;
 }
 
 Status BroadPhase::setFilter(ProxyId id, Filter f) {

@@ -15,15 +15,22 @@ constexpr double kLooseness = 0.625;
 // The slack (s / 8) must exceed the rounding of a centre coordinate, a few ulps of the
 // largest coordinate, so a cell is never smaller than this many ulps.
 constexpr float kMinCellInUlps = 64.0f;
-// Cell indices are biased so that they are never negative: at level L the index is
-// floor(x / s) + 2^(kTopLevel - 1 - L). Then the parent of index i is always i >> 1, and
-// every cell has the single level-kTopLevel cell 0 as an ancestor (without the bias, the
-// cells left and right of x = 0 would never share one: -1 >> 1 == -1). Valid while
-// |x| < smallestCellSize * 2^61, far beyond kMaxCoordinate for any sensible cell size.
+// Cell indices are offset so that they are never negative and every cell has the single
+// level-kTopLevel cell 0 as an ancestor, with the parent of index i always i >> 1: at level L
+// the index is floor((x + O) / s) with O = (4/3) * smallestCellSize * 2^61. The offset is a
+// third of a cell off every level's grid, so the origin (where scenes tend to sit) is never
+// on a cell boundary of any level; with O = 0 (or a power of two) the cells either side of
+// x = 0 would share only the top cell, making every query walk a 60-cell chain. Valid while
+// |x| < smallestCellSize * 2^61 / 3, far beyond kMaxCoordinate for any sensible cell size.
 constexpr std::int32_t kTopLevel = 62;
 
-std::int64_t biasOf(std::int32_t level) noexcept {
-  return std::int64_t{1} << (kTopLevel - 1 - level);
+// O / s at level L = (2^(63 - L)) / 3: its integer part...
+std::int64_t offsetCells(std::int32_t level) noexcept {
+  return static_cast<std::int64_t>((std::uint64_t{1} << (63 - level)) / 3u);
+}
+// ...and its fractional part (1/3 or 2/3).
+double offsetPhase(std::int32_t level) noexcept {
+  return static_cast<double>((std::uint64_t{1} << (63 - level)) % 3u) / 3.0;
 }
 
 int slotOf(std::int64_t x, std::int64_t y) noexcept {
@@ -50,8 +57,11 @@ Quadtree::Key Quadtree::keyOf(Aabb b) const noexcept {
     ++level;
   }
   const Vec2 c = center(b);
-  return {static_cast<std::int64_t>(std::floor(static_cast<double>(c.x) / s)) + biasOf(level),
-          static_cast<std::int64_t>(std::floor(static_cast<double>(c.y) / s)) + biasOf(level),
+  const double phase = offsetPhase(level);
+  return {static_cast<std::int64_t>(std::floor(static_cast<double>(c.x) / s + phase)) +
+              offsetCells(level),
+          static_cast<std::int64_t>(std::floor(static_cast<double>(c.y) / s + phase)) +
+              offsetCells(level),
           level};
 }
 
@@ -61,8 +71,9 @@ Aabb Quadtree::looseBoxOf(Key k) const noexcept {
     return {{-big, -big}, {big, big}};
   }
   const double s = std::ldexp(static_cast<double>(base_), k.level);
-  const double x = static_cast<double>(k.x - biasOf(k.level));
-  const double y = static_cast<double>(k.y - biasOf(k.level));
+  const double phase = offsetPhase(k.level);
+  const double x = static_cast<double>(k.x - offsetCells(k.level)) - phase;
+  const double y = static_cast<double>(k.y - offsetCells(k.level)) - phase;
   const double x0 = x * s - kLooseness * s;
   const double y0 = y * s - kLooseness * s;
   const double x1 = (x + 1.0) * s + kLooseness * s;

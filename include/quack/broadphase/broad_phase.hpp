@@ -141,7 +141,23 @@ class BroadPhase {
   /// move (metres, used to stretch the fat box ahead of the motion; pass zero for a
   /// teleport). Returns whether the proxy was re-inserted (and so buffered for pairs).
   /// Fails on a bad id, box or displacement.
-  Result<bool> moveProxy(ProxyId id, Aabb box, Vec2 displacement);
+  Result<bool> moveProxy(ProxyId id, Aabb box, Vec2 displacement) {
+    // The per-proxy-per-step path is inline; every rejection goes out of line.
+    if (!isValid(id) || !isAcceptableBox(box) || !(absf(displacement.x) <= kMaxDisplacement) ||
+        !(absf(displacement.y) <= kMaxDisplacement)) {
+      return rejectMove(id, box, displacement);
+    }
+    const std::uint32_t p = id.index;
+    tight_[p] = box;
+    const Aabb wanted =
+        sweep(inflate(box, config_.margin), config_.displacementScale * displacement);
+    const Aabb fat = fat_[p];
+    if (contains(fat, box) && contains(inflate(wanted, kShrinkMargins * config_.margin), fat)) {
+      return false;
+    }
+    reinsert(p, wanted);
+    return true;
+  }
   /// Replaces a proxy's filter and buffers it, so the next `updatePairs` re-reports its
   /// pairs under the new rules.
   Status setFilter(ProxyId id, Filter filter);
@@ -229,7 +245,22 @@ class BroadPhase {
     std::uint32_t generation;
   };
 
+  // Re-insert a proxy whose fat box has grown past its wanted fat box plus this many margins
+  // on a side (after a fast move or a teleport), so stale huge boxes do not linger.
+  static constexpr float kShrinkMargins = 4.0f;
+  // Displacements are only required to be finite (FLT_MAX passes, NaN and inf fail).
+  static constexpr float kMaxDisplacement = 3.402823466e38f;
+
+  // Finite, not inverted and within kMaxCoordinate: six comparisons, all false for NaN.
+  static bool isAcceptableBox(Aabb b) noexcept {
+    return b.lower.x <= b.upper.x && b.lower.y <= b.upper.y && b.lower.x >= -kMaxCoordinate &&
+           b.lower.y >= -kMaxCoordinate && b.upper.x <= kMaxCoordinate &&
+           b.upper.y <= kMaxCoordinate;
+  }
+
   explicit BroadPhase(BroadPhaseConfig config);
+  Error rejectMove(ProxyId id, Aabb box, Vec2 displacement) const;
+  void reinsert(std::uint32_t proxy, Aabb wanted);
   Status checkId(ProxyId id, const char* function) const;
   void buffer(std::uint32_t proxy);
   void addPair(std::uint32_t a, std::uint32_t b, std::vector<ProxyPair>& pairs) const;
