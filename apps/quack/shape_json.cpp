@@ -1,0 +1,185 @@
+#include "shape_json.hpp"
+
+#include <cmath>
+#include <initializer_list>
+#include <vector>
+
+namespace quack::app {
+namespace {
+
+using nlohmann::json;
+
+Status checkKeys(const json& j, const std::string& path, std::initializer_list<const char*> keys) {
+  for (const auto& item : j.items()) {
+    bool known = false;
+    for (const char* k : keys)
+      known |= item.key() == k;
+    if (!known) return fail(path + "." + item.key() + ": unknown key");
+  }
+  return {};
+}
+
+Result<float> parseNumber(const json& j, const std::string& path) {
+  if (!j.is_number()) return fail(path + ": must be a number");
+  double d = j.get<double>();
+  auto f = static_cast<float>(d);
+  if (!std::isfinite(f)) return fail(path + ": must be finite (as a float)");
+  return f;
+}
+
+Result<float> numberOr(const json& j, const char* key, const std::string& path, float fallback) {
+  if (!j.contains(key)) return fallback;
+  return parseNumber(j.at(key), path + "." + key);
+}
+
+Result<Vec2> vecOr(const json& j, const char* key, const std::string& path, Vec2 fallback) {
+  if (!j.contains(key)) return fallback;
+  return parseVec2(j.at(key), path + "." + key);
+}
+
+Result<Vec2> requiredVec(const json& j, const char* key, const std::string& path) {
+  if (!j.contains(key)) return fail(path + "." + key + ": missing");
+  return parseVec2(j.at(key), path + "." + key);
+}
+
+Result<float> requiredNumber(const json& j, const char* key, const std::string& path) {
+  if (!j.contains(key)) return fail(path + "." + key + ": missing");
+  return parseNumber(j.at(key), path + "." + key);
+}
+
+// Re-labels a geometry error with the JSON path of the shape.
+Error located(const std::string& path, const Error& e) {
+  return fail(path + ": " + e.message);
+}
+
+}  // namespace
+
+ShapeProxy ParsedShape::proxy() const noexcept {
+  switch (type) {
+    case ShapeType::circle:
+      return makeProxy(circle);
+    case ShapeType::capsule:
+      return makeProxy(capsule);
+    case ShapeType::segment:
+      return makeProxy(segment);
+    case ShapeType::polygon:
+      return makeProxy(polygon);
+  }
+  return {};
+}
+
+Result<Vec2> parseVec2(const json& j, const std::string& path) {
+  if (!j.is_array() || j.size() != 2) return fail(path + ": must be [x, y]");
+  Result<float> x = parseNumber(j[0], path + "[0]");
+  if (!x) return x.error();
+  Result<float> y = parseNumber(j[1], path + "[1]");
+  if (!y) return y.error();
+  return Vec2{*x, *y};
+}
+
+Result<Transform> parsePose(const json& j, const std::string& path) {
+  if (!j.is_object()) return fail(path + ": must be an object {\"pos\", \"angle\"}");
+  if (Status s = checkKeys(j, path, {"pos", "angle"}); !s) return fail(s.message());
+  Result<Vec2> pos = vecOr(j, "pos", path, {});
+  if (!pos) return pos.error();
+  Result<float> angle = numberOr(j, "angle", path, 0.0f);
+  if (!angle) return angle.error();
+  return makeTransform(*pos, *angle);
+}
+
+Result<ParsedShape> parseShape(const json& j, const std::string& path) {
+  if (!j.is_object()) return fail(path + ": must be an object with a \"type\"");
+  if (!j.contains("type")) return fail(path + ".type: missing");
+  if (!j.at("type").is_string()) return fail(path + ".type: must be a string");
+  const std::string type = j.at("type").get<std::string>();
+  ParsedShape out;
+  if (type == "circle") {
+    if (Status s = checkKeys(j, path, {"type", "center", "radius"}); !s) return fail(s.message());
+    Result<Vec2> c = vecOr(j, "center", path, {});
+    if (!c) return c.error();
+    Result<float> r = requiredNumber(j, "radius", path);
+    if (!r) return r.error();
+    if (*r <= 0.0f) return fail(path + ".radius: must be > 0");
+    out.type = ShapeType::circle;
+    Result<Circle> s = makeCircle(*c, *r);
+    if (!s) return located(path, s.error());
+    out.circle = *s;
+    return out;
+  }
+  if (type == "capsule" || type == "segment") {
+    bool capsule = type == "capsule";
+    Status keys = capsule ? checkKeys(j, path, {"type", "p1", "p2", "radius"})
+                          : checkKeys(j, path, {"type", "p1", "p2"});
+    if (!keys) return fail(keys.message());
+    Result<Vec2> p1 = requiredVec(j, "p1", path);
+    if (!p1) return p1.error();
+    Result<Vec2> p2 = requiredVec(j, "p2", path);
+    if (!p2) return p2.error();
+    if (!capsule) {
+      Result<Segment> s = makeSegment(*p1, *p2);
+      if (!s) return located(path, s.error());
+      out.type = ShapeType::segment;
+      out.segment = *s;
+      return out;
+    }
+    Result<float> r = requiredNumber(j, "radius", path);
+    if (!r) return r.error();
+    if (*r <= 0.0f) return fail(path + ".radius: must be > 0");
+    Result<Capsule> s = makeCapsule(*p1, *p2, *r);
+    if (!s) return located(path, s.error());
+    out.type = ShapeType::capsule;
+    out.capsule = *s;
+    return out;
+  }
+  if (type == "box") {
+    if (Status s = checkKeys(j, path, {"type", "half", "center", "angle", "radius"}); !s) {
+      return fail(s.message());
+    }
+    Result<Vec2> half = requiredVec(j, "half", path);
+    if (!half) return half.error();
+    if (half->x <= 0.0f || half->y <= 0.0f) return fail(path + ".half: must be > 0");
+    Result<Vec2> c = vecOr(j, "center", path, {});
+    if (!c) return c.error();
+    Result<float> angle = numberOr(j, "angle", path, 0.0f);
+    if (!angle) return angle.error();
+    Result<float> r = numberOr(j, "radius", path, 0.0f);
+    if (!r) return r.error();
+    if (*r < 0.0f) return fail(path + ".radius: must be >= 0");
+    Result<Polygon> s = makeBox(half->x, half->y, *c, *angle, *r);
+    if (!s) return located(path, s.error());
+    out.type = ShapeType::polygon;
+    out.polygon = *s;
+    return out;
+  }
+  if (type == "polygon") {
+    if (Status s = checkKeys(j, path, {"type", "points", "radius"}); !s) return fail(s.message());
+    if (!j.contains("points")) return fail(path + ".points: missing");
+    const json& pts = j.at("points");
+    if (!pts.is_array()) return fail(path + ".points: must be an array of [x, y]");
+    if (pts.size() < 3) return fail(path + ".points: needs at least 3 points");
+    if (pts.size() > 4096) return fail(path + ".points: too many points");
+    std::vector<Vec2> points;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      Result<Vec2> p = parseVec2(pts[i], path + ".points[" + std::to_string(i) + "]");
+      if (!p) return p.error();
+      points.push_back(*p);
+    }
+    Result<float> r = numberOr(j, "radius", path, 0.0f);
+    if (!r) return r.error();
+    if (*r < 0.0f) return fail(path + ".radius: must be >= 0");
+    Result<Polygon> s = makePolygon(points, *r);
+    if (!s) return located(path, s.error());
+    out.type = ShapeType::polygon;
+    out.polygon = *s;
+    return out;
+  }
+  if (type == "concave") {
+    return fail(path +
+                ".type: \"concave\" is not supported yet by quack query (use convex "
+                "pieces as \"polygon\")");
+  }
+  return fail(path + ".type: unknown shape type \"" + type +
+              "\" (expected circle, capsule, segment, box, polygon)");
+}
+
+}  // namespace quack::app
