@@ -1,0 +1,121 @@
+// libFuzzer target over the narrow-phase queries: the input bytes become two shapes (any
+// kind, through the checked make* functions, so only valid shapes reach the queries) and
+// two poses; every query must return finite numbers and a status. A failure aborts.
+
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+
+#include "quack/collision/epa.hpp"
+#include "quack/collision/gjk.hpp"
+#include "quack/collision/sat.hpp"
+
+namespace {
+
+using namespace quack;
+
+struct Reader {
+  const std::uint8_t* data;
+  std::size_t size;
+  float next() {
+    float f = 0.0f;
+    if (size >= 4) {
+      std::memcpy(&f, data, 4);
+      data += 4;
+      size -= 4;
+    }
+    // Keep numbers in the range the library promises to handle (|x| <= 1e6).
+    if (!std::isfinite(f)) f = 0.0f;
+    return std::fmod(f, 1e6f);
+  }
+  std::uint8_t byte() {
+    if (size == 0) return 0;
+    --size;
+    return *data++;
+  }
+};
+
+struct Shape {
+  int kind = -1;
+  Circle circle;
+  Capsule capsule;
+  Segment segment;
+  Polygon polygon;
+  ShapeProxy proxy() const {
+    switch (kind) {
+      case 0:
+        return makeProxy(circle);
+      case 1:
+        return makeProxy(capsule);
+      case 2:
+        return makeProxy(segment);
+      default:
+        return makeProxy(polygon);
+    }
+  }
+};
+
+bool readShape(Reader& r, Shape& s) {
+  s.kind = r.byte() % 4;
+  switch (s.kind) {
+    case 0: {
+      auto c = makeCircle({r.next(), r.next()}, std::fabs(r.next()));
+      if (!c) return false;
+      s.circle = *c;
+      return true;
+    }
+    case 1: {
+      auto c = makeCapsule({r.next(), r.next()}, {r.next(), r.next()}, std::fabs(r.next()));
+      if (!c) return false;
+      s.capsule = *c;
+      return true;
+    }
+    case 2: {
+      auto c = makeSegment({r.next(), r.next()}, {r.next(), r.next()});
+      if (!c) return false;
+      s.segment = *c;
+      return true;
+    }
+    default: {
+      int n = 3 + r.byte() % 30;
+      Vec2 pts[32];
+      for (int i = 0; i < n; ++i)
+        pts[i] = {r.next(), r.next()};
+      auto p =
+          makePolygon(std::span<const Vec2>(pts, static_cast<std::size_t>(n)), std::fabs(r.next()));
+      if (!p) return false;
+      s.polygon = *p;
+      return true;
+    }
+  }
+}
+
+void check(bool ok) {
+  if (!ok) std::abort();
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  Reader r{data, size};
+  Shape a, b;
+  if (!readShape(r, a) || !readShape(r, b)) return 0;
+  Transform xa = makeTransform({r.next(), r.next()}, r.next());
+  Transform xb = makeTransform({r.next(), r.next()}, r.next());
+  ShapeProxy pa = a.proxy(), pb = b.proxy();
+  GjkCache cache;
+  DistanceOutput d = computeDistance(pa, xa, pb, xb, &cache);
+  check(std::isfinite(d.distance) && isFinite(d.pointA) && isFinite(d.pointB) &&
+        isFinite(d.normal) && d.iterations <= kGjkMaxIterations);
+  DistanceOutput warm = computeDistance(pa, xa, pb, xb, &cache);
+  check(std::isfinite(warm.distance));
+  (void)testOverlap(pa, xa, pb, xb);
+  PenetrationOutput p = computePenetration(pa, xa, pb, xb);
+  check(std::isfinite(p.depth) && isFinite(p.pointA) && isFinite(p.pointB) && isFinite(p.normal));
+  if (a.kind == 3 && b.kind == 3) {
+    SatOutput s = computeSat(a.polygon, xa, b.polygon, xb);
+    check(std::isfinite(s.separation) && isFinite(s.normal));
+  }
+  return 0;
+}
