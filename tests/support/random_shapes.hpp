@@ -1,6 +1,8 @@
 #pragma once
 // Random shapes for tests, from a caller-owned engine so every test fixes its seed.
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 #include <vector>
 
