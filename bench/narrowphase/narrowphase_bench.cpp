@@ -11,6 +11,7 @@
 
 #include "quack/collision/epa.hpp"
 #include "quack/collision/gjk.hpp"
+#include "quack/collision/manifold.hpp"
 #include "quack/collision/sat.hpp"
 #include "support/random_shapes.hpp"
 
@@ -124,6 +125,30 @@ void BM_QuackSat(benchmark::State& state) {
 }
 BENCHMARK(BM_QuackSat);
 
+// Contact manifolds (issue 4): Quack's collidePolygons against b2CollidePolygons below,
+// on the overlapping pairs and on the apart ones (where both should leave early).
+void BM_QuackCollidePolygons(benchmark::State& state) {
+  const auto& pairs = overlapping();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const Pair& p = pairs[i++ & 1023];
+    Manifold m = collidePolygons(p.a, p.xa, p.b, p.xb, 0.0f);
+    benchmark::DoNotOptimize(m);
+  }
+}
+BENCHMARK(BM_QuackCollidePolygons);
+
+void BM_QuackCollidePolygonsApart(benchmark::State& state) {
+  const auto& pairs = apart();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const Pair& p = pairs[i++ & 1023];
+    Manifold m = collidePolygons(p.a, p.xa, p.b, p.xb, 0.0f);
+    benchmark::DoNotOptimize(m);
+  }
+}
+BENCHMARK(BM_QuackCollidePolygonsApart);
+
 #if QUACK_HAVE_BOX2D
 void BM_Box2dDistanceCold(benchmark::State& state) {
   const auto& pairs = apart();
@@ -183,6 +208,18 @@ void BM_Box2dCollidePolygons(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_Box2dCollidePolygons);
+
+void BM_Box2dCollidePolygonsApart(benchmark::State& state) {
+  const auto& pairs = apart();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const Pair& p = pairs[i++ & 1023];
+    b2Manifold m;
+    b2CollidePolygons(&m, &p.ba, p.bxa, &p.bb, p.bxb);
+    benchmark::DoNotOptimize(m);
+  }
+}
+BENCHMARK(BM_Box2dCollidePolygonsApart);
 #endif
 
 }  // namespace
