@@ -280,9 +280,12 @@ Measure runBox2d(const Options& o, Scene s, const std::vector<Ray>& rays) {
 #if defined(QUACK_BENCH_HAS_CHIPMUNK)
 // Chipmunk asks for an object's box through a callback; objects are pointers into the
 // scene's box array.
+double wide(float x) {
+  return static_cast<double>(x);
+}
 cpBB chipmunkBox(void* obj) {
   const Aabb& b = *static_cast<const Aabb*>(obj);
-  return cpBBNew(b.lower.x, b.lower.y, b.upper.x, b.upper.y);
+  return cpBBNew(wide(b.lower.x), wide(b.lower.y), wide(b.upper.x), wide(b.upper.y));
 }
 const Scene* gChipmunkScene = nullptr;
 // cpBBTree stretches a leaf by 0.1 x velocity (plus 10% of its size); velocity = 10 x the
@@ -335,8 +338,8 @@ Measure runChipmunk(const Options& o, Scene s, bool hash, const std::vector<Ray>
   timeRays(rays, m, [&](const Ray& r) {
     ChipmunkRay cr;
     std::pair<ChipmunkRay*, const Ray*> data{&cr, &r};
-    const cpVect a = cpv(r.origin.x, r.origin.y);
-    const cpVect b = cpv(r.origin.x + r.translation.x, r.origin.y + r.translation.y);
+    const cpVect a = cpv(wide(r.origin.x), wide(r.origin.y));
+    const cpVect b = cpv(wide(r.origin.x + r.translation.x), wide(r.origin.y + r.translation.y));
     cpSpatialIndexSegmentQuery(index, nullptr, a, b, 1.0, chipmunkRayHit, &data);
     return cr.hit;
   });
