@@ -1,0 +1,90 @@
+#pragma once
+/// The vocabulary of the world: handles, body and shape definitions, events.
+
+#include <cstdint>
+#include <variant>
+
+#include "quack/broadphase/broad_phase.hpp"
+#include "quack/geometry/shapes.hpp"
+
+namespace quack {
+
+/// Handle to a body: slot index plus the slot's generation at creation, so a handle kept
+/// after the body was destroyed is caught instead of reaching a reused slot. The default
+/// handle is null.
+struct BodyId {
+  std::uint32_t index = 0xffffffffu;
+  std::uint32_t generation = 0;
+  friend constexpr bool operator==(BodyId, BodyId) noexcept = default;
+};
+
+/// Handle to a shape on a body, as BodyId.
+struct ShapeId {
+  std::uint32_t index = 0xffffffffu;
+  std::uint32_t generation = 0;
+  friend constexpr bool operator==(ShapeId, ShapeId) noexcept = default;
+};
+
+/// Static bodies never move; kinematic bodies move at the velocity they are given and are
+/// not pushed; dynamic bodies are moved by gravity, forces and contacts.
+enum class BodyType : std::uint8_t { staticBody, kinematicBody, dynamicBody };
+
+/// A new body. World frame, SI units.
+struct BodyDef {
+  BodyType type = BodyType::dynamicBody;
+  Vec2 position;                 ///< origin of the body frame, world frame
+  float angle = 0.0f;            ///< radians
+  Vec2 linearVelocity;           ///< of the centre of mass, m/s
+  float angularVelocity = 0.0f;  ///< rad/s
+  float linearDamping = 0.0f;    ///< 1/s, >= 0
+  float angularDamping = 0.0f;   ///< 1/s, >= 0
+  float gravityScale = 1.0f;
+  /// Continuous collision against other dynamic bodies too (issue 7); stored for now.
+  bool bullet = false;
+  std::uint64_t userData = 0;
+};
+
+/// The geometry of a shape, in the body frame.
+using ShapeGeometry = std::variant<Circle, Capsule, Segment, Polygon>;
+
+/// A new shape on a body.
+struct ShapeDef {
+  float density = 1.0f;      ///< kg/m^2, >= 0
+  float friction = 0.6f;     ///< Coulomb coefficient, >= 0; a pair uses sqrt(fa fb)
+  float restitution = 0.0f;  ///< >= 0; a pair uses the larger
+  /// A sensor reports overlaps (sensor events) and takes no part in the solver.
+  bool sensor = false;
+  Filter filter;
+  std::uint64_t userData = 0;
+};
+
+/// Two shapes started touching (their manifold gained points).
+struct ContactBeginEvent {
+  ShapeId shapeA, shapeB;
+};
+/// Two shapes stopped touching, or one of them was destroyed.
+struct ContactEndEvent {
+  ShapeId shapeA, shapeB;
+};
+/// A contact point whose shapes approached faster than the hit threshold this step.
+struct ContactHitEvent {
+  ShapeId shapeA, shapeB;
+  Vec2 point;                  ///< world frame
+  Vec2 normal;                 ///< from A to B
+  float approachSpeed = 0.0f;  ///< m/s, > 0
+};
+/// A shape started or stopped overlapping a sensor.
+struct SensorEvent {
+  ShapeId sensor, visitor;
+};
+
+/// The events of one step.
+struct StepEvents {
+  std::vector<ContactBeginEvent> begin;
+  std::vector<ContactEndEvent> end;
+  std::vector<ContactHitEvent> hit;
+  std::vector<SensorEvent> sensorBegin;
+  std::vector<SensorEvent> sensorEnd;
+};
+
+}  // namespace quack

@@ -1,0 +1,249 @@
+#pragma once
+/// `World`: rigid bodies carrying shapes, stepped through the seeds' four phases —
+/// proximity (filters), broad phase (fat boxes in any of the five structures), narrow phase
+/// (contact manifolds) and execution (a soft-contact sequential-impulse solver, then events
+/// to the game). docs/world.md explains the solver and every default.
+///
+/// ```
+/// World world = World::create({}).value();
+/// BodyId ground = world.createBody({.type = BodyType::staticBody}).value();
+/// world.createShape(ground, {}, makeBox(20, 0.5f).value());
+/// BodyId ball = world.createBody({.position = {0, 5}}).value();
+/// world.createShape(ball, {.restitution = 0.5f}, makeCircle({}, 0.5f).value());
+/// for (int i = 0; i < 60; ++i) world.step();
+/// ```
+///
+/// Error policy: every public function checks its arguments (stale or null handles,
+/// NaN or infinite numbers, negative densities, ...) and fails with an `Error` that names
+/// the argument; a failed call changes nothing. Bodies and shapes may be created and
+/// destroyed at any time outside `step`; from inside an event callback, destruction is
+/// deferred until the callbacks of that step are done (the handle stays valid until then,
+/// and later callbacks involving it are skipped). Calling `step` from a callback fails.
+///
+/// Determinism: the same scene built in the same order and stepped with the same inputs
+/// gives bit-identical state (`stateHash`) on the same build.
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "quack/collision/manifold.hpp"
+#include "quack/world/types.hpp"
+
+namespace quack {
+
+/// How a world is made. Every default is documented in docs/world.md.
+struct WorldDef {
+  Vec2 gravity{0.0f, -10.0f};     ///< m/s^2
+  float timeStep = 1.0f / 60.0f;  ///< seconds per step() without arguments, > 0
+  int substeps = 4;               ///< solver sub-steps per step, 1..64
+  BroadPhaseKind broadPhase = BroadPhaseKind::kTree;
+  /// Stiffness of contacts, Hz (capped at a quarter of the sub-step rate): how fast overlap
+  /// is pushed out. 30 Hz, as Box2D v3.
+  float contactHertz = 30.0f;
+  /// Damping ratio of contacts: 10, heavily over-damped, so pushing out does not bounce.
+  float contactDampingRatio = 10.0f;
+  /// Fastest speed at which overlap is pushed out, m/s.
+  float contactPushMaxSpeed = 3.0f;
+  /// Approach speed below which restitution is ignored, m/s (resting contacts do not jitter).
+  float restitutionThreshold = 1.0f;
+  /// Approach speed above which a contact reports a hit event, m/s.
+  float hitEventThreshold = 1.0f;
+  /// Contacts appear while shapes are this close (see kSpeculativeDistance), metres.
+  float speculativeDistance = kSpeculativeDistance;
+  /// Largest turn a body may make in one sub-step, radians (keeps fast spinners stable).
+  float maxRotationPerSubstep = 0.25f * kPi;
+};
+
+/// A shape a ray met. World frame.
+struct RayHitResult {
+  ShapeId shape;
+  BodyId body;
+  Vec2 point;
+  Vec2 normal;         ///< outward from the shape
+  float fraction = 0;  ///< along the ray's translation
+};
+
+/// A shape an overlap query met, and how to get the query shape out of it.
+struct ShapeOverlap {
+  ShapeId shape;
+  BodyId body;
+  float depth = 0.0f;  ///< metres, >= 0
+  /// Move the query shape by this (world frame, metres) to separate it from `shape`:
+  /// minus the normal from the query shape to `shape`, times the depth.
+  Vec2 depenetration;
+};
+
+/// Which shapes a query sees: those whose filter accepts this one (see shouldCollide).
+struct QueryFilter {
+  std::uint64_t category = 1;
+  std::uint64_t mask = ~std::uint64_t{0};
+  bool includeSensors = false;
+};
+
+class World {
+ public:
+  static Result<World> create(const WorldDef& def = {});
+
+  World(World&&) noexcept;
+  World& operator=(World&&) noexcept;
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+  ~World();
+
+  const WorldDef& def() const noexcept { return def_; }
+
+  // ---- bodies and shapes -------------------------------------------------------------
+  Result<BodyId> createBody(const BodyDef& def);
+  /// Destroys the body and its shapes (contacts touching them end with end events).
+  Status destroyBody(BodyId body);
+  /// Adds a shape (body frame) to a body and recomputes the body's mass. Errors: bad body,
+  /// bad numbers in `def`, a shape not built by the make* functions (validated again).
+  Result<ShapeId> createShape(BodyId body, const ShapeDef& def, const ShapeGeometry& geometry);
+  Status destroyShape(ShapeId shape);
+
+  bool isValid(BodyId body) const noexcept;
+  bool isValid(ShapeId shape) const noexcept;
+  std::size_t bodyCount() const noexcept { return bodyCount_; }
+  std::size_t shapeCount() const noexcept { return shapeCount_; }
+  /// Live contacts (fat boxes overlapping) and how many of them touch.
+  std::size_t contactCount() const noexcept { return contactCount_; }
+  std::size_t touchingContactCount() const noexcept;
+
+  // ---- body state (preconditions: valid handles, asserted; use isValid) ----------------
+  BodyType bodyType(BodyId body) const;
+  Transform transform(BodyId body) const;  ///< worldFromBody
+  Vec2 position(BodyId body) const;        ///< of the body origin, world frame
+  float angle(BodyId body) const;
+  Vec2 linearVelocity(BodyId body) const;  ///< of the centre of mass, m/s
+  float angularVelocity(BodyId body) const;
+  float mass(BodyId body) const;
+  float rotationalInertia(BodyId body) const;  ///< about the centre of mass
+  Vec2 worldCenterOfMass(BodyId body) const;
+  std::uint64_t userData(BodyId body) const;
+  BodyId body(ShapeId shape) const;
+  const ShapeGeometry& geometry(ShapeId shape) const;
+  const ShapeDef& shapeDef(ShapeId shape) const;
+  /// Shapes of a body, in creation order.
+  std::vector<ShapeId> shapes(BodyId body) const;
+  /// Every live body, in index order.
+  std::vector<BodyId> bodies() const;
+
+  /// Teleports a body (errors: bad handle, non-finite numbers).
+  Status setTransform(BodyId body, Vec2 position, float angle);
+  Status setLinearVelocity(BodyId body, Vec2 velocity);
+  Status setAngularVelocity(BodyId body, float velocity);
+  /// Impulse (N s) at a world point; dynamic bodies only (others ignore it).
+  Status applyLinearImpulse(BodyId body, Vec2 impulse, Vec2 worldPoint);
+
+  // ---- stepping ------------------------------------------------------------------------
+  /// Advances by `def().timeStep` with `def().substeps`.
+  Status step();
+  /// Advances by dt seconds (> 0, finite) with `substeps` (1..64) solver sub-steps.
+  Status step(float dt, int substeps);
+  /// The events of the last step (valid until the next step). Contacts ended by destroying
+  /// a shape between steps are reported with the next step's end events.
+  const StepEvents& events() const noexcept { return events_; }
+  /// Steps taken and simulated time.
+  std::uint64_t stepCount() const noexcept { return stepCount_; }
+  double time() const noexcept { return time_; }
+
+  // ---- callbacks (called at the end of each step, in event order) -----------------------
+  // A callback registered from inside a callback takes effect from the next step.
+  /// Category masks select the shapes: a callback runs for an event whose first shape has a
+  /// category in `categoriesA` and whose second has one in `categoriesB` (tried both ways
+  /// round; the shapes are passed in the matching order). "When a weapon touches a player,
+  /// call this": onContactBegin(weaponBit, playerBit, f).
+  using ContactCallback = std::function<void(World&, ShapeId a, ShapeId b)>;
+  using HitCallback = std::function<void(World&, const ContactHitEvent& hit, bool swapped)>;
+  void onContactBegin(std::uint64_t categoriesA, std::uint64_t categoriesB, ContactCallback f);
+  void onContactEnd(std::uint64_t categoriesA, std::uint64_t categoriesB, ContactCallback f);
+  void onHit(std::uint64_t categoriesA, std::uint64_t categoriesB, HitCallback f);
+  /// Sensor callbacks: (world, sensor, visitor), selected by the sensor's and visitor's
+  /// categories.
+  void onSensorBegin(std::uint64_t sensorCategories, std::uint64_t visitorCategories,
+                     ContactCallback f);
+  void onSensorEnd(std::uint64_t sensorCategories, std::uint64_t visitorCategories,
+                   ContactCallback f);
+
+  // ---- queries (world frame) ---------------------------------------------------------------
+  /// The first shape the ray `origin + t translation`, t in [0, 1], enters.
+  std::optional<RayHitResult> rayCastClosest(Vec2 origin, Vec2 translation,
+                                             QueryFilter filter = {}) const;
+  /// Every shape the ray enters, by fraction.
+  std::vector<RayHitResult> rayCastAll(Vec2 origin, Vec2 translation,
+                                       QueryFilter filter = {}) const;
+  /// Shapes whose bounding boxes overlap `box`.
+  std::vector<ShapeId> overlapAabb(Aabb box, QueryFilter filter = {}) const;
+  /// Shapes that overlap `geometry` placed by `worldFromShape`, each with the depenetration
+  /// vector of the query shape. Errors: a non-finite transform.
+  Result<std::vector<ShapeOverlap>> overlapShape(const ShapeGeometry& geometry,
+                                                 Transform worldFromShape,
+                                                 QueryFilter filter = {}) const;
+
+  // ---- inspection ----------------------------------------------------------------------------
+  /// A hash of every body's position, angle and velocities (bitwise), in index order.
+  std::uint64_t stateHash() const noexcept;
+  /// The broad phase, for drawing and statistics.
+  const BroadPhase& broadPhase() const noexcept { return broadPhase_; }
+  /// Manifolds of touching contacts (for drawing): the two shapes and the manifold.
+  struct ContactView {
+    ShapeId shapeA, shapeB;
+    Manifold manifold;
+  };
+  std::vector<ContactView> touchingContacts() const;
+
+ private:
+  struct Body;
+  struct Shape;
+  struct Contact;
+  struct ContactConstraint;
+  struct Callback;
+  struct SolverBody;
+
+  explicit World(const WorldDef& def, BroadPhase broadPhase);
+
+  Status checkBody(BodyId id, const char* function) const;
+  Status checkShape(ShapeId id, const char* function) const;
+  void updateMass(std::uint32_t body);
+  void updateShapeBoxes(std::uint32_t body, Vec2 displacement);
+  void destroyContact(std::uint32_t contact, bool emitEnd);
+  void destroyShapeNow(std::uint32_t shape);
+  void destroyBodyNow(std::uint32_t body);
+  void findNewContacts();
+  void collide();
+  void solve(float dt, int substeps);
+  void dispatchCallbacks();
+  ShapeId shapeId(std::uint32_t shape) const;
+  bool acceptsQuery(std::uint32_t shape, const QueryFilter& filter) const;
+
+  WorldDef def_;
+  BroadPhase broadPhase_;
+  std::vector<Body> bodies_;
+  std::vector<std::uint32_t> freeBodies_;
+  std::vector<Shape> shapes_;
+  std::vector<std::uint32_t> freeShapes_;
+  std::vector<Contact> contacts_;
+  std::vector<std::uint32_t> freeContacts_;
+  std::unordered_map<std::uint64_t, std::uint32_t> contactByPair_;
+  std::vector<ProxyPair> pairScratch_;
+  std::vector<ContactConstraint> constraints_;
+  std::vector<SolverBody> solverBodies_;
+  std::vector<Callback> pendingCallbacks_;  // registered from inside a callback
+  std::vector<Callback> callbacks_;
+  std::vector<std::uint32_t> pendingBodyDestroy_;
+  std::vector<std::uint32_t> pendingShapeDestroy_;
+  std::vector<ContactEndEvent> endsSinceStep_;  // from destruction between steps
+  StepEvents events_;
+  std::size_t bodyCount_ = 0;
+  std::size_t shapeCount_ = 0;
+  std::size_t contactCount_ = 0;
+  std::uint64_t stepCount_ = 0;
+  double time_ = 0.0;
+  bool inStep_ = false;
+  bool inCallbacks_ = false;
+};
+
+}  // namespace quack

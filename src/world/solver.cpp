@@ -1,0 +1,234 @@
+// The contact solver: soft contacts solved by sequential impulses over sub-steps, with
+// relaxation and restitution (Catto, "Solver2D" (2024) and Box2D v3's soft step, read for
+// understanding; Catto, "Iterative Dynamics with Temporal Coherence", GDC 2005, for
+// sequential impulses and warm starting). docs/world.md explains the choices.
+
+#include <cmath>
+
+#include "quack/world/world.hpp"
+#include "world_internal.hpp"
+
+namespace quack {
+namespace {
+
+Softness makeSoftness(float hertz, float zeta, float h) {
+  if (hertz == 0.0f) return {0.0f, 1.0f, 0.0f};
+  float omega = 2.0f * kPi * hertz;
+  float a1 = 2.0f * zeta + h * omega;
+  float a2 = h * omega * a1;
+  float a3 = 1.0f / (1.0f + a2);
+  return {omega / a1, a2 * a3, a3};
+}
+
+Rot integrateRotation(Rot q, float deltaAngle) {
+  // First-order update then renormalise: exact to second order per sub-step, and cheaper
+  // than cos/sin.
+  Rot r{q.c - deltaAngle * q.s, q.s + deltaAngle * q.c};
+  float inv = 1.0f / std::sqrt(r.c * r.c + r.s * r.s);
+  return {r.c * inv, r.s * inv};
+}
+
+}  // namespace
+
+void World::solve(float dt, int substeps) {
+  const float h = dt / static_cast<float>(substeps);
+  const float invH = 1.0f / h;
+  // Contacts stiffer than a quarter of the sub-step rate are not resolved by the sub-step.
+  const float hertz = minf(def_.contactHertz, 0.25f * invH);
+  const Softness soft = makeSoftness(hertz, def_.contactDampingRatio, h);
+  // Against static (and kinematic) bodies there is only one body to move: twice as stiff.
+  const Softness staticSoft = makeSoftness(2.0f * hertz, def_.contactDampingRatio, h);
+  const float pushMax = def_.contactPushMaxSpeed;
+
+  std::vector<SolverBody>& sb = solverBodies_;
+  sb.assign(bodies_.size(), SolverBody{});
+  for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
+    const Body& b = bodies_[i];
+    if (!b.alive) continue;
+    SolverBody& s = sb[i];
+    s.v = b.v;
+    s.w = b.w;
+    s.invMass = b.invMass;
+    s.invInertia = b.invInertia;
+  }
+
+  // Prepare the constraints of touching contacts (a dynamic body in every one).
+  constraints_.clear();
+  for (std::uint32_t ci = 0; ci < contacts_.size(); ++ci) {
+    const Contact& c = contacts_[ci];
+    if (!c.alive || !c.touching || c.sensor) continue;
+    ContactConstraint k;
+    k.contact = ci;
+    k.bodyA = shapes_[c.shapeA].body;
+    k.bodyB = shapes_[c.shapeB].body;
+    k.normal = c.manifold.normal;
+    k.friction = c.friction;
+    k.restitution = c.restitution;
+    const SolverBody& A = sb[k.bodyA];
+    const SolverBody& B = sb[k.bodyB];
+    k.softness = (A.invMass == 0.0f || B.invMass == 0.0f) ? staticSoft : soft;
+    k.pointCount = c.manifold.pointCount;
+    const Vec2 cA = bodies_[k.bodyA].center;
+    const Vec2 cB = bodies_[k.bodyB].center;
+    const Vec2 n = k.normal;
+    const Vec2 t = rightPerp(n);
+    for (int j = 0; j < k.pointCount; ++j) {
+      const ManifoldPoint& mp = c.manifold.points[j];
+      ContactConstraint::Point& p = k.points[j];
+      p.rA = mp.point - cA;
+      p.rB = mp.point - cB;
+      p.baseSeparation = mp.separation - dot(p.rB - p.rA, n);
+      p.normalImpulse = c.normalImpulse[j];
+      p.tangentImpulse = c.tangentImpulse[j];
+      p.maxNormalImpulse = 0.0f;
+      float rnA = cross(p.rA, n), rnB = cross(p.rB, n);
+      float kn = A.invMass + B.invMass + A.invInertia * rnA * rnA + B.invInertia * rnB * rnB;
+      p.normalMass = kn > 0.0f ? 1.0f / kn : 0.0f;
+      float rtA = cross(p.rA, t), rtB = cross(p.rB, t);
+      float kt = A.invMass + B.invMass + A.invInertia * rtA * rtA + B.invInertia * rtB * rtB;
+      p.tangentMass = kt > 0.0f ? 1.0f / kt : 0.0f;
+      Vec2 dv = B.v + cross(B.w, p.rB) - A.v - cross(A.w, p.rA);
+      p.relativeVelocity = dot(n, dv);
+    }
+    constraints_.push_back(k);
+  }
+
+  auto applyImpulse = [](SolverBody& A, SolverBody& B, Vec2 rA, Vec2 rB, Vec2 P) {
+    A.v -= A.invMass * P;
+    A.w -= A.invInertia * cross(rA, P);
+    B.v += B.invMass * P;
+    B.w += B.invInertia * cross(rB, P);
+  };
+
+  auto solveContacts = [&](bool useBias) {
+    for (ContactConstraint& k : constraints_) {
+      SolverBody& A = sb[k.bodyA];
+      SolverBody& B = sb[k.bodyB];
+      const Vec2 n = k.normal;
+      const Vec2 t = rightPerp(n);
+      for (int j = 0; j < k.pointCount; ++j) {
+        ContactConstraint::Point& p = k.points[j];
+        // Current separation from the bodies' motion since the step began.
+        Vec2 d = (B.dp - A.dp) + (rotate(B.dq, p.rB) - rotate(A.dq, p.rA));
+        float s = dot(d, n) + p.baseSeparation;
+        float bias = 0.0f, massScale = 1.0f, impulseScale = 0.0f;
+        if (s > 0.0f) {
+          bias = s * invH;  // speculative: close the gap, no further
+        } else if (useBias) {
+          bias = maxf(k.softness.biasRate * s, -pushMax);
+          massScale = k.softness.massScale;
+          impulseScale = k.softness.impulseScale;
+        }
+        Vec2 dv = B.v + cross(B.w, p.rB) - A.v - cross(A.w, p.rA);
+        float vn = dot(dv, n);
+        float impulse = -p.normalMass * massScale * (vn + bias) - impulseScale * p.normalImpulse;
+        float total = maxf(p.normalImpulse + impulse, 0.0f);
+        impulse = total - p.normalImpulse;
+        p.normalImpulse = total;
+        p.maxNormalImpulse = maxf(p.maxNormalImpulse, impulse);
+        applyImpulse(A, B, p.rA, p.rB, impulse * n);
+      }
+      for (int j = 0; j < k.pointCount; ++j) {
+        ContactConstraint::Point& p = k.points[j];
+        Vec2 dv = B.v + cross(B.w, p.rB) - A.v - cross(A.w, p.rA);
+        float impulse = -p.tangentMass * dot(dv, t);
+        float limit = k.friction * p.normalImpulse;
+        float total = clampf(p.tangentImpulse + impulse, -limit, limit);
+        impulse = total - p.tangentImpulse;
+        p.tangentImpulse = total;
+        applyImpulse(A, B, p.rA, p.rB, impulse * t);
+      }
+    }
+  };
+
+  const float maxRotation = def_.maxRotationPerSubstep;
+  for (int stepIndex = 0; stepIndex < substeps; ++stepIndex) {
+    // Integrate velocities: gravity and damping (implicit, so any damping is stable).
+    for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
+      const Body& b = bodies_[i];
+      if (!b.alive || b.type != BodyType::dynamicBody) continue;
+      SolverBody& s = sb[i];
+      s.v = (1.0f / (1.0f + h * b.linearDamping)) * (s.v + (h * b.gravityScale) * def_.gravity);
+      s.w = s.w / (1.0f + h * b.angularDamping);
+    }
+    // Warm start with the accumulated impulses.
+    for (const ContactConstraint& k : constraints_) {
+      SolverBody& A = sb[k.bodyA];
+      SolverBody& B = sb[k.bodyB];
+      const Vec2 t = rightPerp(k.normal);
+      for (int j = 0; j < k.pointCount; ++j) {
+        const ContactConstraint::Point& p = k.points[j];
+        applyImpulse(A, B, p.rA, p.rB, p.normalImpulse * k.normal + p.tangentImpulse * t);
+      }
+    }
+    solveContacts(true);
+    // Integrate positions.
+    for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
+      const Body& b = bodies_[i];
+      if (!b.alive || b.type == BodyType::staticBody) continue;
+      SolverBody& s = sb[i];
+      if (absf(h * s.w) > maxRotation) s.w = (s.w > 0.0f ? maxRotation : -maxRotation) * invH;
+      s.dq = integrateRotation(s.dq, h * s.w);
+      s.dp += h * s.v;
+    }
+    // Relax: remove the velocity the soft push added, so it does not become bounce.
+    solveContacts(false);
+  }
+
+  // Restitution: for points that approached faster than the threshold, aim the normal
+  // velocity at -e times the approach velocity.
+  const float threshold = def_.restitutionThreshold;
+  for (ContactConstraint& k : constraints_) {
+    if (k.restitution == 0.0f) continue;
+    SolverBody& A = sb[k.bodyA];
+    SolverBody& B = sb[k.bodyB];
+    for (int j = 0; j < k.pointCount; ++j) {
+      ContactConstraint::Point& p = k.points[j];
+      if (p.relativeVelocity > -threshold || p.maxNormalImpulse == 0.0f) continue;
+      Vec2 dv = B.v + cross(B.w, p.rB) - A.v - cross(A.w, p.rA);
+      float vn = dot(dv, k.normal);
+      float impulse = -p.normalMass * (vn + k.restitution * p.relativeVelocity);
+      float total = maxf(p.normalImpulse + impulse, 0.0f);
+      impulse = total - p.normalImpulse;
+      p.normalImpulse = total;
+      p.maxNormalImpulse = maxf(p.maxNormalImpulse, impulse);
+      applyImpulse(A, B, p.rA, p.rB, impulse * k.normal);
+    }
+  }
+
+  // Store impulses for warm starting; report hits.
+  for (const ContactConstraint& k : constraints_) {
+    Contact& c = contacts_[k.contact];
+    float strongest = 0.0f;
+    int at = -1;
+    for (int j = 0; j < k.pointCount; ++j) {
+      c.normalImpulse[j] = k.points[j].normalImpulse;
+      c.tangentImpulse[j] = k.points[j].tangentImpulse;
+      float approach = -k.points[j].relativeVelocity;
+      if (k.points[j].maxNormalImpulse > 0.0f && approach > def_.hitEventThreshold &&
+          approach > strongest) {
+        strongest = approach;
+        at = j;
+      }
+    }
+    if (at >= 0) {
+      events_.hit.push_back(
+          {shapeId(c.shapeA), shapeId(c.shapeB), c.manifold.points[at].point, k.normal, strongest});
+    }
+  }
+
+  // Finalise bodies and move their proxies.
+  for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
+    Body& b = bodies_[i];
+    if (!b.alive || b.type == BodyType::staticBody) continue;
+    const SolverBody& s = sb[i];
+    b.v = s.v;
+    b.w = s.w;
+    b.center += s.dp;
+    b.xf.q = normalizeRot(mulRot(s.dq, b.xf.q));
+    b.xf.p = b.center - rotate(b.xf.q, b.localCenter);
+    updateShapeBoxes(i, s.dp);
+  }
+}
+
+}  // namespace quack

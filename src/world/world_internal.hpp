@@ -1,0 +1,103 @@
+#pragma once
+// The world's private records, shared by world.cpp (bookkeeping, events, queries) and
+// solver.cpp (the contact solver).
+
+#include <vector>
+
+#include "quack/collision/proxy.hpp"
+#include "quack/world/world.hpp"
+
+namespace quack {
+
+struct World::Body {
+  BodyType type = BodyType::dynamicBody;
+  std::uint32_t generation = 0;
+  bool alive = false;
+  bool pendingDestroy = false;
+  Transform xf;      // worldFromBody
+  Vec2 center;       // centre of mass, world frame
+  Vec2 localCenter;  // centre of mass, body frame
+  Vec2 v;            // velocity of the centre of mass
+  float w = 0.0f;
+  float mass = 0.0f, invMass = 0.0f, inertia = 0.0f, invInertia = 0.0f;
+  float linearDamping = 0.0f, angularDamping = 0.0f, gravityScale = 1.0f;
+  bool bullet = false;
+  std::uint64_t userData = 0;
+  std::vector<std::uint32_t> shapes;
+};
+
+struct World::Shape {
+  std::uint32_t generation = 0;
+  bool alive = false;
+  bool pendingDestroy = false;
+  std::uint32_t body = 0;
+  ShapeGeometry geometry;
+  ShapeDef def;
+  ProxyId proxy;
+  std::vector<std::uint32_t> contacts;
+};
+
+struct World::Contact {
+  bool alive = false;
+  bool touching = false;
+  bool sensor = false;  // shapeA is the sensor
+  std::uint32_t shapeA = 0, shapeB = 0;
+  ManifoldFn fn = nullptr;
+  float friction = 0.0f, restitution = 0.0f;
+  Manifold manifold;
+  // Accumulated impulses of the manifold points, for warm starting (matched by id).
+  float normalImpulse[kMaxManifoldPoints] = {};
+  float tangentImpulse[kMaxManifoldPoints] = {};
+};
+
+// Soft-constraint coefficients for one sub-step (Catto, "Solver2D", 2024; the soft step of
+// Box2D v3): a spring of `hertz` with damping ratio zeta, implicit in the sub-step h.
+struct Softness {
+  float biasRate = 0.0f;
+  float massScale = 1.0f;
+  float impulseScale = 0.0f;
+};
+
+struct World::ContactConstraint {
+  struct Point {
+    Vec2 rA, rB;                  // anchors from each centre of mass, world axes
+    float baseSeparation = 0.0f;  // separation minus the anchors' offset along the normal
+    float normalImpulse = 0.0f, tangentImpulse = 0.0f, maxNormalImpulse = 0.0f;
+    float normalMass = 0.0f, tangentMass = 0.0f;
+    float relativeVelocity = 0.0f;  // normal velocity before the step (for restitution)
+  };
+  std::uint32_t contact = 0;
+  std::uint32_t bodyA = 0, bodyB = 0;
+  Vec2 normal;
+  float friction = 0.0f, restitution = 0.0f;
+  Softness softness;
+  int pointCount = 0;
+  Point points[kMaxManifoldPoints];
+};
+
+// Per-body state of the solver, indexed like the world's bodies.
+struct World::SolverBody {
+  Vec2 v;
+  float w = 0.0f;
+  float invMass = 0.0f, invInertia = 0.0f;
+  Vec2 dp;  // displacement of the centre of mass since the step began
+  Rot dq;   // rotation since the step began
+};
+
+struct World::Callback {
+  enum class Kind { begin, end, hit, sensorBegin, sensorEnd };
+  Kind kind;
+  std::uint64_t categoriesA, categoriesB;
+  ContactCallback contact;
+  HitCallback hit;
+};
+
+// The support proxy of any geometry (views a polygon: keep the geometry alive and still).
+inline ShapeProxy proxyOf(const ShapeGeometry& g) {
+  return std::visit([](const auto& s) { return makeProxy(s); }, g);
+}
+inline ShapeRef refOf(const ShapeGeometry& g) {
+  return std::visit([](const auto& s) { return ShapeRef(s); }, g);
+}
+
+}  // namespace quack

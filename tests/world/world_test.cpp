@@ -1,0 +1,398 @@
+// The world: stacking, bouncing, friction, filters, events, callbacks, queries, determinism
+// and bad input.
+
+#include "quack/world/world.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "quack/collision/gjk.hpp"
+#include "quack/geometry/bounds.hpp"
+#include "quack/geometry/raycast.hpp"
+#include "world_test_util.hpp"
+
+namespace quack {
+namespace {
+
+using testing::addBall;
+using testing::addBox;
+using testing::addPyramid;
+using testing::addStaticBox;
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+World makeWorld(WorldDef def = {}) {
+  return World::create(def).value();
+}
+
+// Documented in docs/world.md: after 10 s no box of a 20-row pyramid has moved more than
+// this from where it was placed (a tenth of a box's half-size).
+constexpr float kPyramidDrift = 0.05f;
+
+TEST(World, TwentyRowPyramidStandsTenSeconds) {
+  for (BroadPhaseKind kind : {BroadPhaseKind::kTree, BroadPhaseKind::kSap}) {
+    SCOPED_TRACE(std::string(nameOf(kind)));
+    World world = makeWorld({.broadPhase = kind});
+    addStaticBox(world, {0, -0.5f}, {40, 0.5f});
+    std::vector<BodyId> boxes = addPyramid(world, 20);
+    ASSERT_EQ(boxes.size(), 210u);
+    std::vector<Vec2> start;
+    for (BodyId b : boxes)
+      start.push_back(world.position(b));
+    for (int s = 0; s < 600; ++s)
+      ASSERT_TRUE(world.step().ok());
+    float maxDrift = 0.0f, maxAngle = 0.0f;
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+      maxDrift = maxf(maxDrift, distance(world.position(boxes[i]), start[i]));
+      maxAngle = maxf(maxAngle, absf(world.angle(boxes[i])));
+    }
+    EXPECT_LT(maxDrift, kPyramidDrift);
+    EXPECT_LT(maxAngle, 0.01f);
+    RecordProperty("max_drift_m", std::to_string(maxDrift));
+  }
+}
+
+// Highest point of the ball after each bounce.
+std::vector<float> bounceApexes(float restitution, int steps) {
+  World world = makeWorld();
+  addStaticBox(world, {0, -0.5f}, {10, 0.5f}, 0.0f, {.restitution = restitution});
+  BodyId ball = addBall(world, {0, 5.5f}, 0.5f, {.restitution = restitution});
+  std::vector<float> apexes;
+  float prevVy = 0.0f;
+  for (int s = 0; s < steps; ++s) {
+    EXPECT_TRUE(world.step().ok());
+    float vy = world.linearVelocity(ball).y;
+    if (prevVy > 0.0f && vy <= 0.0f) apexes.push_back(world.position(ball).y - 0.5f);
+    prevVy = vy;
+  }
+  return apexes;
+}
+
+TEST(World, BallWithRestitutionOneKeepsNinetyPercentOfItsHeight) {
+  std::vector<float> apexes = bounceApexes(1.0f, 60 * 12);
+  ASSERT_GE(apexes.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) {
+    SCOPED_TRACE(i);
+    EXPECT_GT(apexes[i], 0.9f * 5.0f);   // dropped from 5 m above the ground
+    EXPECT_LT(apexes[i], 1.05f * 5.0f);  // and never gains energy
+  }
+}
+
+TEST(World, BallWithRestitutionZeroDoesNotBounce) {
+  std::vector<float> apexes = bounceApexes(0.0f, 60 * 4);
+  for (float a : apexes)
+    EXPECT_LT(a, 0.01f);
+}
+
+// A box on a slope of `degrees`, friction 0.6: how far it moves in 2 s.
+float slide(float degrees) {
+  World world = makeWorld();
+  float a = degrees * kPi / 180.0f;
+  addStaticBox(world, {0, 0}, {20, 0.5f}, a, {.friction = 0.6f});
+  // Resting on the slope's top face, at its middle.
+  Vec2 up{-std::sin(a), std::cos(a)};
+  BodyId box = addBox(world, 1.0f * up, {0.5f, 0.5f}, a, {.friction = 0.6f});
+  for (int s = 0; s < 30; ++s)
+    EXPECT_TRUE(world.step().ok());  // settle
+  Vec2 p0 = world.position(box);
+  for (int s = 0; s < 120; ++s)
+    EXPECT_TRUE(world.step().ok());
+  return distance(p0, world.position(box));
+}
+
+TEST(World, FrictionHoldsAtTwentyDegreesAndSlidesAtForty) {
+  EXPECT_LT(slide(20.0f), 0.01f);  // tan 20 = 0.36 < 0.6
+  EXPECT_GT(slide(40.0f), 1.0f);   // tan 40 = 0.84 > 0.6: a = g (sin - 0.6 cos) = 1.8 m/s^2
+}
+
+TEST(World, MassOfACompoundBody) {
+  World world = makeWorld();
+  BodyId b = world.createBody({.position = {1, 1}}).value();
+  ASSERT_TRUE(world.createShape(b, {.density = 2}, makeBox(1, 0.5f, {-1, 0}).value()).ok());
+  ASSERT_TRUE(world.createShape(b, {.density = 2}, makeBox(1, 0.5f, {1, 0}).value()).ok());
+  // Two 2 x 1 boxes side by side make a 4 x 1 box: mass 8, inertia m (16 + 1) / 12.
+  EXPECT_FLOAT_EQ(world.mass(b), 8.0f);
+  EXPECT_NEAR(world.rotationalInertia(b), 8.0f * 17.0f / 12.0f, 1e-4f);
+  EXPECT_NEAR(world.worldCenterOfMass(b).x, 1.0f, 1e-6f);
+}
+
+// Filters in a live world: two overlapping dynamic boxes touch exactly when the filter rule
+// says so (categories, masks, groups), and a player never touches its own weapon.
+TEST(World, FiltersAsATruthTable) {
+  struct Row {
+    Filter a, b;
+    bool collide;
+  };
+  const std::uint64_t terrain = 1, player = 2, weapon = 4;
+  const Row rows[] = {
+      {{player, terrain | player, 0}, {player, terrain | player, 0}, true},
+      {{player, terrain | player, 0}, {weapon, terrain, 0}, false},  // weapon ignores players
+      {{player, terrain | weapon, 0}, {weapon, terrain | player, 0}, true},
+      {{player, terrain | weapon, -1}, {weapon, terrain | player, -1}, false},  // own weapon
+      {{player, terrain, 3}, {weapon, terrain, 3}, true},  // positive group wins
+      {{player, terrain | weapon, -1}, {weapon, terrain | player, -2}, true},  // other groups
+      {{player, 0, 0}, {player, ~0ull, 0}, false},
+  };
+  for (const Row& row : rows) {
+    World world = makeWorld({.gravity = {0, 0}});
+    BodyId a = addBox(world, {0, 0}, {0.5f, 0.5f}, 0, {.filter = row.a});
+    BodyId b = addBox(world, {0.5f, 0.2f}, {0.5f, 0.5f}, 0, {.filter = row.b});
+    ASSERT_TRUE(world.step().ok());
+    bool touching = world.touchingContactCount() > 0;
+    EXPECT_EQ(touching, row.collide) << "category " << row.a.category << "/" << row.b.category;
+    EXPECT_EQ(touching, shouldCollide(row.a, row.b));
+    // Touching boxes are pushed apart; filtered ones stay where they are.
+    for (int s = 0; s < 30; ++s)
+      ASSERT_TRUE(world.step().ok());
+    EXPECT_EQ(distance(world.position(a), world.position(b)) > 0.9f, row.collide);
+  }
+}
+
+TEST(World, EventsOfABallDroppedOnTheGroundThroughASensor) {
+  World world = makeWorld();
+  BodyId ground = addStaticBox(world, {0, -0.5f}, {10, 0.5f});
+  BodyId zone = world.createBody({.type = BodyType::staticBody, .position = {0, 3}}).value();
+  ShapeId sensor = world.createShape(zone, {.sensor = true}, makeBox(2, 0.5f).value()).value();
+  BodyId ball = addBall(world, {0, 5}, 0.5f);
+  int begins = 0, ends = 0, hits = 0, sensorBegins = 0, sensorEnds = 0;
+  float hitSpeed = 0.0f;
+  for (int s = 0; s < 120; ++s) {
+    ASSERT_TRUE(world.step().ok());
+    const StepEvents& e = world.events();
+    begins += static_cast<int>(e.begin.size());
+    ends += static_cast<int>(e.end.size());
+    hits += static_cast<int>(e.hit.size());
+    for (const ContactHitEvent& h : e.hit)
+      hitSpeed = h.approachSpeed;
+    for (const SensorEvent& se : e.sensorBegin) {
+      EXPECT_EQ(se.sensor, sensor);
+      ++sensorBegins;
+    }
+    sensorEnds += static_cast<int>(e.sensorEnd.size());
+  }
+  EXPECT_EQ(begins, 1);
+  EXPECT_EQ(ends, 0);
+  EXPECT_EQ(hits, 1);
+  // Free fall of 4.5 m: sqrt(2 g h) = 9.49 m/s, to within a step of gravity.
+  EXPECT_NEAR(hitSpeed, std::sqrt(2.0f * 10.0f * 4.5f), 0.3f);
+  EXPECT_EQ(sensorBegins, 1);
+  EXPECT_EQ(sensorEnds, 1);
+  // Lift the ball off: the contact ends on the next step.
+  ASSERT_TRUE(world.setTransform(ball, {0, 8}, 0).ok());
+  ASSERT_TRUE(world.step().ok());
+  EXPECT_EQ(world.events().end.size(), 1u);
+  (void)ground;
+}
+
+TEST(World, CallbacksByCategoryAndRemovalInsideThem) {
+  const std::uint64_t terrain = 1, bullet = 2, target = 4;
+  World world = makeWorld();
+  addStaticBox(world, {0, -0.5f}, {10, 0.5f}, 0, {.filter = {terrain, ~0ull, 0}});
+  BodyId shot = addBall(world, {0, 2}, 0.25f, {.filter = {bullet, ~0ull, 0}});
+  BodyId crate = addBox(world, {3, 0.5f}, {0.5f, 0.5f}, 0, {.filter = {target, ~0ull, 0}});
+  int bulletHits = 0, otherCalls = 0, created = 0;
+  BodyId spawned;
+  world.onContactBegin(bullet, terrain, [&](World& w, ShapeId a, ShapeId b) {
+    ++bulletHits;
+    EXPECT_EQ(w.shapeDef(a).filter.category, bullet);  // passed in the asked order
+    EXPECT_EQ(w.shapeDef(b).filter.category, terrain);
+    EXPECT_TRUE(w.destroyBody(w.body(a)).ok());  // deferred
+    EXPECT_TRUE(w.isValid(w.body(a)));           // still valid until callbacks end
+    spawned = w.createBody({.position = {-3, 1}}).value();
+    EXPECT_TRUE(w.createShape(spawned, {}, makeCircle({}, 0.2f).value()).ok());
+    ++created;
+  });
+  // Runs for the same begin event, after the first callback asked to destroy the bullet:
+  // it must be skipped.
+  world.onContactBegin(bullet, ~0ull, [&](World&, ShapeId, ShapeId) { ++otherCalls; });
+  EXPECT_FALSE(world.step().ok() == false);
+  for (int s = 0; s < 90; ++s)
+    ASSERT_TRUE(world.step().ok());
+  EXPECT_EQ(bulletHits, 1);
+  EXPECT_EQ(otherCalls, 0);
+  EXPECT_EQ(created, 1);
+  EXPECT_FALSE(world.isValid(shot));
+  EXPECT_TRUE(world.isValid(spawned));
+  EXPECT_TRUE(world.isValid(crate));
+  EXPECT_FALSE(world.destroyBody(shot).ok());  // stale
+  // step() from inside a callback is refused.
+  world.onContactBegin(~0ull, ~0ull,
+                       [&](World& w, ShapeId, ShapeId) { EXPECT_FALSE(w.step().ok()); });
+  addBall(world, {5, 1}, 0.25f);
+  for (int s = 0; s < 60; ++s)
+    ASSERT_TRUE(world.step().ok());
+}
+
+void buildMixedScene(World& world) {
+  addStaticBox(world, {0, -0.5f}, {30, 0.5f});
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0, 1);
+  for (int i = 0; i < 120; ++i) {
+    Vec2 p{-10 + 20 * u(rng), 1 + 15 * u(rng)};
+    BodyId b = world.createBody({.position = p, .angle = u(rng) * 3}).value();
+    switch (i % 4) {
+      case 0:
+        (void)world.createShape(b, {}, makeCircle({}, 0.3f + 0.3f * u(rng)).value());
+        break;
+      case 1:
+        (void)world.createShape(b, {}, makeBox(0.3f + 0.3f * u(rng), 0.3f).value());
+        break;
+      case 2:
+        (void)world.createShape(b, {}, makeCapsule({-0.4f, 0}, {0.4f, 0}, 0.2f).value());
+        break;
+      default: {
+        const Vec2 tri[] = {{-0.5f, -0.3f}, {0.5f, -0.3f}, {0, 0.5f}};
+        (void)world.createShape(b, {.restitution = 0.3f}, makePolygon(tri, 0.05f).value());
+      }
+    }
+  }
+}
+
+TEST(World, DeterministicStateHash) {
+  std::uint64_t first = 0;
+  for (BroadPhaseKind kind : kAllBroadPhaseKinds) {
+    SCOPED_TRACE(std::string(nameOf(kind)));
+    for (int run = 0; run < 2; ++run) {
+      World world = makeWorld({.broadPhase = kind});
+      buildMixedScene(world);
+      for (int s = 0; s < 300; ++s)
+        ASSERT_TRUE(world.step().ok());
+      if (first == 0) first = world.stateHash();
+      // The same scene, whatever the structure: pairs are sorted before contacts are made.
+      EXPECT_EQ(world.stateHash(), first);
+    }
+  }
+}
+
+TEST(World, RayCastsAgreeWithBruteForce) {
+  World world = makeWorld({.gravity = {0, 0}});
+  buildMixedScene(world);
+  std::mt19937 rng(77);
+  std::uniform_real_distribution<float> u(-15, 15);
+  int hits = 0;
+  for (int i = 0; i < 300; ++i) {
+    Vec2 o{u(rng), u(rng) + 10}, d{u(rng), u(rng)};
+    // Brute force: every shape cast in its own frame.
+    float best = 2.0f;
+    std::size_t all = 0;
+    for (BodyId b : world.bodies()) {
+      for (ShapeId s : world.shapes(b)) {
+        Transform xf = world.transform(b);
+        RayCastInput in{invTransformPoint(xf, o), invRotate(xf.q, d), 1.0f};
+        RayHit h = std::visit([&](const auto& g) { return rayCast(g, in); }, world.geometry(s));
+        if (h.hit) {
+          best = minf(best, h.fraction);
+          ++all;
+        }
+      }
+    }
+    std::optional<RayHitResult> closest = world.rayCastClosest(o, d);
+    ASSERT_EQ(closest.has_value(), best <= 1.0f);
+    if (closest) {
+      ++hits;
+      EXPECT_FLOAT_EQ(closest->fraction, best);
+      EXPECT_NEAR(length(closest->normal), 1.0f, 1e-4f);
+    }
+    std::vector<RayHitResult> every = world.rayCastAll(o, d);
+    EXPECT_EQ(every.size(), all);
+    for (std::size_t k = 1; k < every.size(); ++k)
+      EXPECT_LE(every[k - 1].fraction, every[k].fraction);
+  }
+  EXPECT_GT(hits, 50);
+}
+
+TEST(World, OverlapQueries) {
+  World world = makeWorld({.gravity = {0, 0}});
+  buildMixedScene(world);
+  Aabb box{{-3, 2}, {3, 6}};
+  std::vector<ShapeId> found = world.overlapAabb(box);
+  std::size_t expected = 0;
+  for (BodyId b : world.bodies()) {
+    for (ShapeId s : world.shapes(b)) {
+      Aabb sb = std::visit([&](const auto& g) { return computeAabb(g, world.transform(b)); },
+                           world.geometry(s));
+      expected += overlaps(sb, box) ? 1 : 0;
+    }
+  }
+  EXPECT_EQ(found.size(), expected);
+
+  // Overlap with depenetration: moving the query shape by each vector frees it from that shape.
+  Circle probe = makeCircle({}, 1.5f).value();
+  int checked = 0;
+  for (float x = -8; x <= 8; x += 2) {
+    Transform xf = makeTransform({x, 4}, 0);
+    auto overlapsNow = world.overlapShape(probe, xf);
+    ASSERT_TRUE(overlapsNow.ok());
+    for (const ShapeOverlap& o : overlapsNow.value()) {
+      ++checked;
+      EXPECT_GT(o.depth, 0.0f);
+      EXPECT_NEAR(length(o.depenetration), o.depth, 1e-4f);
+      Transform moved =
+          makeTransform(xf.p + o.depenetration * 1.001f + 1e-4f * normalize(o.depenetration), 0);
+      Transform other = world.transform(world.body(o.shape));
+      bool still = std::visit(
+          [&](const auto& g) { return testOverlap(makeProxy(probe), moved, makeProxy(g), other); },
+          world.geometry(o.shape));
+      EXPECT_FALSE(still);
+    }
+  }
+  EXPECT_GT(checked, 5);
+  EXPECT_FALSE(world.overlapShape(probe, Transform{{kNaN, 0}, {}}).ok());
+}
+
+TEST(World, BadInputGetsClearErrorsAndChangesNothing) {
+  EXPECT_FALSE(World::create({.timeStep = 0}).ok());
+  EXPECT_FALSE(World::create({.substeps = 0}).ok());
+  EXPECT_FALSE(World::create({.gravity = {kNaN, 0}}).ok());
+  World world = makeWorld();
+  auto r = world.createBody({.position = {kNaN, 0}});
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("BodyDef.position"), std::string::npos);
+  EXPECT_FALSE(world.createBody({.linearDamping = -1}).ok());
+  BodyId b = world.createBody({}).value();
+  auto s = world.createShape(b, {.density = -1}, makeCircle({}, 1).value());
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.error().message.find("ShapeDef.density"), std::string::npos);
+  EXPECT_FALSE(world.createShape(b, {.friction = kNaN}, makeCircle({}, 1).value()).ok());
+  Circle bad;
+  bad.radius = -1;
+  auto g = world.createShape(b, {}, bad);
+  ASSERT_FALSE(g.ok());
+  EXPECT_NE(g.error().message.find("circle radius"), std::string::npos);
+  EXPECT_EQ(world.shapeCount(), 0u);  // nothing was added
+  EXPECT_FALSE(world.createShape(BodyId{}, {}, makeCircle({}, 1).value()).ok());
+  EXPECT_FALSE(world.step(0.0f, 4).ok());
+  EXPECT_FALSE(world.step(kNaN, 4).ok());
+  EXPECT_FALSE(world.step(1.0f / 60, 0).ok());
+  EXPECT_FALSE(world.setTransform(b, {kNaN, 0}, 0).ok());
+  EXPECT_FALSE(world.setLinearVelocity(b, {0, kNaN}).ok());
+  EXPECT_FALSE(world.applyLinearImpulse(b, {kNaN, 0}, {}).ok());
+  ShapeId sh = world.createShape(b, {}, makeCircle({}, 1).value()).value();
+  ASSERT_TRUE(world.destroyShape(sh).ok());
+  auto again = world.destroyShape(sh);
+  ASSERT_FALSE(again.ok());
+  EXPECT_NE(again.message().find("stale"), std::string::npos);
+  ASSERT_TRUE(world.destroyBody(b).ok());
+  EXPECT_FALSE(world.destroyBody(b).ok());
+  EXPECT_FALSE(world.setAngularVelocity(b, 1).ok());
+  EXPECT_EQ(world.bodyCount(), 0u);
+  EXPECT_TRUE(world.step().ok());
+}
+
+TEST(World, EveryBroadPhaseRunsTheSameScene) {
+  for (BroadPhaseKind kind : kAllBroadPhaseKinds) {
+    SCOPED_TRACE(std::string(nameOf(kind)));
+    World world = makeWorld({.broadPhase = kind});
+    buildMixedScene(world);
+    for (int s = 0; s < 120; ++s)
+      ASSERT_TRUE(world.step().ok());
+    EXPECT_TRUE(world.broadPhase().validate().ok());
+    EXPECT_GT(world.touchingContactCount(), 50u);
+  }
+}
+
+}  // namespace
+}  // namespace quack

@@ -1,0 +1,44 @@
+#pragma once
+// Scene builders shared by the world tests.
+
+#include <vector>
+
+#include "quack/world/world.hpp"
+
+namespace quack::testing {
+
+inline BodyId addStaticBox(World& world, Vec2 center, Vec2 half, float angle = 0.0f,
+                           ShapeDef def = {}) {
+  BodyId b =
+      world.createBody({.type = BodyType::staticBody, .position = center, .angle = angle}).value();
+  (void)world.createShape(b, def, makeBox(half.x, half.y).value()).value();
+  return b;
+}
+
+inline BodyId addBox(World& world, Vec2 center, Vec2 half, float angle = 0.0f, ShapeDef def = {}) {
+  BodyId b = world.createBody({.position = center, .angle = angle}).value();
+  (void)world.createShape(b, def, makeBox(half.x, half.y).value()).value();
+  return b;
+}
+
+inline BodyId addBall(World& world, Vec2 center, float radius, ShapeDef def = {}) {
+  BodyId b = world.createBody({.position = center}).value();
+  (void)world.createShape(b, def, makeCircle({}, radius).value()).value();
+  return b;
+}
+
+// A pyramid of unit boxes (half-extent `half`) standing on y = 0, `rows` at the bottom.
+inline std::vector<BodyId> addPyramid(World& world, int rows, float half = 0.5f,
+                                      ShapeDef def = {}) {
+  std::vector<BodyId> boxes;
+  for (int row = 0; row < rows; ++row) {
+    for (int i = 0; i < rows - row; ++i) {
+      float x = (static_cast<float>(i) - 0.5f * static_cast<float>(rows - row - 1)) * 2.0f * half;
+      float y = half + static_cast<float>(row) * 2.0f * half;
+      boxes.push_back(addBox(world, {x, y}, {half, half}, 0.0f, def));
+    }
+  }
+  return boxes;
+}
+
+}  // namespace quack::testing
