@@ -6,7 +6,12 @@ function(quack_set_warnings target)
   if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
     target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wconversion
                                              -Wno-sign-conversion -Wdouble-promotion
-                                             -Wnon-virtual-dtor -Wold-style-cast)
+                                             -Wnon-virtual-dtor -Wold-style-cast
+                                             # Designated initializers that leave defaulted
+                                             # members out are how BodyDef and friends are
+                                             # meant to be filled; GCC 12 warns regardless
+                                             # (GCC bug 96868).
+                                             -Wno-missing-field-initializers)
     if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND CMAKE_CXX_COMPILER_VERSION VERSION_LESS 13)
       # GCC 12 reports a false -Wrestrict inside libstdc++'s std::string operator+ at -O2
       # (GCC bug 105651, fixed in 13); our code has no restrict-qualified pointers.

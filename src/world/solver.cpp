@@ -28,6 +28,71 @@ Rot integrateRotation(Rot q, float deltaAngle) {
   return {r.c * inv, r.s * inv};
 }
 
+// One pass over the contact constraints. Velocities are copied into locals and written
+// back once per constraint, so the compiler need not assume every impulse aliases them.
+// (Templated on the world's private record types, which it deduces.)
+template <class Constraint, class Body>
+void solveContacts(Constraint* constraints, std::size_t count, Body* bodies, float invH,
+                   float pushMax, bool useBias) {
+  for (std::size_t ci = 0; ci < count; ++ci) {
+    Constraint& k = constraints[ci];
+    Body& A = bodies[k.bodyA];
+    Body& B = bodies[k.bodyB];
+    const float mA = A.invMass, iA = A.invInertia, mB = B.invMass, iB = B.invInertia;
+    Vec2 vA = A.v, vB = B.v;
+    float wA = A.w, wB = B.w;
+    const Vec2 dp = B.dp - A.dp;
+    const Rot qA = A.dq, qB = B.dq;
+    const Vec2 n = k.normal;
+    const Vec2 t = rightPerp(n);
+    const int pointCount = k.pointCount;
+    for (int j = 0; j < pointCount; ++j) {
+      auto& p = k.points[j];
+      // Current separation from the bodies' motion since the step began.
+      const Vec2 d = dp + (rotate(qB, p.rB) - rotate(qA, p.rA));
+      const float s = dot(d, n) + p.baseSeparation;
+      float bias = 0.0f, massScale = 1.0f, impulseScale = 0.0f;
+      if (s > 0.0f) {
+        bias = s * invH;  // speculative: close the gap, no further
+      } else if (useBias) {
+        bias = maxf(k.softness.biasRate * s, -pushMax);
+        massScale = k.softness.massScale;
+        impulseScale = k.softness.impulseScale;
+      }
+      const Vec2 dv = vB + cross(wB, p.rB) - vA - cross(wA, p.rA);
+      const float vn = dot(dv, n);
+      float impulse = -p.normalMass * massScale * (vn + bias) - impulseScale * p.normalImpulse;
+      const float total = maxf(p.normalImpulse + impulse, 0.0f);
+      impulse = total - p.normalImpulse;
+      p.normalImpulse = total;
+      p.maxNormalImpulse = maxf(p.maxNormalImpulse, impulse);
+      const Vec2 P = impulse * n;
+      vA -= mA * P;
+      wA -= iA * cross(p.rA, P);
+      vB += mB * P;
+      wB += iB * cross(p.rB, P);
+    }
+    for (int j = 0; j < pointCount; ++j) {
+      auto& p = k.points[j];
+      const Vec2 dv = vB + cross(wB, p.rB) - vA - cross(wA, p.rA);
+      float impulse = -p.tangentMass * dot(dv, t);
+      const float limit = k.friction * p.normalImpulse;
+      const float total = clampf(p.tangentImpulse + impulse, -limit, limit);
+      impulse = total - p.tangentImpulse;
+      p.tangentImpulse = total;
+      const Vec2 P = impulse * t;
+      vA -= mA * P;
+      wA -= iA * cross(p.rA, P);
+      vB += mB * P;
+      wB += iB * cross(p.rB, P);
+    }
+    A.v = vA;
+    A.w = wA;
+    B.v = vB;
+    B.w = wB;
+  }
+}
+
 }  // namespace
 
 void World::solve(float dt, int substeps) {
@@ -100,47 +165,6 @@ void World::solve(float dt, int substeps) {
     B.w += B.invInertia * cross(rB, P);
   };
 
-  auto solveContacts = [&](bool useBias) {
-    for (ContactConstraint& k : constraints_) {
-      SolverBody& A = sb[k.bodyA];
-      SolverBody& B = sb[k.bodyB];
-      const Vec2 n = k.normal;
-      const Vec2 t = rightPerp(n);
-      for (int j = 0; j < k.pointCount; ++j) {
-        ContactConstraint::Point& p = k.points[j];
-        // Current separation from the bodies' motion since the step began.
-        Vec2 d = (B.dp - A.dp) + (rotate(B.dq, p.rB) - rotate(A.dq, p.rA));
-        float s = dot(d, n) + p.baseSeparation;
-        float bias = 0.0f, massScale = 1.0f, impulseScale = 0.0f;
-        if (s > 0.0f) {
-          bias = s * invH;  // speculative: close the gap, no further
-        } else if (useBias) {
-          bias = maxf(k.softness.biasRate * s, -pushMax);
-          massScale = k.softness.massScale;
-          impulseScale = k.softness.impulseScale;
-        }
-        Vec2 dv = B.v + cross(B.w, p.rB) - A.v - cross(A.w, p.rA);
-        float vn = dot(dv, n);
-        float impulse = -p.normalMass * massScale * (vn + bias) - impulseScale * p.normalImpulse;
-        float total = maxf(p.normalImpulse + impulse, 0.0f);
-        impulse = total - p.normalImpulse;
-        p.normalImpulse = total;
-        p.maxNormalImpulse = maxf(p.maxNormalImpulse, impulse);
-        applyImpulse(A, B, p.rA, p.rB, impulse * n);
-      }
-      for (int j = 0; j < k.pointCount; ++j) {
-        ContactConstraint::Point& p = k.points[j];
-        Vec2 dv = B.v + cross(B.w, p.rB) - A.v - cross(A.w, p.rA);
-        float impulse = -p.tangentMass * dot(dv, t);
-        float limit = k.friction * p.normalImpulse;
-        float total = clampf(p.tangentImpulse + impulse, -limit, limit);
-        impulse = total - p.tangentImpulse;
-        p.tangentImpulse = total;
-        applyImpulse(A, B, p.rA, p.rB, impulse * t);
-      }
-    }
-  };
-
   const float maxRotation = def_.maxRotationPerSubstep;
   for (int stepIndex = 0; stepIndex < substeps; ++stepIndex) {
     // Integrate velocities: gravity and damping (implicit, so any damping is stable).
@@ -161,7 +185,7 @@ void World::solve(float dt, int substeps) {
         applyImpulse(A, B, p.rA, p.rB, p.normalImpulse * k.normal + p.tangentImpulse * t);
       }
     }
-    solveContacts(true);
+    solveContacts(constraints_.data(), constraints_.size(), sb.data(), invH, pushMax, true);
     // Integrate positions.
     for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
       const Body& b = bodies_[i];
@@ -172,7 +196,7 @@ void World::solve(float dt, int substeps) {
       s.dp += h * s.v;
     }
     // Relax: remove the velocity the soft push added, so it does not become bounce.
-    solveContacts(false);
+    solveContacts(constraints_.data(), constraints_.size(), sb.data(), invH, pushMax, false);
   }
 
   // Restitution: for points that approached faster than the threshold, aim the normal

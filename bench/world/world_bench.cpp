@@ -1,0 +1,286 @@
+// World benchmark: milliseconds per step, single-threaded, for Quack's World and Box2D
+// 2.4.1's b2World on the same scenes in the same run.
+//
+//   world_bench [--rows N] [--field N] [--steps N] [--warmup N]
+//
+// Scenes (both libraries, 60 Hz):
+//   pyramid  a pyramid of N rows of 1 m boxes (N = 100: 5,050 boxes), the peers' standard scene;
+//   field    N mixed shapes (boxes, circles, capsules, triangles) dropped into a box,
+//            timed after 4 s, once they have piled up.
+// Quack runs its default 4 sub-steps; Box2D its standard 8 velocity and 3 position
+// iterations. Box2D's sleeping is switched off (Quack has none yet), so both simulate every
+// body every step; the note at the end says what sleeping would change.
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "quack/world/world.hpp"
+
+#ifdef QUACK_BENCH_HAS_BOX2D
+#include <box2d/box2d.h>
+#endif
+
+namespace {
+
+using namespace quack;
+using Clock = std::chrono::steady_clock;
+
+struct Options {
+  int rows = 100;
+  int field = 2000;
+  int steps = 200;
+  int warmup = 20;
+};
+
+// One falling shape of the field scene, the same for both libraries.
+struct Piece {
+  int kind;  // 0 box, 1 circle, 2 capsule, 3 triangle
+  Vec2 position;
+  float angle;
+  float size;
+};
+
+std::vector<Piece> makeField(int n) {
+  std::mt19937 rng(2024);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  std::vector<Piece> pieces;
+  int perRow = 40;
+  for (int i = 0; i < n; ++i) {
+    float x = -30.0f + 60.0f * (static_cast<float>(i % perRow) + 0.5f) / static_cast<float>(perRow);
+    float y = 2.0f + 1.6f * static_cast<float>(i / perRow);
+    pieces.push_back({i % 4, {x, y}, 3.0f * u(rng), 0.3f + 0.2f * u(rng)});
+  }
+  return pieces;
+}
+
+// The field is timed once the shapes have landed and piled up (4 s), not in free fall.
+constexpr int kFieldSettleSteps = 240;
+
+struct Timing {
+  double msPerStep = 0;
+  std::size_t contacts = 0;
+};
+
+template <class StepFn, class CountFn>
+Timing timeSteps(const Options& o, StepFn step, CountFn count, int extraWarmup = 0) {
+  for (int i = 0; i < o.warmup + extraWarmup; ++i)
+    step();
+  auto t0 = Clock::now();
+  for (int i = 0; i < o.steps; ++i)
+    step();
+  double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  return {ms / o.steps, count()};
+}
+
+// ---- Quack ------------------------------------------------------------------------------
+
+Timing quackPyramid(const Options& o) {
+  World world = World::create({}).value();
+  BodyId ground = world.createBody({.type = BodyType::staticBody}).value();
+  (void)world.createShape(ground, {}, makeBox(200.0f, 0.5f, {0, -0.5f}).value());
+  Polygon box = makeBox(0.5f, 0.5f).value();
+  for (int row = 0; row < o.rows; ++row) {
+    for (int i = 0; i < o.rows - row; ++i) {
+      float x = static_cast<float>(i) - 0.5f * static_cast<float>(o.rows - row - 1);
+      BodyId b = world.createBody({.position = {x, 0.5f + static_cast<float>(row)}}).value();
+      (void)world.createShape(b, {}, box);
+    }
+  }
+  return timeSteps(
+      o, [&] { (void)world.step(); }, [&] { return world.touchingContactCount(); });
+}
+
+Timing quackField(const Options& o, const std::vector<Piece>& pieces) {
+  World world = World::create({}).value();
+  BodyId ground = world.createBody({.type = BodyType::staticBody}).value();
+  (void)world.createShape(ground, {}, makeBox(32.0f, 0.5f, {0, -0.5f}).value());
+  (void)world.createShape(ground, {}, makeBox(0.5f, 40.0f, {-32.5f, 40}).value());
+  (void)world.createShape(ground, {}, makeBox(0.5f, 40.0f, {32.5f, 40}).value());
+  for (const Piece& p : pieces) {
+    BodyId b = world.createBody({.position = p.position, .angle = p.angle}).value();
+    float s = p.size;
+    switch (p.kind) {
+      case 0:
+        (void)world.createShape(b, {}, makeBox(s, s).value());
+        break;
+      case 1:
+        (void)world.createShape(b, {}, makeCircle({}, s).value());
+        break;
+      case 2:
+        (void)world.createShape(b, {}, makeCapsule({-s, 0}, {s, 0}, 0.5f * s).value());
+        break;
+      default: {
+        const Vec2 tri[] = {{-s, -s}, {s, -s}, {0, s}};
+        (void)world.createShape(b, {}, makePolygon(tri).value());
+      }
+    }
+  }
+  return timeSteps(
+      o, [&] { (void)world.step(); }, [&] { return world.touchingContactCount(); },
+      kFieldSettleSteps);
+}
+
+#ifdef QUACK_BENCH_HAS_BOX2D
+// ---- Box2D 2.4.1 --------------------------------------------------------------------------
+
+std::size_t box2dTouching(b2World& world) {
+  std::size_t n = 0;
+  for (b2Contact* c = world.GetContactList(); c != nullptr; c = c->GetNext())
+    n += c->IsTouching() ? 1 : 0;
+  return n;
+}
+
+Timing box2dPyramid(const Options& o) {
+  b2World world(b2Vec2(0.0f, -10.0f));
+  world.SetAllowSleeping(false);
+  b2BodyDef gd;
+  b2Body* ground = world.CreateBody(&gd);
+  b2PolygonShape gs;
+  gs.SetAsBox(200.0f, 0.5f, b2Vec2(0, -0.5f), 0.0f);
+  ground->CreateFixture(&gs, 0.0f);
+  b2PolygonShape box;
+  box.SetAsBox(0.5f, 0.5f);
+  for (int row = 0; row < o.rows; ++row) {
+    for (int i = 0; i < o.rows - row; ++i) {
+      b2BodyDef bd;
+      bd.type = b2_dynamicBody;
+      bd.position.Set(static_cast<float>(i) - 0.5f * static_cast<float>(o.rows - row - 1),
+                      0.5f + static_cast<float>(row));
+      b2FixtureDef fd;
+      fd.shape = &box;
+      fd.density = 1.0f;
+      fd.friction = 0.6f;
+      world.CreateBody(&bd)->CreateFixture(&fd);
+    }
+  }
+  return timeSteps(
+      o, [&] { world.Step(1.0f / 60.0f, 8, 3); }, [&] { return box2dTouching(world); });
+}
+
+Timing box2dField(const Options& o, const std::vector<Piece>& pieces) {
+  b2World world(b2Vec2(0.0f, -10.0f));
+  world.SetAllowSleeping(false);
+  b2BodyDef gd;
+  b2Body* ground = world.CreateBody(&gd);
+  b2PolygonShape gs;
+  gs.SetAsBox(32.0f, 0.5f, b2Vec2(0, -0.5f), 0.0f);
+  ground->CreateFixture(&gs, 0.0f);
+  gs.SetAsBox(0.5f, 40.0f, b2Vec2(-32.5f, 40), 0.0f);
+  ground->CreateFixture(&gs, 0.0f);
+  gs.SetAsBox(0.5f, 40.0f, b2Vec2(32.5f, 40), 0.0f);
+  ground->CreateFixture(&gs, 0.0f);
+  for (const Piece& p : pieces) {
+    b2BodyDef bd;
+    bd.type = b2_dynamicBody;
+    bd.position.Set(p.position.x, p.position.y);
+    bd.angle = p.angle;
+    b2Body* body = world.CreateBody(&bd);
+    float s = p.size;
+    b2FixtureDef fd;
+    fd.density = 1.0f;
+    fd.friction = 0.6f;
+    b2PolygonShape poly;
+    b2CircleShape circle;
+    switch (p.kind) {
+      case 0:
+        poly.SetAsBox(s, s);
+        fd.shape = &poly;
+        body->CreateFixture(&fd);
+        break;
+      case 1:
+        circle.m_radius = s;
+        fd.shape = &circle;
+        body->CreateFixture(&fd);
+        break;
+      case 2: {
+        // Box2D 2.4 has no capsule: a box and two circles on one body, as its users build one.
+        poly.SetAsBox(s, 0.5f * s);
+        fd.shape = &poly;
+        body->CreateFixture(&fd);
+        circle.m_radius = 0.5f * s;
+        circle.m_p.Set(-s, 0);
+        fd.shape = &circle;
+        body->CreateFixture(&fd);
+        circle.m_p.Set(s, 0);
+        body->CreateFixture(&fd);
+        break;
+      }
+      default: {
+        b2Vec2 tri[3] = {{-s, -s}, {s, -s}, {0, s}};
+        poly.Set(tri, 3);
+        fd.shape = &poly;
+        body->CreateFixture(&fd);
+      }
+    }
+  }
+  return timeSteps(
+      o, [&] { world.Step(1.0f / 60.0f, 8, 3); }, [&] { return box2dTouching(world); },
+      kFieldSettleSteps);
+}
+#endif
+
+int parseInt(const char* flag, const char* value) {
+  char* end = nullptr;
+  long v = std::strtol(value, &end, 10);
+  if (end == value || *end != '\0' || v < 1 || v > 100000) {
+    std::fprintf(stderr, "world_bench: %s needs an integer in 1..100000, got '%s'\n", flag, value);
+    std::exit(2);
+  }
+  return static_cast<int>(v);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    std::string a = argv[i];
+    if (i + 1 >= argc) {
+      std::fprintf(stderr,
+                   "world_bench: %s needs a value\nusage: world_bench [--rows N] [--field N] "
+                   "[--steps N] [--warmup N]\n",
+                   a.c_str());
+      return 2;
+    }
+    if (a == "--rows")
+      o.rows = parseInt("--rows", argv[++i]);
+    else if (a == "--field")
+      o.field = parseInt("--field", argv[++i]);
+    else if (a == "--steps")
+      o.steps = parseInt("--steps", argv[++i]);
+    else if (a == "--warmup")
+      o.warmup = parseInt("--warmup", argv[++i]);
+    else {
+      std::fprintf(stderr, "world_bench: unknown option %s\n", a.c_str());
+      return 2;
+    }
+  }
+  std::vector<Piece> pieces = makeField(o.field);
+  std::printf("world_bench: %d warm-up steps, then %d timed steps at 60 Hz, single thread\n",
+              o.warmup, o.steps);
+  std::printf("%-24s %14s %14s %10s\n", "scene", "library", "ms/step", "contacts");
+  Timing qp = quackPyramid(o);
+  std::printf("%-24s %14s %14.3f %10zu\n", ("pyramid " + std::to_string(o.rows) + " rows").c_str(),
+              "quack", qp.msPerStep, qp.contacts);
+#ifdef QUACK_BENCH_HAS_BOX2D
+  Timing bp = box2dPyramid(o);
+  std::printf("%-24s %14s %14.3f %10zu\n", "", "box2d 2.4.1", bp.msPerStep, bp.contacts);
+  std::printf("%-24s %14s %14.2fx\n", "", "box2d/quack", bp.msPerStep / qp.msPerStep);
+#endif
+  Timing qf = quackField(o, pieces);
+  std::printf("%-24s %14s %14.3f %10zu\n", ("field " + std::to_string(o.field) + " shapes").c_str(),
+              "quack", qf.msPerStep, qf.contacts);
+#ifdef QUACK_BENCH_HAS_BOX2D
+  Timing bf = box2dField(o, pieces);
+  std::printf("%-24s %14s %14.3f %10zu\n", "", "box2d 2.4.1", bf.msPerStep, bf.contacts);
+  std::printf("%-24s %14s %14.2fx\n", "", "box2d/quack", bf.msPerStep / qf.msPerStep);
+#else
+  std::printf("(Box2D 2.4.1 not built in: apt-get install libbox2d-dev and reconfigure)\n");
+#endif
+  return 0;
+}
