@@ -1,9 +1,12 @@
 #include "query.hpp"
 
+#include <cmath>
+
 #include <nlohmann/json.hpp>
 
 #include "quack/collision/epa.hpp"
 #include "quack/collision/gjk.hpp"
+#include "quack/collision/manifold.hpp"
 #include "shape_json.hpp"
 
 namespace quack::app {
@@ -29,15 +32,28 @@ QueryAnswer answerQuery(const std::string& line) {
   json id = q.contains("id") ? q.at("id") : json(nullptr);
   for (const auto& item : q.items()) {
     const std::string& k = item.key();
-    if (k != "id" && k != "op" && k != "a" && k != "pa" && k != "b" && k != "pb") {
+    if (k != "id" && k != "op" && k != "a" && k != "pa" && k != "b" && k != "pb" &&
+        k != "speculative") {
       return rejected(id, k + ": unknown key");
     }
   }
   if (!q.contains("op")) return rejected(id, "op: missing");
   if (!q.at("op").is_string()) return rejected(id, "op: must be a string");
   const std::string op = q.at("op").get<std::string>();
-  if (op != "overlap" && op != "distance" && op != "penetration") {
-    return rejected(id, "op: unknown op \"" + op + "\" (expected overlap, distance, penetration)");
+  if (op != "overlap" && op != "distance" && op != "penetration" && op != "manifold") {
+    return rejected(
+        id, "op: unknown op \"" + op + "\" (expected overlap, distance, penetration, manifold)");
+  }
+  // manifold only: the speculative distance in metres (default kSpeculativeDistance).
+  float speculative = kSpeculativeDistance;
+  if (q.contains("speculative")) {
+    if (op != "manifold") return rejected(id, "speculative: only for op manifold");
+    const json& v = q.at("speculative");
+    if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0.0 ||
+        v.get<double>() > 1e30) {
+      return rejected(id, "speculative: must be a finite number >= 0");
+    }
+    speculative = v.get<float>();
   }
   if (!q.contains("a")) return rejected(id, "a: missing");
   if (!q.contains("b")) return rejected(id, "b: missing");
@@ -65,6 +81,16 @@ QueryAnswer answerQuery(const std::string& line) {
     out["normal"] = toJson(d.normal);
     out["iterations"] = d.iterations;
     out["status"] = toString(d.status);
+  } else if (op == "manifold") {
+    Manifold m = collide(a->ref(), *pa, b->ref(), *pb, speculative);
+    out["normal"] = toJson(m.pointCount > 0 ? m.normal : Vec2{});
+    json points = json::array();
+    for (int i = 0; i < m.pointCount; ++i) {
+      points.push_back({{"point", toJson(m.points[i].point)},
+                        {"separation", m.points[i].separation},
+                        {"id", m.points[i].id}});
+    }
+    out["points"] = points;
   } else {
     PenetrationOutput p = computePenetration(proxyA, *pa, proxyB, *pb);
     out["overlap"] = p.overlap;

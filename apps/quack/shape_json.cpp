@@ -68,6 +68,20 @@ ShapeProxy ParsedShape::proxy() const noexcept {
   return {};
 }
 
+ShapeRef ParsedShape::ref() const noexcept {
+  switch (type) {
+    case ShapeType::circle:
+      return circle;
+    case ShapeType::capsule:
+      return capsule;
+    case ShapeType::segment:
+      return segment;
+    case ShapeType::polygon:
+      return polygon;
+  }
+  return {};
+}
+
 Result<Vec2> parseVec2(const json& j, const std::string& path) {
   if (!j.is_array() || j.size() != 2) return fail(path + ": must be [x, y]");
   Result<float> x = parseNumber(j[0], path + "[0]");

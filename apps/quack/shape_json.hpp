@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "quack/collision/manifold.hpp"
 #include "quack/collision/proxy.hpp"
 #include "quack/core/result.hpp"
 
@@ -31,6 +32,8 @@ struct ParsedShape {
   Polygon polygon;
 
   ShapeProxy proxy() const noexcept;
+  /// The shape for the manifold dispatch table (refers to this object's storage).
+  ShapeRef ref() const noexcept;
 };
 
 /// Shape from JSON; `path` prefixes error messages ("a").

@@ -56,5 +56,39 @@ TEST(Query, BadLinesGetAnErrorAndTheBatchGoesOn) {
             "{\"id\":3,\"overlap\":false}\n");
 }
 
+TEST(Query, ManifoldOfABoxRestingOnABox) {
+  QueryAnswer a = answerQuery(
+      R"({"id":7,"op":"manifold","a":{"type":"box","half":[5,0.5]},"b":{"type":"box","half":[0.5,0.5]},"pb":{"pos":[1,0.99]}})");
+  ASSERT_TRUE(a.ok) << a.answer;
+  json j = json::parse(a.answer);
+  EXPECT_EQ(j["id"], 7);
+  EXPECT_NEAR(j["normal"][0].get<double>(), 0.0, 1e-6);
+  EXPECT_NEAR(j["normal"][1].get<double>(), 1.0, 1e-6);
+  ASSERT_EQ(j["points"].size(), 2u);
+  for (const json& p : j["points"]) {
+    EXPECT_NEAR(p["separation"].get<double>(), -0.01, 1e-5);
+    EXPECT_NEAR(p["point"][1].get<double>(), 0.495, 1e-5);
+    EXPECT_TRUE(p["id"].is_number_unsigned());
+  }
+  // Apart by more than the speculative distance: no points; a wider one finds them.
+  QueryAnswer apart = answerQuery(
+      R"({"id":8,"op":"manifold","a":{"type":"circle","radius":1},"b":{"type":"circle","radius":1},"pb":{"pos":[2.5,0]}})");
+  ASSERT_TRUE(apart.ok);
+  EXPECT_EQ(json::parse(apart.answer)["points"].size(), 0u);
+  QueryAnswer wide = answerQuery(
+      R"({"id":9,"op":"manifold","speculative":1,"a":{"type":"circle","radius":1},"b":{"type":"circle","radius":1},"pb":{"pos":[2.5,0]}})");
+  ASSERT_TRUE(wide.ok);
+  json w = json::parse(wide.answer);
+  ASSERT_EQ(w["points"].size(), 1u);
+  EXPECT_NEAR(w["points"][0]["separation"].get<double>(), 0.5, 1e-6);
+  QueryAnswer bad = answerQuery(
+      R"({"id":10,"op":"manifold","speculative":-1,"a":{"type":"circle","radius":1},"b":{"type":"circle","radius":1}})");
+  EXPECT_FALSE(bad.ok);
+  EXPECT_EQ(json::parse(bad.answer)["error"], "speculative: must be a finite number >= 0");
+  QueryAnswer misplaced = answerQuery(
+      R"({"id":11,"op":"distance","speculative":1,"a":{"type":"circle","radius":1},"b":{"type":"circle","radius":1}})");
+  EXPECT_FALSE(misplaced.ok);
+}
+
 }  // namespace
 }  // namespace quack::app
