@@ -7,6 +7,7 @@
 
 #include "quack/collision/epa.hpp"
 #include "quack/collision/gjk.hpp"
+#include "quack/collision/manifold.hpp"
 #include "quack/collision/sat.hpp"
 #include "test_shapes.hpp"
 
@@ -120,6 +121,25 @@ TEST(Adversarial, EveryQueryIsFiniteAndEnds) {
         EXPECT_NEAR(length(p.normal), 1.0f, 1e-3f) << what;
         EXPECT_NE(p.status, EpaStatus::maxIterations) << what;
         (void)testOverlap(pa, xa, pb, xb);
+        // Every manifold routine, through the table and through the general path.
+        for (const Manifold& m :
+             {collide(sa.ref(), xa, sb.ref(), xb), collideGeneral(pa, xa, pb, xb)}) {
+          ASSERT_GE(m.pointCount, 0) << what;
+          ASSERT_LE(m.pointCount, kMaxManifoldPoints) << what;
+          if (m.pointCount > 0) {
+            EXPECT_NEAR(length(m.normal), 1.0f, 1e-3f) << what;
+          }
+          for (int k = 0; k < m.pointCount; ++k) {
+            expectFinite(m.points[k].point, what);
+            expectFinite(m.points[k].anchorA, what);
+            EXPECT_TRUE(std::isfinite(m.points[k].separation)) << what;
+            EXPECT_LE(m.points[k].separation, kSpeculativeDistance + 1e-3f) << what;
+          }
+          // Overlapping shapes always get a manifold.
+          if (p.overlap) {
+            EXPECT_GE(m.pointCount, 1) << what;
+          }
+        }
         if (sa.kind == testing::Kind::polygon && sb.kind == testing::Kind::polygon) {
           SatOutput s = computeSat(sa.polygon, xa, sb.polygon, xb);
           EXPECT_TRUE(std::isfinite(s.separation)) << what;

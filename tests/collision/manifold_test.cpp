@@ -19,20 +19,6 @@ using testing::AnyShape;
 using testing::Kind;
 using testing::uniform;
 
-ShapeRef refOf(const AnyShape& s) {
-  switch (s.kind) {
-    case Kind::circle:
-      return s.circle;
-    case Kind::capsule:
-      return s.capsule;
-    case Kind::segment:
-      return s.segment;
-    case Kind::polygon:
-      return s.polygon;
-  }
-  return {};
-}
-
 void expectNear(Vec2 a, Vec2 b, float tol, const char* what = "") {
   EXPECT_NEAR(a.x, b.x, tol) << what;
   EXPECT_NEAR(a.y, b.y, tol) << what;
@@ -216,8 +202,8 @@ TEST(Manifold, SwapAndRigidMotionSymmetry) {
     AnyShape b = testing::randomShape(rng, kinds[rng() % 4], 1.0f);
     Transform xa = testing::randomTransform(rng, 0.5f);
     Transform xb = testing::randomTransform(rng, 0.5f);
-    Manifold ab = collide(refOf(a), xa, refOf(b), xb);
-    Manifold ba = collide(refOf(b), xb, refOf(a), xa);
+    Manifold ab = collide(a.ref(), xa, b.ref(), xb);
+    Manifold ba = collide(b.ref(), xb, a.ref(), xa);
     ASSERT_EQ(ab.pointCount, ba.pointCount) << a.describe() << " | " << b.describe();
     if (ab.pointCount == 0) continue;
     ++withPoints;
@@ -253,7 +239,7 @@ TEST(Manifold, SwapAndRigidMotionSymmetry) {
       }
     }
     Transform motion = testing::randomTransform(rng, 100.0f);
-    Manifold moved = collide(refOf(a), motion * xa, refOf(b), motion * xb);
+    Manifold moved = collide(a.ref(), motion * xa, b.ref(), motion * xb);
     // Rounding at |p| ~ 100 m: a few float ulps of 100.
     if (moved.pointCount != ab.pointCount) {
       // Only a point at the speculative boundary may appear or vanish.
@@ -317,7 +303,7 @@ TEST(Manifold, DepthAgreesWithSatEpaAndGjk) {
     if (a.kind == Kind::segment && b.kind == Kind::segment) continue;  // no interior
     Transform xa = testing::randomTransform(rng, 0.6f);
     Transform xb = testing::randomTransform(rng, 0.6f);
-    Manifold m = collide(refOf(a), xa, refOf(b), xb);
+    Manifold m = collide(a.ref(), xa, b.ref(), xb);
     PenetrationOutput pen = computePenetration(a.proxy(), xa, b.proxy(), xb);
     if (!pen.overlap) {
       DistanceOutput d = computeDistance(a.proxy(), xa, b.proxy(), xb);
@@ -361,7 +347,7 @@ TEST(Manifold, GeneralPathAgreesWithSpecialRoutines) {
     if (a.kind == Kind::segment && b.kind == Kind::segment) continue;
     Transform xa = testing::randomTransform(rng, 0.6f);
     Transform xb = testing::randomTransform(rng, 0.6f);
-    Manifold special = collide(refOf(a), xa, refOf(b), xb);
+    Manifold special = collide(a.ref(), xa, b.ref(), xb);
     Manifold general = collideGeneral(a.proxy(), xa, b.proxy(), xb);
     if (general.pointCount == 0 || special.pointCount == 0) continue;
     ++compared;

@@ -6,6 +6,7 @@
 #include <random>
 #include <string>
 
+#include "quack/collision/manifold.hpp"
 #include "quack/collision/proxy.hpp"
 #include "support/random_shapes.hpp"
 
@@ -45,6 +46,20 @@ struct AnyShape {
         return makeProxy(segment);
       case Kind::polygon:
         return makeProxy(polygon);
+    }
+    return {};
+  }
+  // The shape for the manifold dispatch table (refers to this object's storage).
+  ShapeRef ref() const {
+    switch (kind) {
+      case Kind::circle:
+        return circle;
+      case Kind::capsule:
+        return capsule;
+      case Kind::segment:
+        return segment;
+      case Kind::polygon:
+        return polygon;
     }
     return {};
   }
