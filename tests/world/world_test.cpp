@@ -74,6 +74,7 @@ std::vector<float> bounceApexes(float restitution, int steps) {
 TEST(World, BallWithRestitutionOneKeepsNinetyPercentOfItsHeight) {
   std::vector<float> apexes = bounceApexes(1.0f, 60 * 12);
   ASSERT_GE(apexes.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) RecordProperty("apex_" + std::to_string(i), std::to_string(apexes[i]));
   for (std::size_t i = 0; i < 4; ++i) {
     SCOPED_TRACE(i);
     EXPECT_GT(apexes[i], 0.9f * 5.0f);   // dropped from 5 m above the ground
@@ -104,8 +105,11 @@ float slide(float degrees) {
 }
 
 TEST(World, FrictionHoldsAtTwentyDegreesAndSlidesAtForty) {
-  EXPECT_LT(slide(20.0f), 0.01f);  // tan 20 = 0.36 < 0.6
-  EXPECT_GT(slide(40.0f), 1.0f);   // tan 40 = 0.84 > 0.6: a = g (sin - 0.6 cos) = 1.8 m/s^2
+  float at20 = slide(20.0f), at40 = slide(40.0f);
+  RecordProperty("slide_20_m", std::to_string(at20));
+  RecordProperty("slide_40_m", std::to_string(at40));
+  EXPECT_LT(at20, 0.01f);  // tan 20 = 0.36 < 0.6
+  EXPECT_GT(at40, 1.0f);   // tan 40 = 0.84 > 0.6: a = g (sin - 0.6 cos) = 1.8 m/s^2
 }
 
 TEST(World, MassOfACompoundBody) {
