@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# The web demo (docs/web-demo.md): builds Quack to WebAssembly with Debian's emscripten,
+# stages the pages in build/web-site, and optionally serves or tests them.
+#   scripts/web.sh                 # build into build/web-site
+#   scripts/web.sh --serve [PORT]  # build, then serve on http://localhost:PORT (default 8000)
+#   scripts/web.sh --test          # install what is missing, build, run the browser tests
+# Build folders: build/wasm (emscripten), build/web-native (the native `quack` program the
+# tests compare against), build/web-site (what is served).
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+cd "$root"
+mode=build
+port=8000
+case "${1:-}" in
+  "") ;;
+  --serve) mode=serve; port=${2:-8000} ;;
+  --test) mode=test ;;
+  *) echo "usage: scripts/web.sh [--serve [PORT] | --test]" >&2; exit 2 ;;
+esac
+jobs=${QUACK_WEB_JOBS:-2}
+say() { printf 'web.sh: %s\n' "$*" >&2; }
+
+if [ "$mode" = test ]; then
+  scripts/setup.sh build web
+fi
+command -v emcmake >/dev/null || { say "emscripten missing: run scripts/setup.sh web"; exit 1; }
+
+# Debian's emscripten runs its JavaScript optimiser (above -O1) with node and needs acorn,
+# which Debian keeps in /usr/share/nodejs.
+export NODE_PATH=/usr/share/nodejs${NODE_PATH:+:$NODE_PATH}
+
+say "WebAssembly build (build/wasm)"
+if [ ! -f build/wasm/CMakeCache.txt ]; then
+  emcmake cmake -S web -B build/wasm -DCMAKE_BUILD_TYPE=Release >/dev/null
+fi
+cmake --build build/wasm -j"$jobs"
+
+say "staging build/web-site"
+site=build/web-site
+rm -rf "$site"
+mkdir -p "$site/js"
+cp web/*.html web/style.css "$site/"
+cp web/js/*.js "$site/js/"
+cp build/wasm/quack_web.js build/wasm/quack_web.wasm "$site/"
+
+case "$mode" in
+  serve)
+    say "serving http://localhost:$port/ (index.html: GJK and EPA; sandbox.html: world); Ctrl-C stops"
+    exec python3 -m http.server "$port" --bind 127.0.0.1 --directory "$site"
+    ;;
+  test)
+    say "native quack program (build/web-native)"
+    if [ ! -f build/web-native/CMakeCache.txt ]; then
+      cmake -S . -B build/web-native -DCMAKE_BUILD_TYPE=Release -DQUACK_BUILD_TESTS=OFF \
+        -DQUACK_BUILD_BENCHMARKS=OFF -DQUACK_BUILD_APPS=ON >/dev/null
+    fi
+    cmake --build build/web-native --target quack -j"$jobs"
+    say "npm ci (playwright-core only; no browser is downloaded)"
+    (cd web && PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --no-audit --no-fund --loglevel=error)
+    say "browser tests (headless chromium)"
+    export QUACK_WEB_SITE="$root/$site"
+    export QUACK_BIN="$root/build/web-native/apps/quack/quack"
+    cd web && node --test --test-concurrency=1 tests/*.test.mjs
+    ;;
+esac

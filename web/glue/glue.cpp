@@ -1,0 +1,437 @@
+// The WebAssembly face of Quack for the pages in web/: a plain C ABI (called from
+// JavaScript with cwrap) that takes shapes as the JSON of DESIGN.md ("Formats") and answers
+// with JSON strings. Every number the pages show comes from the library's public API
+// (computeDistance, computePenetration, collide, computeMinkowskiDifference, World); the
+// per-iteration pictures come from trace.cpp, which is checked against those answers here.
+//
+// Frames in the answers: shape outlines are in their shape frame (the page places them with
+// the pose it passed); everything else is in the world frame, and points of B - A are in
+// world axes (b - a of world points).
+
+#include <emscripten/emscripten.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "quack/collision/epa.hpp"
+#include "quack/collision/gjk.hpp"
+#include "quack/collision/manifold.hpp"
+#include "quack/collision/minkowski.hpp"
+#include "quack/world/world.hpp"
+#include "trace.hpp"
+
+namespace quack::web {
+namespace {
+
+using nlohmann::json;
+
+json toJson(Vec2 v) {
+  return json::array({v.x, v.y});
+}
+
+Result<Vec2> readVec(const json& j, const char* key, Vec2 fallback, bool required) {
+  if (!j.contains(key)) {
+    if (required) return fail(std::string(key) + ": missing");
+    return fallback;
+  }
+  const json& v = j.at(key);
+  if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number()) {
+    return fail(std::string(key) + ": must be [x, y]");
+  }
+  return Vec2{v[0].get<float>(), v[1].get<float>()};
+}
+
+Result<float> readNumber(const json& j, const char* key, float fallback, bool required) {
+  if (!j.contains(key)) {
+    if (required) return fail(std::string(key) + ": missing");
+    return fallback;
+  }
+  if (!j.at(key).is_number()) return fail(std::string(key) + ": must be a number");
+  return j.at(key).get<float>();
+}
+
+template <class T>
+Result<ShapeGeometry> geometryOf(Result<T> made) {
+  if (!made) return made.error();
+  return ShapeGeometry{made.value()};
+}
+
+// A shape in the JSON of DESIGN.md ("Formats"); the make* functions check the numbers.
+Result<ShapeGeometry> parseShape(const std::string& text) {
+  json j = json::parse(text, nullptr, false);
+  if (j.is_discarded() || !j.is_object()) return fail("shape: not a JSON object");
+  if (!j.contains("type") || !j.at("type").is_string()) return fail("type: missing");
+  const std::string type = j.at("type").get<std::string>();
+  if (type == "circle") {
+    Result<Vec2> c = readVec(j, "center", {}, false);
+    Result<float> r = readNumber(j, "radius", 0.0f, true);
+    if (!c) return c.error();
+    if (!r) return r.error();
+    return geometryOf(makeCircle(*c, *r));
+  }
+  if (type == "capsule" || type == "segment") {
+    Result<Vec2> p1 = readVec(j, "p1", {}, true);
+    Result<Vec2> p2 = readVec(j, "p2", {}, true);
+    if (!p1) return p1.error();
+    if (!p2) return p2.error();
+    if (type == "segment") return geometryOf(makeSegment(*p1, *p2));
+    Result<float> r = readNumber(j, "radius", 0.0f, true);
+    if (!r) return r.error();
+    return geometryOf(makeCapsule(*p1, *p2, *r));
+  }
+  if (type == "box") {
+    Result<Vec2> half = readVec(j, "half", {}, true);
+    Result<Vec2> c = readVec(j, "center", {}, false);
+    Result<float> angle = readNumber(j, "angle", 0.0f, false);
+    Result<float> r = readNumber(j, "radius", 0.0f, false);
+    if (!half) return half.error();
+    if (!c) return c.error();
+    if (!angle) return angle.error();
+    if (!r) return r.error();
+    return geometryOf(makeBox(half->x, half->y, *c, *angle, *r));
+  }
+  if (type == "polygon") {
+    if (!j.contains("points") || !j.at("points").is_array()) return fail("points: missing");
+    std::vector<Vec2> points;
+    for (const json& p : j.at("points")) {
+      if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number()) {
+        return fail("points: each must be [x, y]");
+      }
+      points.push_back({p[0].get<float>(), p[1].get<float>()});
+    }
+    Result<float> r = readNumber(j, "radius", 0.0f, false);
+    if (!r) return r.error();
+    return geometryOf(makePolygon(points, *r));
+  }
+  return fail("type: unknown shape type \"" + type + "\"");
+}
+
+// The proxy views the geometry (for polygons): keep `geometry` alive and unmoved.
+ShapeProxy proxyOf(const ShapeGeometry& geometry) {
+  return std::visit([](const auto& shape) { return makeProxy(shape); }, geometry);
+}
+
+ShapeRef refOf(const ShapeGeometry& geometry) {
+  return std::visit([](const auto& shape) { return ShapeRef(shape); }, geometry);
+}
+
+// Outline for drawing: the core points (shape frame) and the rounding radius.
+json outlineOf(const ShapeGeometry& geometry) {
+  ShapeProxy proxy = proxyOf(geometry);
+  json points = json::array();
+  for (int i = 0; i < proxy.count(); ++i)
+    points.push_back(toJson(proxy.points()[i]));
+  static const char* const kNames[] = {"circle", "capsule", "segment", "polygon"};
+  return {{"type", kNames[geometry.index()]}, {"points", points}, {"radius", proxy.radius()}};
+}
+
+json supportJson(const SupportPoint& s, Transform worldFromA) {
+  // w = pointB - pointA in A's frame; in world axes it is the rotated vector.
+  return {{"w", toJson(rotate(worldFromA.q, s.w))},
+          {"a", toJson(transformPoint(worldFromA, s.pointA))},
+          {"b", toJson(transformPoint(worldFromA, s.pointB))},
+          {"ia", s.indexA},
+          {"ib", s.indexB}};
+}
+
+json gjkJson(const GjkTrace& trace, Transform worldFromA) {
+  json steps = json::array();
+  for (const GjkStep& step : trace.steps) {
+    json simplex = json::array();
+    for (int i = 0; i < step.simplex.count; ++i) {
+      json v = supportJson(step.simplex.vertices[i].support, worldFromA);
+      v["weight"] = step.simplex.vertices[i].weight;
+      simplex.push_back(v);
+    }
+    json s = {{"simplex", simplex}, {"closest", toJson(rotate(worldFromA.q, step.closest))}};
+    if (step.hasSupport) {
+      s["direction"] = toJson(rotate(worldFromA.q, step.direction));
+      s["support"] = supportJson(step.support, worldFromA);
+    }
+    steps.push_back(s);
+  }
+  return {{"steps", steps},
+          {"iterations", trace.iterations},
+          {"status", toString(trace.status)},
+          {"distance", trace.distance}};
+}
+
+json epaJson(const EpaTrace& trace, Transform worldFromA) {
+  json steps = json::array();
+  for (const EpaStep& step : trace.steps) {
+    json polytope = json::array();
+    for (const SupportPoint& p : step.polytope)
+      polytope.push_back(supportJson(p, worldFromA));
+    json s = {{"polytope", polytope},
+              {"edge", step.nearestEdge},
+              {"normal", toJson(rotate(worldFromA.q, step.normal))},
+              {"distance", step.distance}};
+    if (step.hasSupport) s["support"] = supportJson(step.support, worldFromA);
+    steps.push_back(s);
+  }
+  return {{"ran", trace.ran},
+          {"steps", steps},
+          {"status", toString(trace.status)},
+          {"depth", trace.depth},
+          {"iterations", trace.iterations}};
+}
+
+// Relative agreement to a few float ulps of the scale (the trace repeats the library's
+// arithmetic, so in practice they are equal).
+bool agrees(float x, float y, float scale) {
+  return std::fabs(x - y) <= 1e-5f * (1.0f + scale);
+}
+
+ShapeGeometry gShapes[2] = {Circle{{}, 0.5f}, Circle{{}, 0.5f}};
+std::string gAnswer;
+
+const char* answer(const json& j) {
+  gAnswer = j.dump();
+  return gAnswer.c_str();
+}
+
+const char* errorAnswer(const std::string& message) {
+  return answer({{"error", message}});
+}
+
+// ---- the sandbox world ----------------------------------------------------------------
+
+struct Sandbox {
+  std::optional<World> world;
+  std::vector<ShapeId> shapes;  // every shape ever created, by sandbox index
+};
+Sandbox gSandbox;
+
+int sandboxIndex(ShapeId id) {
+  for (std::size_t i = 0; i < gSandbox.shapes.size(); ++i) {
+    if (gSandbox.shapes[i] == id) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+json aabbJson(Aabb box) {
+  return json::array({box.lower.x, box.lower.y, box.upper.x, box.upper.y});
+}
+
+}  // namespace
+}  // namespace quack::web
+
+using namespace quack;
+using namespace quack::web;
+
+extern "C" {
+
+/// Sets shape `slot` (0 = A, 1 = B) of the GJK page from the JSON of DESIGN.md. Returns
+/// {"ok": true, "outline": ...} or {"error": "..."} (the old shape is kept on error).
+EMSCRIPTEN_KEEPALIVE const char* qk_set_shape(int slot, const char* shapeJson) {
+  if (slot < 0 || slot > 1) return errorAnswer("slot: must be 0 or 1");
+  Result<ShapeGeometry> g = parseShape(shapeJson);
+  if (!g) return errorAnswer(g.error().message);
+  gShapes[slot] = g.value();
+  return answer({{"ok", true}, {"outline", outlineOf(gShapes[slot])}});
+}
+
+/// Everything the GJK page draws for shape A at (ax, ay, aAngle) and B at (bx, by, bAngle):
+/// the library's distance, penetration and manifold answers, the core of B - A, and the
+/// GJK and EPA traces with a flag saying whether they agree with the library.
+EMSCRIPTEN_KEEPALIVE const char* qk_analyze(double ax, double ay, double aAngle, double bx,
+                                            double by, double bAngle) {
+  Transform worldFromA =
+      makeTransform({static_cast<float>(ax), static_cast<float>(ay)}, static_cast<float>(aAngle));
+  Transform worldFromB =
+      makeTransform({static_cast<float>(bx), static_cast<float>(by)}, static_cast<float>(bAngle));
+  ShapeProxy a = proxyOf(gShapes[0]);
+  ShapeProxy b = proxyOf(gShapes[1]);
+
+  DistanceOutput d = computeDistance(a, worldFromA, b, worldFromB);
+  PenetrationOutput p = computePenetration(a, worldFromA, b, worldFromB);
+  Manifold m = collide(refOf(gShapes[0]), worldFromA, refOf(gShapes[1]), worldFromB);
+
+  json out;
+  out["outlineA"] = outlineOf(gShapes[0]);
+  out["outlineB"] = outlineOf(gShapes[1]);
+  out["distance"] = {{"distance", d.distance},      {"coreDistance", d.coreDistance},
+                     {"pointA", toJson(d.pointA)},  {"pointB", toJson(d.pointB)},
+                     {"normal", toJson(d.normal)},  {"iterations", d.iterations},
+                     {"status", toString(d.status)}};
+  out["penetration"] = {{"overlap", p.overlap},        {"depth", p.depth},
+                        {"normal", toJson(p.normal)},  {"pointA", toJson(p.pointA)},
+                        {"pointB", toJson(p.pointB)},  {"iterations", p.iterations},
+                        {"status", toString(p.status)}};
+  json points = json::array();
+  for (int i = 0; i < m.pointCount; ++i) {
+    points.push_back({{"point", toJson(m.points[i].point)},
+                      {"separation", m.points[i].separation},
+                      {"id", m.points[i].id}});
+  }
+  out["manifold"] = {{"normal", toJson(m.pointCount > 0 ? m.normal : Vec2{})}, {"points", points}};
+
+  Result<Hull> hull = computeMinkowskiDifference(a, worldFromA, b, worldFromB);
+  json minkowski = {{"radius", a.radius() + b.radius()}};
+  if (hull) {
+    json hp = json::array();
+    for (int i = 0; i < hull->count; ++i)
+      hp.push_back(toJson(hull->points[i]));
+    minkowski["points"] = hp;
+  } else {
+    // No area (two points, parallel segments): draw the pairwise differences instead.
+    json hp = json::array();
+    for (int i = 0; i < a.count(); ++i) {
+      for (int k = 0; k < b.count(); ++k) {
+        hp.push_back(toJson(transformPoint(worldFromB, b.points()[k]) -
+                            transformPoint(worldFromA, a.points()[i])));
+      }
+    }
+    minkowski["points"] = hp;
+    minkowski["flat"] = hull.error().message;
+  }
+  out["minkowski"] = minkowski;
+
+  Transform aFromB = invMul(worldFromA, worldFromB);
+  GjkTrace gjk = traceGjk(a, b, aFromB);
+  EpaTrace epa = traceEpa(a, b, aFromB, gjk);
+  out["gjk"] = gjkJson(gjk, worldFromA);
+  out["epa"] = epaJson(epa, worldFromA);
+  float scale = length(worldFromB.p - worldFromA.p) + a.radius() + b.radius() + 1.0f;
+  bool gjkAgrees = gjk.status == d.status && gjk.iterations == d.iterations &&
+                   agrees(gjk.distance, d.distance, scale);
+  bool epaAgrees =
+      epa.status == p.status && epa.iterations == p.iterations && agrees(epa.depth, p.depth, scale);
+  out["traceAgrees"] = {{"gjk", gjkAgrees}, {"epa", epaAgrees}};
+  return answer(out);
+}
+
+/// A new sandbox world (gravity -10, the library's defaults) with broad phase `kind`
+/// ("tree", "quadtree", "sap", "hash", "brute"). Returns {"ok"} or {"error"}.
+EMSCRIPTEN_KEEPALIVE const char* qk_world_reset(const char* kind) {
+  Result<BroadPhaseKind> k = parseBroadPhaseKind(kind);
+  if (!k) return errorAnswer(k.error().message);
+  Result<World> w = World::create({.broadPhase = *k});
+  if (!w) return errorAnswer(w.error().message);
+  gSandbox.world.emplace(std::move(w.value()));
+  gSandbox.shapes.clear();
+  return answer({{"ok", true}});
+}
+
+/// Adds a body of type 0 static, 1 kinematic, 2 dynamic at (x, y, angle) with one shape
+/// (JSON of DESIGN.md) and the given restitution. Returns {"shape": index} or {"error"}.
+EMSCRIPTEN_KEEPALIVE const char* qk_world_add(const char* shapeJson, int type, double x, double y,
+                                              double angle, double vx, double vy,
+                                              double restitution) {
+  if (!gSandbox.world) return errorAnswer("no world: call qk_world_reset first");
+  Result<ShapeGeometry> g = parseShape(shapeJson);
+  if (!g) return errorAnswer(g.error().message);
+  static const BodyType kTypes[] = {BodyType::staticBody, BodyType::kinematicBody,
+                                    BodyType::dynamicBody};
+  if (type < 0 || type > 2) return errorAnswer("type: must be 0, 1 or 2");
+  World& world = *gSandbox.world;
+  Result<BodyId> body =
+      world.createBody({.type = kTypes[type],
+                        .position = {static_cast<float>(x), static_cast<float>(y)},
+                        .angle = static_cast<float>(angle),
+                        .linearVelocity = {static_cast<float>(vx), static_cast<float>(vy)}});
+  if (!body) return errorAnswer(body.error().message);
+  Result<ShapeId> shape =
+      world.createShape(*body, {.restitution = static_cast<float>(restitution)}, g.value());
+  if (!shape) {
+    (void)world.destroyBody(*body);
+    return errorAnswer(shape.error().message);
+  }
+  gSandbox.shapes.push_back(*shape);
+  return answer({{"shape", gSandbox.shapes.size() - 1}});
+}
+
+/// Removes every dynamic body whose centre is below `y` (bodies that fell off the ground).
+EMSCRIPTEN_KEEPALIVE int qk_world_cull(double y) {
+  if (!gSandbox.world) return 0;
+  World& world = *gSandbox.world;
+  int removed = 0;
+  for (BodyId body : world.bodies()) {
+    if (world.bodyType(body) == BodyType::dynamicBody && world.position(body).y < y) {
+      removed += world.destroyBody(body) ? 1 : 0;
+    }
+  }
+  return removed;
+}
+
+/// Steps the sandbox `steps` times by dt and returns the events of every step:
+/// {"begin": [[a, b], ...], "end": [...], "hit": [{"a", "b", "point", "speed"}]}.
+EMSCRIPTEN_KEEPALIVE const char* qk_world_step(double dt, int steps) {
+  if (!gSandbox.world) return errorAnswer("no world: call qk_world_reset first");
+  World& world = *gSandbox.world;
+  json begin = json::array(), end = json::array(), hit = json::array();
+  for (int i = 0; i < steps; ++i) {
+    Status s = world.step(static_cast<float>(dt), world.def().substeps);
+    if (!s) return errorAnswer(s.message());
+    const StepEvents& e = world.events();
+    for (const ContactBeginEvent& x : e.begin)
+      begin.push_back({sandboxIndex(x.shapeA), sandboxIndex(x.shapeB)});
+    for (const ContactEndEvent& x : e.end)
+      end.push_back({sandboxIndex(x.shapeA), sandboxIndex(x.shapeB)});
+    for (const ContactHitEvent& x : e.hit) {
+      hit.push_back({{"a", sandboxIndex(x.shapeA)},
+                     {"b", sandboxIndex(x.shapeB)},
+                     {"point", toJson(x.point)},
+                     {"speed", x.approachSpeed}});
+    }
+  }
+  return answer({{"begin", begin}, {"end", end}, {"hit", hit}, {"time", world.time()}});
+}
+
+/// The sandbox for drawing: live shapes (outline in the shape frame plus the body pose),
+/// the fat box of every broad-phase proxy, the touching contacts and the tree's figures.
+EMSCRIPTEN_KEEPALIVE const char* qk_world_state() {
+  if (!gSandbox.world) return errorAnswer("no world: call qk_world_reset first");
+  const World& world = *gSandbox.world;
+  json shapes = json::array();
+  for (std::size_t i = 0; i < gSandbox.shapes.size(); ++i) {
+    ShapeId id = gSandbox.shapes[i];
+    if (!world.isValid(id)) continue;
+    BodyId body = world.body(id);
+    Transform t = world.transform(body);
+    json s = outlineOf(world.geometry(id));
+    s["index"] = i;
+    s["pos"] = toJson(t.p);
+    s["angle"] = world.angle(body);
+    s["bodyType"] = static_cast<int>(world.bodyType(body));
+    shapes.push_back(s);
+  }
+  const BroadPhase& bp = world.broadPhase();
+  json fat = json::array();
+  bp.queryAabb(Aabb{{-kMaxCoordinate, -kMaxCoordinate}, {kMaxCoordinate, kMaxCoordinate}},
+               [&](ProxyId id, std::uint64_t) {
+                 fat.push_back(aabbJson(bp.fatBox(id)));
+                 return true;
+               });
+  json contacts = json::array();
+  for (const World::ContactView& c : world.touchingContacts()) {
+    json points = json::array();
+    for (int i = 0; i < c.manifold.pointCount; ++i) {
+      points.push_back({{"point", toJson(c.manifold.points[i].point)},
+                        {"separation", c.manifold.points[i].separation}});
+    }
+    contacts.push_back({{"a", sandboxIndex(c.shapeA)},
+                        {"b", sandboxIndex(c.shapeB)},
+                        {"normal", toJson(c.manifold.normal)},
+                        {"points", points}});
+  }
+  BroadPhaseStats stats = bp.stats();
+  return answer({{"shapes", shapes},
+                 {"fatBoxes", fat},
+                 {"contacts", contacts},
+                 {"broadPhase",
+                  {{"kind", std::string(nameOf(bp.kind()))},
+                   {"proxies", stats.proxyCount},
+                   {"height", stats.height},
+                   {"areaRatio", stats.areaRatio},
+                   {"hasTree", bp.tree() != nullptr}}},
+                 {"bodies", world.bodyCount()},
+                 {"contactCount", world.contactCount()},
+                 {"time", world.time()},
+                 {"steps", world.stepCount()}});
+}
+
+}  // extern "C"

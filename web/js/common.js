@@ -1,0 +1,181 @@
+// Shared by the pages: loading the WebAssembly module, a world-to-canvas view, and drawing
+// Quack's shapes (core points grown by a radius, as the library sees them).
+
+/** Loads quack_web.js's module and wraps its C functions; JSON answers come back parsed. */
+export async function loadQuack() {
+  // createQuack is defined by quack_web.js, loaded by a classic <script> tag before us.
+  const module = await globalThis.createQuack();
+  const call = (name, args, types) => {
+    const text = module.ccall(name, 'string', types, args);
+    return JSON.parse(text);
+  };
+  return {
+    setShape: (slot, shape) => call('qk_set_shape', [slot, JSON.stringify(shape)], ['number', 'string']),
+    analyze: (pa, pb) =>
+      call('qk_analyze', [pa.pos[0], pa.pos[1], pa.angle, pb.pos[0], pb.pos[1], pb.angle],
+        ['number', 'number', 'number', 'number', 'number', 'number']),
+    worldReset: (kind) => call('qk_world_reset', [kind], ['string']),
+    worldAdd: (shape, type, pos, angle, vel, restitution) =>
+      call('qk_world_add', [JSON.stringify(shape), type, pos[0], pos[1], angle, vel[0], vel[1], restitution],
+        ['string', 'number', 'number', 'number', 'number', 'number', 'number', 'number']),
+    worldCull: (y) => module.ccall('qk_world_cull', 'number', ['number'], [y]),
+    worldStep: (dt, steps) => call('qk_world_step', [dt, steps], ['number', 'number']),
+    worldState: () => call('qk_world_state', [], []),
+  };
+}
+
+/** A view: world metres (y up) to canvas pixels. */
+export class View {
+  constructor(canvas, scale, center = [0, 0]) {
+    this.canvas = canvas;
+    this.ctx = canvas.getContext('2d');
+    this.scale = scale;
+    this.center = center;
+  }
+  toCanvas(p) {
+    return [this.canvas.width / 2 + (p[0] - this.center[0]) * this.scale,
+      this.canvas.height / 2 - (p[1] - this.center[1]) * this.scale];
+  }
+  toWorld(x, y) {
+    return [(x - this.canvas.width / 2) / this.scale + this.center[0],
+      -(y - this.canvas.height / 2) / this.scale + this.center[1]];
+  }
+  clear(color = '#fbfaf7') {
+    const { ctx, canvas } = this;
+    ctx.fillStyle = color;
+    ctx.fillRect(0, 0, canvas.width, canvas.height);
+  }
+  grid(step = 1, color = '#ecebe6') {
+    const { ctx, canvas } = this;
+    const [x0, y1] = this.toWorld(0, 0);
+    const [x1, y0] = this.toWorld(canvas.width, canvas.height);
+    ctx.strokeStyle = color;
+    ctx.lineWidth = 1;
+    ctx.beginPath();
+    for (let x = Math.ceil(x0 / step) * step; x <= x1; x += step) {
+      const [cx] = this.toCanvas([x, 0]);
+      ctx.moveTo(cx, 0); ctx.lineTo(cx, canvas.height);
+    }
+    for (let y = Math.ceil(y0 / step) * step; y <= y1; y += step) {
+      const [, cy] = this.toCanvas([0, y]);
+      ctx.moveTo(0, cy); ctx.lineTo(canvas.width, cy);
+    }
+    ctx.stroke();
+  }
+  path(points, close) {
+    const { ctx } = this;
+    ctx.beginPath();
+    points.forEach((p, i) => {
+      const [x, y] = this.toCanvas(p);
+      if (i === 0) ctx.moveTo(x, y); else ctx.lineTo(x, y);
+    });
+    if (close) ctx.closePath();
+  }
+  line(p, q, color, width = 1.5, dash = []) {
+    const { ctx } = this;
+    ctx.save();
+    ctx.setLineDash(dash);
+    ctx.strokeStyle = color;
+    ctx.lineWidth = width;
+    this.path([p, q], false);
+    ctx.stroke();
+    ctx.restore();
+  }
+  arrow(from, to, color, width = 2) {
+    const { ctx } = this;
+    const [x0, y0] = this.toCanvas(from);
+    const [x1, y1] = this.toCanvas(to);
+    const len = Math.hypot(x1 - x0, y1 - y0);
+    ctx.save();
+    ctx.strokeStyle = color;
+    ctx.fillStyle = color;
+    ctx.lineWidth = width;
+    ctx.beginPath(); ctx.moveTo(x0, y0); ctx.lineTo(x1, y1); ctx.stroke();
+    if (len > 4) {
+      const ux = (x1 - x0) / len, uy = (y1 - y0) / len;
+      const h = Math.min(10, len / 2);
+      ctx.beginPath();
+      ctx.moveTo(x1, y1);
+      ctx.lineTo(x1 - h * ux - 0.5 * h * uy, y1 - h * uy + 0.5 * h * ux);
+      ctx.lineTo(x1 - h * ux + 0.5 * h * uy, y1 - h * uy - 0.5 * h * ux);
+      ctx.closePath();
+      ctx.fill();
+    }
+    ctx.restore();
+  }
+  dot(p, color, radius = 4) {
+    const { ctx } = this;
+    const [x, y] = this.toCanvas(p);
+    ctx.fillStyle = color;
+    ctx.beginPath(); ctx.arc(x, y, radius, 0, 2 * Math.PI); ctx.fill();
+  }
+  label(p, text, color = '#333', dx = 6, dy = -6) {
+    const { ctx } = this;
+    const [x, y] = this.toCanvas(p);
+    ctx.fillStyle = color;
+    ctx.font = '12px sans-serif';
+    ctx.fillText(text, x + dx, y + dy);
+  }
+  /**
+   * The points within `radius` of the convex hull of `points` (world frame): the hull
+   * filled, then stroked with a round pen of width 2 radius, which is exactly the rounded
+   * outline. One point is a disc.
+   */
+  roundedHull(points, radius, fill, stroke) {
+    const { ctx } = this;
+    const r = radius * this.scale;
+    ctx.save();
+    ctx.lineJoin = 'round';
+    ctx.lineCap = 'round';
+    if (points.length === 1) {
+      const [x, y] = this.toCanvas(points[0]);
+      ctx.beginPath(); ctx.arc(x, y, Math.max(r, 2), 0, 2 * Math.PI);
+      ctx.fillStyle = fill; ctx.fill();
+      ctx.strokeStyle = stroke; ctx.lineWidth = 1.5; ctx.stroke();
+      ctx.restore();
+      return;
+    }
+    if (r > 0) {
+      // The rounded body, then its outline: the same shape grown by half a pixel.
+      this.path(points, true);
+      ctx.strokeStyle = stroke; ctx.lineWidth = 2 * r + 3; ctx.stroke();
+      this.path(points, true);
+      ctx.strokeStyle = fill; ctx.lineWidth = 2 * r; ctx.stroke();
+      ctx.fillStyle = fill; ctx.fill();
+    } else {
+      this.path(points, true);
+      ctx.fillStyle = fill; ctx.fill();
+      ctx.strokeStyle = stroke; ctx.lineWidth = points.length === 2 ? 3 : 1.5; ctx.stroke();
+    }
+    ctx.restore();
+  }
+}
+
+/** A point of the shape frame placed by {pos, angle}. */
+export function place(pose, p) {
+  const c = Math.cos(pose.angle), s = Math.sin(pose.angle);
+  return [pose.pos[0] + c * p[0] - s * p[1], pose.pos[1] + s * p[0] + c * p[1]];
+}
+
+/** Draws an outline {type, points (shape frame), radius} placed by pose. */
+export function drawShape(view, outline, pose, fill, stroke) {
+  const pts = outline.points.map((p) => place(pose, p));
+  view.roundedHull(pts, outline.radius, fill, stroke);
+  // A line from the centre to the first point shows the rotation of round shapes.
+  if (outline.type === 'circle') {
+    const c = pts[0];
+    const edge = place(pose, [outline.points[0][0] + outline.radius, outline.points[0][1]]);
+    view.line(c, edge, stroke, 1);
+  }
+}
+
+/** A number for display: fixed significant digits, no "-0". */
+export function fmt(x, digits = 6) {
+  if (typeof x !== 'number' || !Number.isFinite(x)) return String(x);
+  if (Object.is(x, -0) || Math.abs(x) < 1e-30) return '0';
+  return Number(x.toPrecision(digits)).toString();
+}
+
+export function fmtVec(v, digits = 4) {
+  return `(${fmt(v[0], digits)}, ${fmt(v[1], digits)})`;
+}
