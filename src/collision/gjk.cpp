@@ -45,17 +45,35 @@ bool loadCache(const GjkCache* cache, const ShapeProxy& a, const ShapeProxy& b, 
   return true;
 }
 
-}  // namespace
+// normalize(v) given length(v), so one square root serves both the direction and |v|.
+Vec2 normalizeWithLength(Vec2 v, float len) noexcept {
+  if (len < kNormalizeEpsilon) return {};
+  float inv = 1.0f / len;
+  return {inv * v.x, inv * v.y};
+}
 
-Vec2 closestDirection(const Simplex2& simplex, Vec2 v) noexcept {
+// closestDirection with |v| = sqrt(vv) computed at most once and returned when formed.
+struct Direction {
+  Vec2 unit;
+  float vLength = -1.0f;  // length(v) when it was needed, else -1
+};
+
+Direction findClosestDirection(const Simplex2& simplex, Vec2 v, float vv) noexcept {
   if (simplex.count == 2) {
     Vec2 a = simplex.vertices[0].support.w;
     Vec2 n = normalize(leftPerp(simplex.vertices[1].support.w - a));
     float side = dot(n, a);
-    if (side < 0.0f) return -n;
-    if (side > 0.0f) return n;
+    if (side < 0.0f) return {-n};
+    if (side > 0.0f) return {n};
   }
-  return normalize(v);
+  float len = std::sqrt(vv);
+  return {normalizeWithLength(v, len), len};
+}
+
+}  // namespace
+
+Vec2 closestDirection(const Simplex2& simplex, Vec2 v) noexcept {
+  return findClosestDirection(simplex, v, lengthSquared(v)).unit;
 }
 
 GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, Transform aFromB, GjkCache* cache,
@@ -72,8 +90,10 @@ GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, Transform aFromB, GjkCac
     s.count = 1;
   }
 
+  const bool earlyOut = earlyOutRadius >= 0.0f;
   Simplex2 previous;
   Vec2 previousClosest;
+  Vec2 previousDirection;
   float previousVV = std::numeric_limits<float>::infinity();
   const float earlyOutSq = earlyOutRadius * earlyOutRadius;
   int unchangedSteps = 0;
@@ -105,12 +125,14 @@ GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, Transform aFromB, GjkCac
       if (previous.count > 0) {
         s = previous;
         run.closest = previousClosest;
+        run.direction = previousDirection;
+        run.hasDirection = true;
       }
       run.status = GjkStatus::stalled;
       break;
     }
     run.closest = v;
-    if (earlyOutRadius >= 0.0f && vv <= earlyOutSq) {
+    if (earlyOut && vv <= earlyOutSq) {
       run.status = GjkStatus::overlap;
       break;
     }
@@ -125,15 +147,26 @@ GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, Transform aFromB, GjkCac
     // Search along the exact edge normal rather than -v (see closestDirection): with a
     // thin B - A and the origin near it, -v can be off by 1e-3 rad and find the wrong
     // support point, stopping GJK on a diagonal instead of an edge.
-    Vec2 dir = closestDirection(s, v);
+    Direction direction = findClosestDirection(s, v, vv);
+    const Vec2 dir = direction.unit;
+    previousDirection = dir;
+    run.direction = dir;
+    run.hasDirection = true;
     SupportPoint w = supportMinkowski(a, b, aFromB, -dir);
     ++run.iterations;
-    // v.w measured along the exact direction: |v| * (dir . w).
-    float vw = length(v) * dot(dir, w.w);
-    if (earlyOutRadius >= 0.0f && vw > 0.0f && vw * vw > earlyOutSq * vv) {
-      run.separatedEarly = true;
-      run.status = GjkStatus::converged;
-      break;
+    // v.w measured along the exact direction: |v| * (dir . w). Formed only when a test
+    // needs it: most runs end on a repeated support point.
+    auto measureVW = [&] {
+      float vLength = direction.vLength >= 0.0f ? direction.vLength : length(v);
+      return vLength * dot(dir, w.w);
+    };
+    if (earlyOut) {
+      float vw = measureVW();
+      if (vw > 0.0f && vw * vw > earlyOutSq * vv) {
+        run.separatedEarly = true;
+        run.status = GjkStatus::converged;
+        break;
+      }
     }
     bool repeated = false;
     for (int i = 0; i < s.count; ++i) {
@@ -144,12 +177,13 @@ GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, Transform aFromB, GjkCac
       run.status = GjkStatus::repeatedSupport;
       break;
     }
-    if (vw >= vv) {
+    if (measureVW() >= vv) {
       run.status = GjkStatus::converged;
       break;
     }
     s.vertices[s.count].support = w;
     ++s.count;
+    run.hasDirection = false;
   }
 
   if (cache != nullptr) {
@@ -180,7 +214,7 @@ DistanceOutput computeDistance(const ShapeProxy& a, Transform worldFromA, const 
     return out;
   }
   float core = length(run.closest);
-  Vec2 n = detail::closestDirection(run.simplex, run.closest);
+  Vec2 n = run.hasDirection ? run.direction : detail::closestDirection(run.simplex, run.closest);
   out.coreDistance = core;
   out.normal = rotate(worldFromA.q, n);
   Vec2 pa = witness.pointA + a.radius() * n;

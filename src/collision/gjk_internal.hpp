@@ -10,6 +10,10 @@ namespace quack::detail {
 struct GjkRun {
   Simplex2 simplex;  // final simplex, A frame, weights set
   Vec2 closest;      // the point of B - A closest to the origin (zero on overlap), A frame
+  // closestDirection(simplex, closest) when the loop already formed it (hasDirection), so
+  // computeDistance does not normalise the same vector twice.
+  Vec2 direction;
+  bool hasDirection = false;
   int iterations = 0;
   GjkStatus status = GjkStatus::converged;
   bool separatedEarly = false;  // earlyOutRadius was given and a separating axis found

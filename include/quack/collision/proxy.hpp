@@ -8,6 +8,13 @@
 /// of van den Bergen ("Collision Detection in Interactive 3D Environments", 2003, sec. 4.3)
 /// and of Catto's GDC 2010 GJK talk.
 
+#include <bit>
+#include <cstdint>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "quack/geometry/shapes.hpp"
 
 namespace quack {
@@ -51,20 +58,62 @@ ShapeProxy makeProxy(const Capsule& capsule) noexcept;
 ShapeProxy makeProxy(const Segment& segment) noexcept;
 ShapeProxy makeProxy(const Polygon& polygon) noexcept;
 
-/// Index of the proxy point furthest along `direction` (shape frame, any length); the
-/// lowest such index on a tie, so the answer is deterministic. A zero direction gives 0.
-inline int findSupport(const ShapeProxy& proxy, Vec2 direction) noexcept {
-  const Vec2* p = proxy.points();
+namespace detail {
+
+// Index of the first maximum of dot(points[i], direction) over `count` points: the same
+// answer as scanning with a strict `>`, computed branch-free. A scan's `value > best` is
+// taken at random places for random directions, and its mispredictions cost more than
+// the arithmetic (callgrind's branch simulation on the narrow-phase benchmark). The dot
+// products are formed exactly as dot() forms them (x * dx + y * dy, no fused multiply-add),
+// so the values, and therefore the index, are the scalar loop's. NaN values (outside the
+// preconditions) still give an index in range.
+inline int findFirstMaxDot(const Vec2* points, int count, Vec2 direction) noexcept {
+#if defined(__SSE2__)
+  static_assert(sizeof(Vec2) == 2 * sizeof(float));
+  if (count >= 4) {
+    const __m128 dx = _mm_set1_ps(direction.x);
+    const __m128 dy = _mm_set1_ps(direction.y);
+    auto dots = [&](int i) {
+      __m128 lo = _mm_loadu_ps(&points[i].x);      // x0 y0 x1 y1
+      __m128 hi = _mm_loadu_ps(&points[i + 2].x);  // x2 y2 x3 y3
+      __m128 xs = _mm_shuffle_ps(lo, hi, _MM_SHUFFLE(2, 0, 2, 0));
+      __m128 ys = _mm_shuffle_ps(lo, hi, _MM_SHUFFLE(3, 1, 3, 1));
+      return _mm_add_ps(_mm_mul_ps(xs, dx), _mm_mul_ps(ys, dy));
+    };
+    // Groups of four; a count that is not a multiple of four ends with a group that
+    // overlaps the one before (a point seen twice changes neither the maximum nor the
+    // first index that attains it).
+    const int last = count - 4;
+    __m128 best = dots(last);
+    for (int i = 0; i < last; i += 4)
+      best = _mm_max_ps(best, dots(i));
+    best = _mm_max_ps(best, _mm_shuffle_ps(best, best, _MM_SHUFFLE(2, 3, 0, 1)));
+    best = _mm_max_ps(best, _mm_shuffle_ps(best, best, _MM_SHUFFLE(1, 0, 3, 2)));
+    std::uint64_t hits = static_cast<std::uint64_t>(_mm_movemask_ps(_mm_cmpeq_ps(dots(last), best)))
+                         << last;
+    for (int i = 0; i < last; i += 4)
+      hits |= static_cast<std::uint64_t>(_mm_movemask_ps(_mm_cmpeq_ps(dots(i), best))) << i;
+    return hits == 0 ? 0 : std::countr_zero(hits);
+  }
+#endif
   int best = 0;
-  float bestValue = dot(p[0], direction);
-  for (int i = 1; i < proxy.count(); ++i) {
-    float value = dot(p[i], direction);
+  float bestValue = dot(points[0], direction);
+  for (int i = 1; i < count; ++i) {
+    float value = dot(points[i], direction);
     if (value > bestValue) {
       best = i;
       bestValue = value;
     }
   }
   return best;
+}
+
+}  // namespace detail
+
+/// Index of the proxy point furthest along `direction` (shape frame, any length); the
+/// lowest such index on a tie, so the answer is deterministic. A zero direction gives 0.
+inline int findSupport(const ShapeProxy& proxy, Vec2 direction) noexcept {
+  return detail::findFirstMaxDot(proxy.points(), proxy.count(), direction);
 }
 
 }  // namespace quack
