@@ -71,7 +71,7 @@ ToiOutput computeToi(const ShapeProxy& a, const Sweep& sweepA, const ShapeProxy&
     return out;
   }
   const float target = targetSeparation;
-  const float tolerance = kToiTolerance;
+  const float tolerance = clampf(0.25f * target, kToiMinTolerance, kToiTolerance);
   // Aim at the middle of the accepted band, so rounding in the last step lands inside it
   // rather than below the target.
   const float aim = target + 0.5f * tolerance;

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
 #include <string>
 
 #include "quack/collision/epa.hpp"
 #include "quack/collision/gjk.hpp"
+#include "quack/collision/toi.hpp"
 #include "quack/geometry/bounds.hpp"
 #include "quack/geometry/mass.hpp"
 #include "quack/geometry/raycast.hpp"
@@ -238,6 +240,24 @@ void World::updateMass(std::uint32_t index) {
       b.invMass = 1.0f;
     }
   }
+  // Sizes for continuous collision: the largest reach from the centre of mass, and the
+  // thinnest shape's half-thickness (a segment has none: the linear slop stands in).
+  b.maxExtent = 0.0f;
+  b.minExtent = 0.0f;
+  for (std::uint32_t s : b.shapes) {
+    const ShapeGeometry& g = shapes_[s].geometry;
+    b.maxExtent = maxf(b.maxExtent, computeMaxExtent(proxyOf(g), b.localCenter));
+    float thickness = kLinearSlop;
+    if (const Circle* c = std::get_if<Circle>(&g)) thickness = c->radius;
+    if (const Capsule* c = std::get_if<Capsule>(&g)) thickness = c->radius;
+    if (const Polygon* p = std::get_if<Polygon>(&g)) {
+      float inner = std::numeric_limits<float>::max();
+      for (int i = 0; i < p->count; ++i)
+        inner = minf(inner, dot(p->normals[i], p->vertices[i] - p->centroid));
+      thickness = maxf(inner + p->radius, kLinearSlop);
+    }
+    b.minExtent = b.minExtent == 0.0f ? thickness : minf(b.minExtent, thickness);
+  }
   // Keep the origin where it is; the centre of mass follows the shapes.
   Vec2 oldCenter = b.center;
   b.center = transformPoint(b.xf, b.localCenter);
@@ -465,10 +485,12 @@ Status World::step(float dt, int substeps) {
   events_.hit.clear();
   events_.sensorBegin.clear();
   events_.sensorEnd.clear();
+  events_.toi.clear();
 
   findNewContacts();
   collide();
   solve(dt, substeps);
+  solveContinuous(dt);
 
   ++stepCount_;
   time_ += static_cast<double>(dt);

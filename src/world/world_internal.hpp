@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "quack/collision/proxy.hpp"
+#include "quack/math/sweep.hpp"
 #include "quack/world/world.hpp"
 
 namespace quack {
@@ -22,6 +23,12 @@ struct World::Body {
   float mass = 0.0f, invMass = 0.0f, inertia = 0.0f, invInertia = 0.0f;
   float linearDamping = 0.0f, angularDamping = 0.0f, gravityScale = 1.0f;
   bool bullet = false;
+  // Continuous collision: the body's size (from updateMass) and its motion in this step.
+  float minExtent = 0.0f;  // smallest half-thickness of its shapes, metres
+  float maxExtent = 0.0f;  // largest distance from the centre of mass to a surface, metres
+  bool fast = false;       // moved more than kCcdFastFraction of minExtent in this step
+  Vec2 startCenter;        // centre of mass at the start of the step (when fast)
+  float startAngle = 0.0f, endAngle = 0.0f;  // radians, unwrapped (when fast)
   std::uint64_t userData = 0;
   std::vector<std::uint32_t> shapes;
 };
@@ -80,8 +87,28 @@ struct World::SolverBody {
   Vec2 v;
   float w = 0.0f;
   float invMass = 0.0f, invInertia = 0.0f;
-  Vec2 dp;  // displacement of the centre of mass since the step began
-  Rot dq;   // rotation since the step began
+  Vec2 dp;          // displacement of the centre of mass since the step began
+  Rot dq;           // rotation since the step began
+  float da = 0.0f;  // the same rotation as an unwrapped angle, radians
+};
+
+// One fast body in the continuous phase: what remains of its motion is `sweep`, which
+// covers the step's fractions [t0, 1].
+struct World::FastBody {
+  std::uint32_t body = 0;
+  Sweep sweep;
+  float t0 = 0.0f;
+  int events = 0;
+  std::uint32_t stamp = 0;  // bumped whenever the sweep changes; older queue entries are stale
+};
+
+// The earliest impact found along a fast body's sweep.
+struct World::ToiCandidate {
+  float time = 0.0f;  // fraction of the step
+  std::uint32_t fast = 0, stamp = 0;
+  std::uint32_t shapeA = 0, shapeB = 0;  // fast body's shape, the other
+  Vec2 point, normal;
+  bool stop = false;  // already touching at the start of a continued sweep: stop there
 };
 
 struct World::Callback {

@@ -50,6 +50,13 @@ inline constexpr float kToiTargetSeparation = kLinearSlop;
 /// speculative distance.
 inline constexpr float kToiTolerance = 0.25f * kLinearSlop;
 
+/// The smallest acceptance band, metres, used when the target separation is small: the
+/// band is a quarter of the target, clamped to [kToiMinTolerance, kToiTolerance], so that a
+/// target below a slop (a body already closer than a slop that must not get closer still)
+/// has a band that ends short of where it starts. 0.1 mm: a hundred times the rounding of
+/// GJK distances at 10 m coordinates.
+inline constexpr float kToiMinTolerance = 1e-4f;
+
 /// Advancement steps before the search switches to bisection. Translation-dominated sweeps
 /// end in 2 or 3 steps; 20 steps of a loose bound (ratio 0.8 per step) still shrink the gap
 /// a hundredfold, and past that bisection (halving per evaluation) is the better bet.
@@ -66,7 +73,8 @@ inline constexpr int kToiStackDepth = 40;
 
 /// How a time-of-impact query ended.
 enum class ToiStatus : std::uint8_t {
-  hit,           ///< within [target, target + kToiTolerance] at `t`; nothing closer before
+  hit,           ///< within [target, target + band] at `t` (band: see kToiMinTolerance);
+                 ///< nothing closer before
   separated,     ///< never closer than the target within [0, tMax]; `t` is tMax
   overlapped,    ///< the shapes overlap or touch at t = 0; `t` is 0, normal from EPA
   failed,        ///< hit kToiMaxIterations (or the stack); `t` is the last time proven free

@@ -39,7 +39,10 @@ struct BodyDef {
   float linearDamping = 0.0f;    ///< 1/s, >= 0
   float angularDamping = 0.0f;   ///< 1/s, >= 0
   float gravityScale = 1.0f;
-  /// Continuous collision against other dynamic bodies too (issue 7); stored for now.
+  /// Continuous collision against dynamic bodies too, and always, however slowly it moves.
+  /// Every dynamic body already gets continuous collision against static and kinematic
+  /// shapes in any step where it moves more than kCcdFastFraction of its thickness
+  /// (docs/world.md, "Continuous collision").
   bool bullet = false;
   std::uint64_t userData = 0;
 };
@@ -78,6 +81,17 @@ struct SensorEvent {
   ShapeId sensor, visitor;
 };
 
+/// A time-of-impact event of the continuous phase: a fast body's shape reached another shape
+/// during the step, the body was stopped there and its velocity answered (see
+/// docs/world.md, "Continuous collision").
+struct ToiEvent {
+  float time = 0.0f;  ///< fraction of the step, in [0, 1]
+  ShapeId shapeA;     ///< the fast body's shape
+  ShapeId shapeB;     ///< the shape it reached
+  Vec2 point;         ///< on shape A's surface at the time of impact, world frame
+  Vec2 normal;        ///< unit, from A to B, world frame
+};
+
 /// The events of one step.
 struct StepEvents {
   std::vector<ContactBeginEvent> begin;
@@ -85,6 +99,8 @@ struct StepEvents {
   std::vector<ContactHitEvent> hit;
   std::vector<SensorEvent> sensorBegin;
   std::vector<SensorEvent> sensorEnd;
+  /// Time-of-impact events, sorted by time (ties: in the order they were handled).
+  std::vector<ToiEvent> toi;
 };
 
 }  // namespace quack

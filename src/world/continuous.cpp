@@ -1,0 +1,224 @@
+// The continuous phase of a step: swept boxes for fast bodies, time of impact against what
+// they sweep past, and the time-ordered handling of the impacts (the seeds' execution
+// phase). docs/world.md, "Continuous collision", explains the choices.
+
+#include <algorithm>
+#include <cmath>
+
+#include "quack/collision/toi.hpp"
+#include "quack/geometry/bounds.hpp"
+#include "quack/world/world.hpp"
+#include "world_internal.hpp"
+
+namespace quack {
+namespace {
+
+Aabb geometryBox(const ShapeGeometry& g, Transform xf) {
+  return std::visit([&](const auto& s) { return computeAabb(s, xf); }, g);
+}
+
+// Earliest first; ties by the shapes' indices, so the order never depends on the broad
+// phase (determinism across structures).
+template <class Candidate>
+bool earlier(const Candidate& x, const Candidate& y) {
+  if (x.time != y.time) return x.time < y.time;
+  if (x.shapeA != y.shapeA) return x.shapeA < y.shapeA;
+  return x.shapeB < y.shapeB;
+}
+
+}  // namespace
+
+Aabb World::sweptBox(const FastBody& f) const {
+  const Body& b = bodies_[f.body];
+  Aabb box;
+  if (f.sweep.a1 != f.sweep.a2) {
+    // Any point of the body stays within maxExtent of the centre, whatever the rotation.
+    box = inflate(Aabb{minv(f.sweep.c1, f.sweep.c2), maxv(f.sweep.c1, f.sweep.c2)}, b.maxExtent);
+  } else {
+    const Transform start = transformAt(f.sweep, 0.0f), end = transformAt(f.sweep, 1.0f);
+    bool first = true;
+    for (std::uint32_t s : b.shapes) {
+      Aabb u =
+          merge(geometryBox(shapes_[s].geometry, start), geometryBox(shapes_[s].geometry, end));
+      box = first ? u : merge(box, u);
+      first = false;
+    }
+  }
+  // Shapes within the target separation count too.
+  return inflate(box, kToiTargetSeparation + kToiTolerance);
+}
+
+bool World::findImpact(std::uint32_t fast, bool continuation, ToiCandidate& best) {
+  const FastBody& f = fastBodies_[fast];
+  const Body& body = bodies_[f.body];
+  toiCandidates_.clear();
+  broadPhase_.queryAabb(sweptBox(f), [&](ProxyId, std::uint64_t user) {
+    auto s = static_cast<std::uint32_t>(user);
+    const Shape& other = shapes_[s];
+    if (other.body == f.body || other.def.sensor) return true;
+    const Body& ob = bodies_[other.body];
+    // Fast bodies meet static and kinematic shapes; bullets meet dynamic non-bullets too,
+    // as those stand at the end of the step (Box2D's rule, read for understanding).
+    if (ob.type == BodyType::dynamicBody && (!body.bullet || ob.bullet)) return true;
+    toiCandidates_.push_back(s);
+    return true;
+  });
+  std::sort(toiCandidates_.begin(), toiCandidates_.end());
+  bool found = false;
+  for (std::uint32_t own : body.shapes) {
+    const Shape& shape = shapes_[own];
+    if (shape.def.sensor) continue;
+    const ShapeProxy proxy = proxyOf(shape.geometry);
+    for (std::uint32_t s : toiCandidates_) {
+      const Shape& other = shapes_[s];
+      if (!shouldCollide(shape.def.filter, other.def.filter)) continue;
+      const Body& ob = bodies_[other.body];
+      const float angle = ob.xf.q.angle();
+      const Sweep still{ob.localCenter, ob.center, ob.center, angle, angle};
+      const ShapeProxy otherProxy = proxyOf(other.geometry);
+      ToiOutput toi = computeToi(proxy, f.sweep, otherProxy, still);
+      bool stop = false;
+      if ((toi.status == ToiStatus::hit || toi.status == ToiStatus::failed) && toi.t == 0.0f) {
+        // Already within the target at the start: usually the shape the body hit last
+        // (this step or the step before). Aim at half the present gap, so that the body may
+        // slide along it but not into it. With no gap left to halve the pair is touching:
+        // at the start of the step the contact solver has it; in a continued sweep, stop.
+        if (toi.distance > 4.0f * kToiMinTolerance) {
+          toi = computeToi(proxy, f.sweep, otherProxy, still, 1.0f, 0.5f * toi.distance);
+          if (toi.status != ToiStatus::hit && toi.status != ToiStatus::failed) continue;
+          stop = toi.t == 0.0f;
+        } else {
+          if (!continuation) continue;
+          stop = true;
+        }
+      } else if (toi.status != ToiStatus::hit && toi.status != ToiStatus::failed) {
+        continue;  // separated, or overlapping from the start (the contact solver's pair)
+      }
+      // A failed search returns the last time proven free: stopping there never tunnels.
+      ToiCandidate c;
+      c.time = f.t0 + toi.t * (1.0f - f.t0);
+      c.fast = fast;
+      c.stamp = f.stamp;
+      c.shapeA = own;
+      c.shapeB = s;
+      c.point = toi.point;
+      c.normal = toi.normal;
+      c.stop = stop || toi.status == ToiStatus::failed;
+      if (!found || earlier(c, best)) best = c;
+      found = true;
+    }
+  }
+  return found;
+}
+
+void World::solveContinuous(float dt) {
+  if (!def_.enableContinuous) return;
+  fastBodies_.clear();
+  for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
+    Body& b = bodies_[i];
+    if (!b.alive || !b.fast) continue;
+    b.fast = false;
+    FastBody f;
+    f.body = i;
+    f.sweep = {b.localCenter, b.startCenter, b.center, b.startAngle, b.endAngle};
+    fastBodies_.push_back(f);
+  }
+  if (fastBodies_.empty()) return;
+
+  // A min-heap by time (std's heap functions keep the largest on top: invert the order).
+  auto later = [](const ToiCandidate& x, const ToiCandidate& y) { return earlier(y, x); };
+  toiQueue_.clear();
+  auto push = [&](const ToiCandidate& c) {
+    toiQueue_.push_back(c);
+    std::push_heap(toiQueue_.begin(), toiQueue_.end(), later);
+  };
+  for (std::uint32_t i = 0; i < fastBodies_.size(); ++i) {
+    ToiCandidate c;
+    if (findImpact(i, false, c)) push(c);
+  }
+
+  while (!toiQueue_.empty()) {
+    std::pop_heap(toiQueue_.begin(), toiQueue_.end(), later);
+    const ToiCandidate e = toiQueue_.back();
+    toiQueue_.pop_back();
+    FastBody& f = fastBodies_[e.fast];
+    if (e.stamp != f.stamp) continue;  // the sweep changed since this was found
+    Body& b = bodies_[f.body];
+    const Shape& other = shapes_[e.shapeB];
+    Body& ob = bodies_[other.body];
+
+    // Move the body to the time of impact.
+    const float u = f.t0 < 1.0f ? clampf((e.time - f.t0) / (1.0f - f.t0), 0.0f, 1.0f) : 1.0f;
+    const Sweep at = advance(f.sweep, u);
+    const Vec2 c = at.c1;
+    const float angle = at.a1;
+    events_.toi.push_back({e.time, shapeId(e.shapeA), shapeId(e.shapeB), e.point, e.normal});
+
+    // Immediate velocity response along the normal (no friction: the next step's contact
+    // has it), so the rest of the step's motion goes where the body would go after the
+    // impact. Restitution as the solver's: the larger of the pair, above the threshold.
+    const Vec2 n = e.normal;
+    const Vec2 rA = e.point - c;
+    const Vec2 rB = e.point - ob.center;
+    const bool otherMoves = ob.type == BodyType::dynamicBody;
+    const Vec2 vB = ob.v + cross(ob.w, rB);  // zero for static bodies
+    const float vn = dot(vB - (b.v + cross(b.w, rA)), n);
+    if (vn < 0.0f) {
+      float e0 = maxf(shapes_[e.shapeA].def.restitution, other.def.restitution);
+      if (-vn < def_.restitutionThreshold) e0 = 0.0f;
+      const float rnA = cross(rA, n), rnB = cross(rB, n);
+      float k = b.invMass + b.invInertia * rnA * rnA;
+      if (otherMoves) k += ob.invMass + ob.invInertia * rnB * rnB;
+      if (k > 0.0f) {
+        const Vec2 impulse = (-(1.0f + e0) * vn / k) * n;  // on B; A gets its opposite
+        b.v -= b.invMass * impulse;
+        b.w -= b.invInertia * cross(rA, impulse);
+        if (otherMoves) {
+          ob.v += ob.invMass * impulse;
+          ob.w += ob.invInertia * cross(rB, impulse);
+        }
+      }
+    }
+
+    // The rest of the step: on with the new velocity, or, past the bound, stay here.
+    ++f.events;
+    const float remaining = (1.0f - e.time) * dt;
+    if (f.events < kMaxToiEventsPerBody && !e.stop && remaining > 0.0f) {
+      f.sweep = {b.localCenter, c, c + remaining * b.v, angle, angle + remaining * b.w};
+    } else {
+      f.sweep = {b.localCenter, c, c, angle, angle};
+    }
+    f.t0 = e.time;
+    ++f.stamp;
+    // The body ends the step where its new sweep ends; the broad phase follows at once so
+    // that later searches see it there.
+    const Vec2 oldCenter = b.center;
+    b.center = f.sweep.c2;
+    b.xf.q = Rot::fromAngle(f.sweep.a2);
+    b.xf.p = b.center - rotate(b.xf.q, b.localCenter);
+    updateShapeBoxes(f.body, b.center - oldCenter);
+
+    // Re-check what this touches: the body's own new sweep, and bullets that may meet the
+    // body's new end pose (only bullets look at dynamic bodies). New events go into the
+    // queue in time order; none is earlier than this one.
+    ToiCandidate next;
+    if (f.events < kMaxToiEventsPerBody && findImpact(e.fast, true, next)) push(next);
+    if (b.bullet) continue;
+    Aabb moved = sweptBox(f);
+    for (std::uint32_t g = 0; g < fastBodies_.size(); ++g) {
+      FastBody& other2 = fastBodies_[g];
+      if (g == e.fast || !bodies_[other2.body].bullet || other2.events >= kMaxToiEventsPerBody)
+        continue;
+      if (!overlaps(sweptBox(other2), moved)) continue;
+      if (other2.t0 < e.time) {
+        other2.sweep =
+            advance(other2.sweep, clampf((e.time - other2.t0) / (1.0f - other2.t0), 0.0f, 1.0f));
+        other2.t0 = e.time;
+      }
+      ++other2.stamp;
+      if (findImpact(g, true, next)) push(next);
+    }
+  }
+}
+
+}  // namespace quack
