@@ -2,24 +2,7 @@
 // Every number shown comes from the library (qk_analyze in web/glue/glue.cpp); the
 // per-iteration pictures come from the glue's trace, which the page checks against it.
 import { loadQuack, View, drawShape, place, fmt, fmtVec } from './common.js';
-
-const regular = (n, r, phase = 0) =>
-  Array.from({ length: n }, (_, i) => {
-    const a = phase + (2 * Math.PI * i) / n;
-    return [+(r * Math.cos(a)).toFixed(4), +(r * Math.sin(a)).toFixed(4)];
-  });
-
-// Shapes in the JSON of DESIGN.md ("Formats"), the same that `quack query` reads.
-export const PRESETS = {
-  'box': { type: 'box', half: [0.9, 0.6] },
-  'circle': { type: 'circle', radius: 0.8 },
-  'capsule': { type: 'capsule', p1: [-0.8, 0], p2: [0.8, 0], radius: 0.4 },
-  'segment': { type: 'segment', p1: [-1.1, -0.3], p2: [1.1, 0.3] },
-  'triangle': { type: 'polygon', points: regular(3, 1.0, Math.PI / 2) },
-  'pentagon': { type: 'polygon', points: regular(5, 0.9, Math.PI / 2) },
-  'rounded box': { type: 'box', half: [0.7, 0.4], radius: 0.25 },
-  'rounded hexagon': { type: 'polygon', points: regular(6, 0.7), radius: 0.2 },
-};
+import { PRESETS } from './shapes.js';
 
 // Time scales the arrow keys move through (negative runs time backwards).
 const SCALES = [-4, -2, -1, -0.5, -0.25, 0, 0.25, 0.5, 1, 2, 4];
