@@ -7,6 +7,8 @@
 #include "quack/collision/epa.hpp"
 #include "quack/collision/gjk.hpp"
 #include "quack/collision/manifold.hpp"
+#include "quack/collision/shape_cast.hpp"
+#include "quack/collision/toi.hpp"
 #include "shape_json.hpp"
 
 namespace quack::app {
@@ -33,16 +35,31 @@ QueryAnswer answerQuery(const std::string& line) {
   for (const auto& item : q.items()) {
     const std::string& k = item.key();
     if (k != "id" && k != "op" && k != "a" && k != "pa" && k != "b" && k != "pb" &&
-        k != "speculative") {
+        k != "speculative" && k != "translation" && k != "sweepA" && k != "sweepB" &&
+        k != "target") {
       return rejected(id, k + ": unknown key");
     }
   }
   if (!q.contains("op")) return rejected(id, "op: missing");
   if (!q.at("op").is_string()) return rejected(id, "op: must be a string");
   const std::string op = q.at("op").get<std::string>();
-  if (op != "overlap" && op != "distance" && op != "penetration" && op != "manifold") {
-    return rejected(
-        id, "op: unknown op \"" + op + "\" (expected overlap, distance, penetration, manifold)");
+  if (op != "overlap" && op != "distance" && op != "penetration" && op != "manifold" &&
+      op != "shapecast" && op != "toi") {
+    return rejected(id,
+                    "op: unknown op \"" + op +
+                        "\" (expected overlap, distance, penetration, manifold, shapecast, toi)");
+  }
+  // Keys that belong to one op only.
+  if (q.contains("translation") && op != "shapecast")
+    return rejected(id, "translation: only for op shapecast");
+  for (const char* key : {"sweepA", "sweepB", "target"}) {
+    if (q.contains(key) && op != "toi") return rejected(id, std::string(key) + ": only for op toi");
+  }
+  if (op == "toi") {
+    for (const char* key : {"pa", "pb"}) {
+      if (q.contains(key))
+        return rejected(id, std::string(key) + ": not used by op toi (give sweepA and sweepB)");
+    }
   }
   // manifold only: the speculative distance in metres (default kSpeculativeDistance).
   float speculative = kSpeculativeDistance;
@@ -71,6 +88,56 @@ QueryAnswer answerQuery(const std::string& line) {
   ShapeProxy proxyA = a->proxy();
   ShapeProxy proxyB = b->proxy();
   json out = {{"id", id}};
+  if (op == "shapecast") {
+    if (!q.contains("translation")) return rejected(id, "translation: missing");
+    Result<Vec2> translation = parseVec2(q.at("translation"), "translation");
+    if (!translation) return rejected(id, translation.error().message);
+    ShapeCastOutput c = castShape(proxyA, *pa, proxyB, *pb, *translation);
+    out["hit"] = c.hit;
+    out["fraction"] = c.fraction;
+    out["point"] = toJson(c.point);
+    out["normal"] = toJson(c.normal);
+    out["depth"] = c.depth;
+    out["status"] = toString(c.status);
+    return {out.dump(), true};
+  }
+  if (op == "toi") {
+    // A sweep is {"from": POSE, "to": POSE}; the shape turns about its centre (the centre
+    // of mass of a one-shape body), the short way round.
+    auto parseSweep = [&](const char* key, const ShapeProxy& proxy) -> Result<Sweep> {
+      if (!q.contains(key)) return fail(std::string(key) + ": missing");
+      const json& j = q.at(key);
+      if (!j.is_object()) return fail(std::string(key) + ": must be an object {\"from\", \"to\"}");
+      for (const auto& item : j.items()) {
+        if (item.key() != "from" && item.key() != "to")
+          return fail(std::string(key) + "." + item.key() + ": unknown key");
+      }
+      if (!j.contains("from")) return fail(std::string(key) + ".from: missing");
+      if (!j.contains("to")) return fail(std::string(key) + ".to: missing");
+      Result<Transform> from = parsePose(j.at("from"), std::string(key) + ".from");
+      if (!from) return fail(from.error().message);
+      Result<Transform> to = parsePose(j.at("to"), std::string(key) + ".to");
+      if (!to) return fail(to.error().message);
+      return makeSweep(proxy.center(), *from, *to);
+    };
+    Result<Sweep> sweepA = parseSweep("sweepA", proxyA);
+    if (!sweepA) return rejected(id, sweepA.error().message);
+    Result<Sweep> sweepB = parseSweep("sweepB", proxyB);
+    if (!sweepB) return rejected(id, sweepB.error().message);
+    float target = kToiTargetSeparation;
+    if (q.contains("target")) {
+      const json& v = q.at("target");
+      if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0.0 ||
+          v.get<double>() > 1e30) {
+        return rejected(id, "target: must be a finite number >= 0");
+      }
+      target = v.get<float>();
+    }
+    ToiOutput t = computeToi(proxyA, *sweepA, proxyB, *sweepB, 1.0f, target);
+    out["status"] = toString(t.status);
+    out["t"] = t.t;
+    return {out.dump(), true};
+  }
   if (op == "overlap") {
     out["overlap"] = testOverlap(proxyA, *pa, proxyB, *pb);
   } else if (op == "distance") {

@@ -4,8 +4,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "query.hpp"
 #include "shape_json.hpp"
+#include "query.hpp"
 
 namespace quack::app {
 namespace {
@@ -88,6 +88,86 @@ TEST(Query, ManifoldOfABoxRestingOnABox) {
   QueryAnswer misplaced = answerQuery(
       R"({"id":11,"op":"distance","speculative":1,"a":{"type":"circle","radius":1},"b":{"type":"circle","radius":1}})");
   EXPECT_FALSE(misplaced.ok);
+}
+
+TEST(Query, ShapeCastHitMissAndOverlap) {
+  QueryAnswer a = answerQuery(
+      R"({"id":20,"op":"shapecast","a":{"type":"circle","radius":1},"b":{"type":"circle","radius":0.5},"pb":{"pos":[5,0]},"translation":[-10,0]})");
+  ASSERT_TRUE(a.ok) << a.answer;
+  json j = json::parse(a.answer);
+  EXPECT_EQ(j["status"], "hit");
+  EXPECT_EQ(j["hit"], true);
+  EXPECT_NEAR(j["fraction"].get<double>(), 0.35, 1e-4);
+  EXPECT_NEAR(j["normal"][0].get<double>(), 1.0, 1e-6);
+  EXPECT_NEAR(j["point"][0].get<double>(), 1.0, 1e-4);
+  QueryAnswer miss = answerQuery(
+      R"({"id":21,"op":"shapecast","a":{"type":"circle","radius":1},"b":{"type":"circle","radius":0.5},"pb":{"pos":[5,0]},"translation":[10,0]})");
+  ASSERT_TRUE(miss.ok);
+  EXPECT_EQ(json::parse(miss.answer)["status"], "missed");
+  EXPECT_EQ(json::parse(miss.answer)["hit"], false);
+  // Overlapping from the start: a defined answer, with a unit normal and the depth.
+  QueryAnswer over = answerQuery(
+      R"({"id":22,"op":"shapecast","a":{"type":"box","half":[1,1]},"b":{"type":"box","half":[0.5,0.5]},"pb":{"pos":[1.2,0.1]},"translation":[-1,0]})");
+  ASSERT_TRUE(over.ok);
+  json o = json::parse(over.answer);
+  EXPECT_EQ(o["status"], "overlapped");
+  EXPECT_NEAR(o["normal"][0].get<double>(), 1.0, 1e-6);
+  EXPECT_NEAR(o["depth"].get<double>(), 0.3, 1e-5);
+}
+
+TEST(Query, ToiOfACircleThroughABox) {
+  QueryAnswer a = answerQuery(
+      R"({"id":30,"op":"toi","a":{"type":"box","half":[1,1]},"b":{"type":"circle","radius":0.5},"sweepA":{"from":{"pos":[0,0]},"to":{"pos":[0,0]}},"sweepB":{"from":{"pos":[-5,0.3]},"to":{"pos":[5,0.3],"angle":1}}})");
+  ASSERT_TRUE(a.ok) << a.answer;
+  json j = json::parse(a.answer);
+  EXPECT_EQ(j["status"], "hit");
+  EXPECT_NEAR(j["t"].get<double>(), (3.5 - 0.005) / 10.0, 2e-4);
+  QueryAnswer touching = answerQuery(
+      R"({"id":31,"op":"toi","target":0,"a":{"type":"box","half":[1,1]},"b":{"type":"circle","radius":0.5},"sweepA":{"from":{"pos":[0,0]},"to":{"pos":[0,0]}},"sweepB":{"from":{"pos":[-5,0.3]},"to":{"pos":[5,0.3]}}})");
+  ASSERT_TRUE(touching.ok) << touching.answer;
+  EXPECT_NEAR(json::parse(touching.answer)["t"].get<double>(), 0.35, 2e-5);
+  QueryAnswer apart = answerQuery(
+      R"({"id":32,"op":"toi","a":{"type":"circle","radius":1},"b":{"type":"circle","radius":1},"sweepA":{"from":{"pos":[0,0]},"to":{"pos":[0,0]}},"sweepB":{"from":{"pos":[-5,3]},"to":{"pos":[5,3]}}})");
+  ASSERT_TRUE(apart.ok);
+  EXPECT_EQ(json::parse(apart.answer)["status"], "separated");
+  EXPECT_EQ(json::parse(apart.answer)["t"], 1.0);
+}
+
+TEST(Query, ShapeCastAndToiErrorsNameTheField) {
+  auto error = [](const std::string& line) {
+    QueryAnswer a = answerQuery(line);
+    EXPECT_FALSE(a.ok) << line;
+    return json::parse(a.answer)["error"].get<std::string>();
+  };
+  const std::string circles =
+      R"("a":{"type":"circle","radius":1},"b":{"type":"circle","radius":1})";
+  EXPECT_EQ(error(R"({"id":1,"op":"shapecast",)" + circles + "}"), "translation: missing");
+  EXPECT_EQ(error(R"({"id":1,"op":"shapecast","translation":[1],)" + circles + "}"),
+            "translation: must be [x, y]");
+  EXPECT_EQ(error(R"({"id":1,"op":"distance","translation":[1,0],)" + circles + "}"),
+            "translation: only for op shapecast");
+  EXPECT_EQ(error(R"({"id":1,"op":"toi",)" + circles + "}"), "sweepA: missing");
+  EXPECT_EQ(error(R"({"id":1,"op":"toi","sweepA":{"from":{}},)" + circles + "}"),
+            "sweepA.to: missing");
+  EXPECT_EQ(error(R"({"id":1,"op":"toi","sweepA":{"from":{},"to":{},"via":{}},)" + circles + "}"),
+            "sweepA.via: unknown key");
+  EXPECT_EQ(
+      error(
+          R"({"id":1,"op":"toi","sweepA":{"from":{},"to":{}},"sweepB":{"from":{"pos":[1e300,0]},"to":{}},)" +
+          circles + "}"),
+      "sweepB.from.pos[0]: must be finite (as a float)");
+  EXPECT_EQ(
+      error(
+          R"({"id":1,"op":"toi","target":-1,"sweepA":{"from":{},"to":{}},"sweepB":{"from":{},"to":{}},)" +
+          circles + "}"),
+      "target: must be a finite number >= 0");
+  EXPECT_EQ(
+      error(
+          R"({"id":1,"op":"toi","pa":{},"sweepA":{"from":{},"to":{}},"sweepB":{"from":{},"to":{}},)" +
+          circles + "}"),
+      "pa: not used by op toi (give sweepA and sweepB)");
+  EXPECT_EQ(error(R"({"id":1,"op":"overlap","sweepB":{},)" + circles + "}"),
+            "sweepB: only for op toi");
 }
 
 }  // namespace
