@@ -1,0 +1,164 @@
+// Page 2: a sandbox World. Click to drop shapes; the page draws the bodies, the fat boxes
+// of the broad phase, the touching contacts and flashes the events of each step.
+import { loadQuack, View, drawShape, fmt } from './common.js';
+import { PRESETS } from './shapes.js';
+
+const $ = (id) => document.getElementById(id);
+const DT = 1 / 60;
+const PALETTE = ['#4c72b0', '#dd8452', '#55a868', '#c44e52', '#8172b3', '#937860', '#da8bc3', '#8c8c8c'];
+
+let quack;
+let view;
+const state = { paused: false, events: [], flashes: [], counts: [0, 0, 0], world: null, lastRain: 0 };
+
+function reset() {
+  const r = quack.worldReset($('broadphase').value);
+  if (r.error) throw new Error(r.error);
+  // Ground and two walls (static), and a kinematic paddle sweeping back and forth.
+  quack.worldAdd({ type: 'box', half: [5.5, 0.25] }, 0, [0, -3.8], 0, [0, 0], 0);
+  quack.worldAdd({ type: 'box', half: [0.25, 3] }, 0, [-5.5, -1], 0, [0, 0], 0);
+  quack.worldAdd({ type: 'box', half: [0.25, 3] }, 0, [5.5, -1], 0, [0, 0], 0);
+  quack.worldAdd({ type: 'segment', p1: [-1.5, 0], p2: [1.5, 0] }, 0, [-2, -1.2], -0.25, [0, 0], 0);
+  quack.worldAdd({ type: 'capsule', p1: [-1, 0], p2: [1, 0], radius: 0.15 }, 0, [2.2, -0.4], 0.3, [0, 0], 0);
+  state.events = [];
+  state.flashes = [];
+  state.counts = [0, 0, 0];
+  $('events').textContent = '';
+  // A few shapes to start with.
+  const names = Object.keys(PRESETS);
+  for (let i = 0; i < 6; ++i) drop(names[i % names.length], [-3 + 1.2 * i, 2 + 0.7 * (i % 2)]);
+  state.world = quack.worldState();
+}
+
+function drop(name, pos) {
+  const restitution = Number($('restitution').value) || 0;
+  const r = quack.worldAdd(PRESETS[name], 2, pos, Math.random() * 3, [0, 0], restitution);
+  if (r.error) console.warn(`drop ${name}: ${r.error}`);
+}
+
+function logEvent(text) {
+  state.events.push(text);
+  if (state.events.length > 200) state.events.splice(0, state.events.length - 200);
+}
+
+function step() {
+  const e = quack.worldStep(DT, 1);
+  if (e.error) throw new Error(e.error);
+  const t = e.time.toFixed(2);
+  for (const [a, b] of e.begin) logEvent(`${t} begin ${a}–${b}`);
+  for (const [a, b] of e.end) logEvent(`${t} end   ${a}–${b}`);
+  for (const h of e.hit) {
+    logEvent(`${t} hit   ${h.a}–${h.b} at ${fmt(h.speed, 3)} m/s`);
+    state.flashes.push({ point: h.point, age: 0 });
+  }
+  state.counts[0] += e.begin.length;
+  state.counts[1] += e.end.length;
+  state.counts[2] += e.hit.length;
+  if (e.begin.length + e.end.length + e.hit.length > 0) {
+    const box = $('events');
+    box.textContent = state.events.slice(-40).join('\n');
+    box.style.whiteSpace = 'pre';
+    box.scrollTop = box.scrollHeight;
+  }
+  quack.worldCull(-20);
+  state.world = quack.worldState();
+}
+
+function draw() {
+  const w = state.world;
+  view.clear();
+  view.grid(1);
+  for (const s of w.shapes) {
+    const colour = s.bodyType === 0 ? '#6b6b6b' : PALETTE[s.index % PALETTE.length];
+    drawShape(view, s, { pos: s.pos, angle: s.angle }, `${colour}55`, colour);
+  }
+  const { ctx } = view;
+  if ($('show-boxes').checked) {
+    ctx.save();
+    ctx.strokeStyle = 'rgba(40,160,60,0.8)';
+    ctx.setLineDash([3, 3]);
+    ctx.lineWidth = 1;
+    for (const [x0, y0, x1, y1] of w.fatBoxes) {
+      const [cx0, cy0] = view.toCanvas([x0, y1]);
+      const [cx1, cy1] = view.toCanvas([x1, y0]);
+      ctx.strokeRect(cx0, cy0, cx1 - cx0, cy1 - cy0);
+    }
+    ctx.restore();
+  }
+  if ($('show-contacts').checked) {
+    for (const c of w.contacts) {
+      for (const p of c.points) {
+        view.dot(p.point, '#c00', 3.5);
+        view.arrow(p.point, [p.point[0] + 0.35 * c.normal[0], p.point[1] + 0.35 * c.normal[1]], '#c00', 1.2);
+      }
+    }
+  }
+  if ($('show-events').checked) {
+    for (const f of state.flashes) {
+      const [x, y] = view.toCanvas(f.point);
+      ctx.strokeStyle = `rgba(255,140,0,${1 - f.age / 30})`;
+      ctx.lineWidth = 2;
+      ctx.beginPath(); ctx.arc(x, y, 6 + f.age, 0, 2 * Math.PI); ctx.stroke();
+    }
+  }
+  if (!state.paused) {
+    state.flashes.forEach((f) => { f.age += 1; });
+    state.flashes = state.flashes.filter((f) => f.age < 30);
+  }
+  const bp = w.broadPhase;
+  $('time').textContent = `${fmt(w.time, 4)} s (${w.steps} steps)${state.paused ? ', paused' : ''}`;
+  $('bodies').textContent = String(w.bodies);
+  $('bp').textContent = `${bp.kind}, ${bp.proxies} proxies` +
+    (bp.hasTree ? `, tree height ${bp.height}, area ratio ${fmt(bp.areaRatio, 3)}` : '');
+  $('contacts').textContent = `${w.contacts.length} / ${w.contactCount}`;
+  $('event-counts').textContent = state.counts.join(' / ');
+}
+
+function frame(now) {
+  if (!state.paused) {
+    if ($('rain').checked && now - state.lastRain > 400) {
+      const names = Object.keys(PRESETS);
+      drop(names[Math.floor(Math.random() * names.length)], [-4 + 8 * Math.random(), 4.5]);
+      state.lastRain = now;
+    }
+    step();
+  }
+  draw();
+  requestAnimationFrame(frame);
+}
+
+function togglePause() {
+  state.paused = !state.paused;
+  $('pause').textContent = state.paused ? 'resume' : 'pause';
+}
+
+async function main() {
+  quack = await loadQuack();
+  view = new View($('world'), 60, [0, 0]);
+  for (const name of Object.keys(PRESETS)) $('drop-shape').add(new Option(name, name));
+  reset();
+  view.canvas.addEventListener('click', (e) => {
+    drop($('drop-shape').value, view.toWorld(e.offsetX, e.offsetY));
+    state.world = quack.worldState();
+  });
+  $('pause').addEventListener('click', togglePause);
+  $('step').addEventListener('click', () => { if (!state.paused) togglePause(); step(); });
+  $('reset').addEventListener('click', reset);
+  $('broadphase').addEventListener('change', reset);
+  window.addEventListener('keydown', (e) => {
+    if (e.key === ' ') { e.preventDefault(); togglePause(); }
+  });
+  $('status').textContent = 'ready';
+  window.quackSandbox = {
+    state: () => ({ paused: state.paused, counts: [...state.counts], world: state.world }),
+    drop: (name, pos) => { drop(name, pos); state.world = quack.worldState(); },
+    togglePause,
+  };
+  requestAnimationFrame(frame);
+}
+
+main().catch((e) => {
+  $('status').textContent = `failed: ${e}`;
+  $('status').className = 'err';
+  console.error(e);
+});
