@@ -386,6 +386,8 @@ async function main() {
     state: () => ({ paused: state.paused, timeScale: SCALES[state.scaleIndex], t: state.t,
       step: state.step, animate: state.animate }),
     result: () => state.result,
+    poses: () => poses(),
+    toCanvas: (p) => scene.toCanvas(p),
     setShapes: (a, b) => setShape(0, a) ?? setShape(1, b),
     setAnimate: (on) => { if (!on) state.base = poses(); state.animate = on; $('animate').checked = on; },
     setPoses: (pa, pb) => { state.base = [pa, pb]; state.animate = false; $('animate').checked = false; render(); },

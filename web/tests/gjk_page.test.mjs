@@ -78,6 +78,22 @@ test('the arrow keys change the time scale, down to reversed time', async () => 
   while ((await demoState()).timeScale !== 1) await page.keyboard.press('ArrowRight');
 });
 
+test('dragging a shape moves it without pausing; the wheel turns it', async () => {
+  await page.evaluate(() => window.quackDemo.setPoses({ pos: [-1.3, 0], angle: 0 }, { pos: [1.4, 0.2], angle: 0.5 }));
+  const [x, y] = await page.evaluate(() => window.quackDemo.toCanvas(window.quackDemo.poses()[1].pos));
+  const box = await page.locator('#scene').boundingBox();
+  await page.mouse.move(box.x + x, box.y + y);
+  await page.mouse.down();
+  await page.mouse.move(box.x + x - 35, box.y + y + 14, { steps: 5 });
+  await page.mouse.up();
+  const [, b] = await page.evaluate(() => window.quackDemo.poses());
+  assert.ok(Math.abs(b.pos[0] - 0.9) < 0.05 && Math.abs(b.pos[1]) < 0.05, `B is at ${b.pos}`);
+  assert.equal((await demoState()).paused, false, 'a drag must not toggle the pause');
+  await page.mouse.move(box.x + x - 35, box.y + y + 14);
+  await page.mouse.wheel(0, 100);
+  await page.waitForFunction(() => window.quackDemo.poses()[1].angle > 0.52);
+});
+
 test('S steps one GJK iteration at a time, then EPA, and Esc shows the answer', async () => {
   // Two overlapping boxes, so that both GJK and EPA run.
   await page.evaluate(() => {
