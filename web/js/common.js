@@ -117,31 +117,18 @@ export class View {
     ctx.fillText(text, x + dx, y + dy);
   }
   /**
-   * The points within `radius` of the convex hull of `points` (world frame): the hull
-   * filled, then stroked with a round pen of width 2 radius, which is exactly the rounded
-   * outline. One point is a disc.
+   * The points within `radius` of the convex polygon `points` (world frame, either winding;
+   * two points are a segment, one a disc): the core's edges pushed out by the radius, joined
+   * by arcs around the vertices, filled translucent and outlined.
    */
   roundedHull(points, radius, fill, stroke) {
     const { ctx } = this;
-    const r = radius * this.scale;
     ctx.save();
     ctx.lineJoin = 'round';
-    ctx.lineCap = 'round';
-    if (points.length === 1) {
-      const [x, y] = this.toCanvas(points[0]);
-      ctx.beginPath(); ctx.arc(x, y, Math.max(r, 2), 0, 2 * Math.PI);
+    if (points.length === 1 || (radius > 0 && points.length >= 1)) {
+      this.path(roundedOutline(points, Math.max(radius, 2 / this.scale)), true);
       ctx.fillStyle = fill; ctx.fill();
       ctx.strokeStyle = stroke; ctx.lineWidth = 1.5; ctx.stroke();
-      ctx.restore();
-      return;
-    }
-    if (r > 0) {
-      // The rounded body, then its outline: the same shape grown by half a pixel.
-      this.path(points, true);
-      ctx.strokeStyle = stroke; ctx.lineWidth = 2 * r + 3; ctx.stroke();
-      this.path(points, true);
-      ctx.strokeStyle = fill; ctx.lineWidth = 2 * r; ctx.stroke();
-      ctx.fillStyle = fill; ctx.fill();
     } else {
       this.path(points, true);
       ctx.fillStyle = fill; ctx.fill();
@@ -149,6 +136,43 @@ export class View {
     }
     ctx.restore();
   }
+}
+
+/** Points along the boundary of the convex polygon `points` grown by `radius` (> 0). */
+export function roundedOutline(points, radius) {
+  if (points.length === 1) {
+    return Array.from({ length: 48 }, (_, i) => {
+      const a = (2 * Math.PI * i) / 48;
+      return [points[0][0] + radius * Math.cos(a), points[0][1] + radius * Math.sin(a)];
+    });
+  }
+  let area = 0;
+  for (let i = 0; i < points.length; ++i) {
+    const p = points[i];
+    const q = points[(i + 1) % points.length];
+    area += p[0] * q[1] - p[1] * q[0];
+  }
+  const pts = area < 0 ? [...points].reverse() : points;
+  const n = pts.length;
+  // Outward normal angle of edge i (counter-clockwise polygon: the right-hand side).
+  const normalAngle = (i) => {
+    const p = pts[i];
+    const q = pts[(i + 1) % n];
+    return Math.atan2(-(q[0] - p[0]), q[1] - p[1]);
+  };
+  const out = [];
+  for (let i = 0; i < n; ++i) {
+    const from = normalAngle((i + n - 1) % n);
+    let sweep = normalAngle(i) - from;
+    while (sweep < 0) sweep += 2 * Math.PI;
+    while (sweep >= 2 * Math.PI) sweep -= 2 * Math.PI;
+    const k = Math.max(1, Math.ceil(sweep / 0.15));
+    for (let j = 0; j <= k; ++j) {
+      const a = from + (sweep * j) / k;
+      out.push([pts[i][0] + radius * Math.cos(a), pts[i][1] + radius * Math.sin(a)]);
+    }
+  }
+  return out;
 }
 
 /** A point of the shape frame placed by {pos, angle}. */
