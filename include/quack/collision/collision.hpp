@@ -5,4 +5,6 @@
 #include "quack/collision/minkowski.hpp"
 #include "quack/collision/proxy.hpp"
 #include "quack/collision/sat.hpp"
+#include "quack/collision/shape_cast.hpp"
 #include "quack/collision/simplex2.hpp"
+#include "quack/collision/toi.hpp"
