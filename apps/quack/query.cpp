@@ -9,7 +9,7 @@
 #include "quack/collision/manifold.hpp"
 #include "quack/collision/shape_cast.hpp"
 #include "quack/collision/toi.hpp"
-#include "shape_json.hpp"
+#include "quack/io/shape_json.hpp"
 
 namespace quack::app {
 namespace {

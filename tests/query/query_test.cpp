@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "shape_json.hpp"
+#include "quack/io/shape_json.hpp"
 #include "query.hpp"
 
 namespace quack::app {

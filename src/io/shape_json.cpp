@@ -1,18 +1,21 @@
-#include "shape_json.hpp"
+#include "quack/io/shape_json.hpp"
 
 #include <cmath>
 #include <initializer_list>
 #include <vector>
 
-namespace quack::app {
+namespace quack {
 namespace {
 
 using nlohmann::json;
 
-Status checkKeys(const json& j, const std::string& path, std::initializer_list<const char*> keys) {
+Status checkKeys(const json& j, const std::string& path, std::initializer_list<const char*> keys,
+                 std::initializer_list<const char*> extraKeys = {}) {
   for (const auto& item : j.items()) {
     bool known = false;
     for (const char* k : keys)
+      known |= item.key() == k;
+    for (const char* k : extraKeys)
       known |= item.key() == k;
     if (!known) return fail(path + "." + item.key() + ": unknown key");
   }
@@ -82,6 +85,20 @@ ShapeRef ParsedShape::ref() const noexcept {
   return {};
 }
 
+ShapeGeometry ParsedShape::geometry() const {
+  switch (type) {
+    case ShapeType::circle:
+      return circle;
+    case ShapeType::capsule:
+      return capsule;
+    case ShapeType::segment:
+      return segment;
+    case ShapeType::polygon:
+      return polygon;
+  }
+  return circle;
+}
+
 Result<Vec2> parseVec2(const json& j, const std::string& path) {
   if (!j.is_array() || j.size() != 2) return fail(path + ": must be [x, y]");
   Result<float> x = parseNumber(j[0], path + "[0]");
@@ -101,14 +118,16 @@ Result<Transform> parsePose(const json& j, const std::string& path) {
   return makeTransform(*pos, *angle);
 }
 
-Result<ParsedShape> parseShape(const json& j, const std::string& path) {
+Result<ParsedShape> parseShape(const json& j, const std::string& path,
+                               std::initializer_list<const char*> extraKeys) {
   if (!j.is_object()) return fail(path + ": must be an object with a \"type\"");
   if (!j.contains("type")) return fail(path + ".type: missing");
   if (!j.at("type").is_string()) return fail(path + ".type: must be a string");
   const std::string type = j.at("type").get<std::string>();
   ParsedShape out;
   if (type == "circle") {
-    if (Status s = checkKeys(j, path, {"type", "center", "radius"}); !s) return fail(s.message());
+    if (Status s = checkKeys(j, path, {"type", "center", "radius"}, extraKeys); !s)
+      return fail(s.message());
     Result<Vec2> c = vecOr(j, "center", path, {});
     if (!c) return c.error();
     Result<float> r = requiredNumber(j, "radius", path);
@@ -122,8 +141,8 @@ Result<ParsedShape> parseShape(const json& j, const std::string& path) {
   }
   if (type == "capsule" || type == "segment") {
     bool capsule = type == "capsule";
-    Status keys = capsule ? checkKeys(j, path, {"type", "p1", "p2", "radius"})
-                          : checkKeys(j, path, {"type", "p1", "p2"});
+    Status keys = capsule ? checkKeys(j, path, {"type", "p1", "p2", "radius"}, extraKeys)
+                          : checkKeys(j, path, {"type", "p1", "p2"}, extraKeys);
     if (!keys) return fail(keys.message());
     Result<Vec2> p1 = requiredVec(j, "p1", path);
     if (!p1) return p1.error();
@@ -146,7 +165,8 @@ Result<ParsedShape> parseShape(const json& j, const std::string& path) {
     return out;
   }
   if (type == "box") {
-    if (Status s = checkKeys(j, path, {"type", "half", "center", "angle", "radius"}); !s) {
+    if (Status s = checkKeys(j, path, {"type", "half", "center", "angle", "radius"}, extraKeys);
+        !s) {
       return fail(s.message());
     }
     Result<Vec2> half = requiredVec(j, "half", path);
@@ -166,7 +186,8 @@ Result<ParsedShape> parseShape(const json& j, const std::string& path) {
     return out;
   }
   if (type == "polygon") {
-    if (Status s = checkKeys(j, path, {"type", "points", "radius"}); !s) return fail(s.message());
+    if (Status s = checkKeys(j, path, {"type", "points", "radius"}, extraKeys); !s)
+      return fail(s.message());
     if (!j.contains("points")) return fail(path + ".points: missing");
     const json& pts = j.at("points");
     if (!pts.is_array()) return fail(path + ".points: must be an array of [x, y]");
@@ -189,11 +210,10 @@ Result<ParsedShape> parseShape(const json& j, const std::string& path) {
   }
   if (type == "concave") {
     return fail(path +
-                ".type: \"concave\" is not supported yet by quack query (use convex "
-                "pieces as \"polygon\")");
+                ".type: \"concave\" is not supported yet (use convex pieces as \"polygon\")");
   }
   return fail(path + ".type: unknown shape type \"" + type +
               "\" (expected circle, capsule, segment, box, polygon)");
 }
 
-}  // namespace quack::app
+}  // namespace quack

@@ -1,0 +1,349 @@
+#include "quack/io/render.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "quack/geometry/bounds.hpp"
+#include "replay_page.hpp"
+
+namespace quack {
+namespace {
+
+// Numbers for pictures: 4 decimals (0.1 mm, 0.1 mrad) is below what a screen shows, and
+// keeps big replays small. Trailing zeros are trimmed.
+void appendNumber(std::string& out, double x) {
+  char buf[32];
+  if (!std::isfinite(x)) x = 0.0;
+  int n = std::snprintf(buf, sizeof buf, "%.4f", x);
+  while (n > 1 && buf[n - 1] == '0')
+    --n;
+  if (n > 1 && buf[n - 1] == '.') --n;
+  if (n == 2 && buf[0] == '-' && buf[1] == '0') {
+    buf[0] = '0';
+    n = 1;
+  }
+  out.append(buf, static_cast<std::size_t>(n));
+}
+
+void appendVec(std::string& out, Vec2 v) {
+  appendNumber(out, static_cast<double>(v.x));
+  out += ',';
+  appendNumber(out, static_cast<double>(v.y));
+}
+
+// Escapes a string for JSON inside an HTML <script> (no "</" may appear).
+std::string jsonString(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    switch (c) {
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '<':
+        out += "\\u003c";
+        break;
+      case '>':
+        out += "\\u003e";
+        break;
+      case '&':
+        out += "\\u0026";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", c);
+          out += buf;
+        } else {
+          out += c;
+        }
+    }
+  }
+  return out + "\"";
+}
+
+std::string xmlEscape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
+// Arc of radius r about c from direction `from` turning counter-clockwise to `to`.
+void appendArc(std::vector<Vec2>& out, Vec2 c, float r, Vec2 from, Vec2 to, float maxStep,
+               bool fullTurn) {
+  float a0 = std::atan2(from.y, from.x);
+  float sweep = fullTurn ? 2.0f * kPi : std::atan2(cross(from, to), dot(from, to));
+  if (!fullTurn && sweep < 0.0f) sweep += 2.0f * kPi;
+  int steps = std::max(1, static_cast<int>(std::ceil(sweep / maxStep)));
+  if (fullTurn) steps = std::max(steps, 24);
+  for (int k = 0; k <= steps - (fullTurn ? 1 : 0); ++k) {
+    float a = a0 + sweep * static_cast<float>(k) / static_cast<float>(steps);
+    out.push_back(c + r * Vec2{std::cos(a), std::sin(a)});
+  }
+}
+
+// Outline of a rounded convex core (points with outward edge normals, plus a radius).
+Outline roundedOutline(const Vec2* v, const Vec2* n, int count, float r, float maxStep) {
+  Outline o;
+  if (r == 0.0f) {
+    o.points.assign(v, v + count);
+    return o;
+  }
+  for (int i = 0; i < count; ++i) {
+    Vec2 prev = n[(i + count - 1) % count];
+    appendArc(o.points, v[i], r, prev, n[i], maxStep, false);
+  }
+  return o;
+}
+
+const char* kindName(BodyType t) {
+  switch (t) {
+    case BodyType::staticBody:
+      return "static";
+    case BodyType::kinematicBody:
+      return "kinematic";
+    case BodyType::dynamicBody:
+      return "dynamic";
+  }
+  return "dynamic";
+}
+
+Aabb worldBounds(const SceneWorld& scene) {
+  Aabb b{{1e30f, 1e30f}, {-1e30f, -1e30f}};
+  for (BodyId body : scene.bodies) {
+    if (!scene.world.isValid(body)) continue;
+    for (ShapeId s : scene.world.shapes(body)) {
+      b = merge(
+          b, std::visit([&](const auto& g) { return computeAabb(g, scene.world.transform(body)); },
+                        scene.world.geometry(s)));
+    }
+  }
+  if (b.lower.x > b.upper.x) b = {{-1, -1}, {1, 1}};
+  return b;
+}
+
+}  // namespace
+
+Outline outlineOf(const ShapeGeometry& geometry, float maxArcStep) {
+  struct Visitor {
+    float step;
+    Outline operator()(const Circle& c) const {
+      Outline o;
+      appendArc(o.points, c.center, c.radius, {1, 0}, {1, 0}, step, true);
+      return o;
+    }
+    Outline operator()(const Capsule& c) const {
+      Vec2 n = normalize(rightPerp(c.p2 - c.p1));
+      const Vec2 v[2] = {c.p1, c.p2};
+      const Vec2 normals[2] = {n, -n};
+      return roundedOutline(v, normals, 2, c.radius, step);
+    }
+    Outline operator()(const Segment& s) const { return {{s.p1, s.p2}, false}; }
+    Outline operator()(const Polygon& p) const {
+      return roundedOutline(p.vertices, p.normals, p.count, p.radius, step);
+    }
+  };
+  return std::visit(Visitor{maxArcStep}, geometry);
+}
+
+std::string renderSvg(const SceneWorld& scene, const std::string& title) {
+  Aabb b = inflate(worldBounds(scene), 0.5f);
+  float w = b.upper.x - b.lower.x, h = b.upper.y - b.lower.y;
+  // About 1000 pixels across the longer side; strokes stay a fixed share of the view.
+  float stroke = 0.0015f * maxf(w, h);
+  std::string out;
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"%g %g %g %g\" width=\"%d\" "
+                "height=\"%d\">\n",
+                static_cast<double>(b.lower.x), static_cast<double>(-b.upper.y),
+                static_cast<double>(w), static_cast<double>(h),
+                static_cast<int>(1000.0f * w / maxf(w, h)),
+                static_cast<int>(1000.0f * h / maxf(w, h)));
+  out += buf;
+  out += "<title>" + xmlEscape(title) + "</title>\n";
+  out += "<rect x=\"" + std::to_string(b.lower.x) + "\" y=\"" + std::to_string(-b.upper.y) +
+         "\" width=\"" + std::to_string(w) + "\" height=\"" + std::to_string(h) +
+         "\" fill=\"#fbfaf7\"/>\n";
+  out += "<g transform=\"scale(1,-1)\" stroke-width=\"" + std::to_string(stroke) +
+         "\" stroke-linejoin=\"round\">\n";
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    BodyId body = scene.bodies[i];
+    if (!scene.world.isValid(body)) continue;
+    Transform xf = scene.world.transform(body);
+    BodyType type = scene.world.bodyType(body);
+    for (ShapeId s : scene.world.shapes(body)) {
+      Outline o = outlineOf(scene.world.geometry(s));
+      bool sensor = scene.world.shapeDef(s).sensor;
+      const char* fill = sensor                            ? "#7fb8ff33"
+                         : type == BodyType::staticBody    ? "#b9b4a8"
+                         : type == BodyType::kinematicBody ? "#9cc3e6"
+                                                           : "#f2b45a";
+      std::string d;
+      for (std::size_t k = 0; k < o.points.size(); ++k) {
+        d += k == 0 ? 'M' : 'L';
+        appendVec(d, transformPoint(xf, o.points[k]));
+      }
+      if (o.closed) d += 'Z';
+      out += "<path d=\"" + d + "\" fill=\"" + (o.closed ? fill : "none") + "\" stroke=\"" +
+             (sensor ? "#3b82f6" : "#4a4536") + "\"" +
+             (sensor ? " stroke-dasharray=\"0.1 0.1\"" : "") + "/>\n";
+    }
+  }
+  for (const World::ContactView& c : scene.world.touchingContacts()) {
+    for (int k = 0; k < c.manifold.pointCount; ++k) {
+      Vec2 p = c.manifold.points[k].point;
+      Vec2 q = p + 0.3f * c.manifold.normal;
+      std::string line = "<line x1=\"";
+      appendNumber(line, static_cast<double>(p.x));
+      line += "\" y1=\"";
+      appendNumber(line, static_cast<double>(p.y));
+      line += "\" x2=\"";
+      appendNumber(line, static_cast<double>(q.x));
+      line += "\" y2=\"";
+      appendNumber(line, static_cast<double>(q.y));
+      line += "\" stroke=\"#d62828\"/><circle cx=\"";
+      appendNumber(line, static_cast<double>(p.x));
+      line += "\" cy=\"";
+      appendNumber(line, static_cast<double>(p.y));
+      line += "\" r=\"" + std::to_string(2.5f * stroke) + "\" fill=\"#d62828\"/>\n";
+      out += line;
+    }
+  }
+  out += "</g>\n</svg>\n";
+  return out;
+}
+
+ReplayRecorder::ReplayRecorder(const SceneWorld& scene, std::uint64_t totalSteps,
+                               ReplayOptions options)
+    : options_(options) {
+  std::string shapes = "[";
+  bool first = true;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    BodyId body = scene.bodies[i];
+    if (!scene.world.isValid(body)) continue;
+    BodyType type = scene.world.bodyType(body);
+    int moving = -1;
+    if (type != BodyType::staticBody) {
+      moving = static_cast<int>(moving_.size());
+      moving_.push_back(static_cast<std::uint32_t>(i));
+    }
+    Transform xf = scene.world.transform(body);
+    for (ShapeId s : scene.world.shapes(body)) {
+      Outline o = outlineOf(scene.world.geometry(s));
+      if (!first) shapes += ',';
+      first = false;
+      shapes += "{\"b\":" + std::to_string(moving) + ",\"k\":\"" + kindName(type) +
+                "\",\"s\":" + (scene.world.shapeDef(s).sensor ? "1" : "0") +
+                ",\"c\":" + (o.closed ? "1" : "0") + ",\"n\":" + jsonString(scene.names[i]) +
+                ",\"x\":[";
+      appendVec(shapes, xf.p);
+      shapes += ',';
+      appendNumber(shapes, static_cast<double>(xf.q.angle()));
+      shapes += "],\"o\":[";
+      for (std::size_t k = 0; k < o.points.size(); ++k) {
+        if (k) shapes += ',';
+        appendVec(shapes, o.points[k]);
+      }
+      shapes += "]}";
+    }
+  }
+  shapes_ = shapes + "]";
+  // Space the frames: at most maxFrames, and at most maxNumbers numbers of poses.
+  std::size_t perFrame = 3 * moving_.size() + 8;
+  std::uint64_t byNumbers = options_.maxNumbers / std::max<std::size_t>(perFrame, 1);
+  std::uint64_t cap = std::max<std::uint64_t>(
+      2, std::min<std::uint64_t>(static_cast<std::uint64_t>(options_.maxFrames), byNumbers));
+  every_ = std::max<std::uint64_t>(1, (totalSteps + cap - 1) / cap);
+}
+
+void ReplayRecorder::record(const SceneWorld& scene) {
+  std::uint64_t call = calls_++;
+  if (call % every_ != 0) return;
+  std::string f = "{\"t\":";
+  appendNumber(f, scene.world.time());
+  f += ",\"p\":[";
+  for (std::size_t k = 0; k < moving_.size(); ++k) {
+    BodyId body = scene.bodies[moving_[k]];
+    if (k) f += ',';
+    if (!scene.world.isValid(body)) {
+      f += "null,null,null";  // destroyed: not drawn from here on
+      continue;
+    }
+    Transform xf = scene.world.transform(body);
+    appendVec(f, xf.p);
+    f += ',';
+    appendNumber(f, static_cast<double>(xf.q.angle()));
+  }
+  f += "],\"c\":[";
+  bool first = true;
+  for (const World::ContactView& c : scene.world.touchingContacts()) {
+    for (int k = 0; k < c.manifold.pointCount; ++k) {
+      if (!first) f += ',';
+      first = false;
+      appendVec(f, c.manifold.points[k].point);
+      f += ',';
+      appendVec(f, c.manifold.normal);
+    }
+  }
+  f += ']';
+  if (options_.broadPhaseBoxes) {
+    f += ",\"a\":[";
+    bool firstBox = true;
+    scene.world.broadPhase().queryAabb(Aabb{{-1e9f, -1e9f}, {1e9f, 1e9f}},
+                                       [&](ProxyId id, std::uint64_t) {
+                                         Aabb fat = scene.world.broadPhase().fatBox(id);
+                                         if (!firstBox) f += ',';
+                                         firstBox = false;
+                                         appendVec(f, fat.lower);
+                                         f += ',';
+                                         appendVec(f, fat.upper);
+                                         return true;
+                                       });
+    f += ']';
+  }
+  f += '}';
+  if (!frameData_.empty()) frameData_ += ",\n";
+  frameData_ += f;
+  ++frames_;
+  bounds_ = merge(bounds_, worldBounds(scene));
+}
+
+std::string ReplayRecorder::html(const std::string& title) const {
+  std::string data = "{\"title\":" + jsonString(title) + ",\"bounds\":[";
+  appendVec(data, bounds_.lower);
+  data += ',';
+  appendVec(data, bounds_.upper);
+  data += "],\"boxes\":" + std::string(options_.broadPhaseBoxes ? "true" : "false") +
+          ",\"shapes\":" + shapes_ + ",\"frames\":[\n" + frameData_ + "]}";
+  std::string page = kReplayPage;
+  const std::string titleMark = "@TITLE@", dataMark = "@DATA@";
+  page.replace(page.find(titleMark), titleMark.size(), xmlEscape(title));
+  page.replace(page.find(dataMark), dataMark.size(), data);
+  return page;
+}
+
+}  // namespace quack

@@ -1,0 +1,483 @@
+#include "quack/io/scene.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "quack/io/shape_json.hpp"
+
+namespace quack {
+namespace {
+
+using nlohmann::json;
+
+// The scene being parsed: its file name and categories, for messages and filters.
+struct Parser {
+  std::string file;
+  std::vector<std::string> categories;
+
+  Error error(const std::string& path, const std::string& what) const {
+    return fail(file + ": " + (path.empty() ? "" : path + ": ") + what);
+  }
+  Error relabel(const Error& e) const { return fail(file + ": " + e.message); }
+};
+
+Status checkKeys(const json& j, const std::string& path, std::initializer_list<const char*> keys) {
+  for (const auto& item : j.items()) {
+    bool known = false;
+    for (const char* k : keys)
+      known |= item.key() == k;
+    if (!known) return fail((path.empty() ? "" : path + ".") + item.key() + ": unknown key");
+  }
+  return {};
+}
+
+std::string join(const std::string& path, const char* key) {
+  return path.empty() ? key : path + "." + key;
+}
+
+Result<float> number(const json& j, const char* key, const std::string& path, float fallback) {
+  if (!j.contains(key)) return fallback;
+  const json& v = j.at(key);
+  if (!v.is_number()) return fail(join(path, key) + ": must be a number");
+  auto f = static_cast<float>(v.get<double>());
+  if (!std::isfinite(f)) return fail(join(path, key) + ": must be finite (as a float)");
+  return f;
+}
+
+Result<float> nonNegative(const json& j, const char* key, const std::string& path, float fallback) {
+  Result<float> f = number(j, key, path, fallback);
+  if (f && *f < 0.0f) return fail(join(path, key) + ": must be >= 0");
+  return f;
+}
+
+Result<int> integer(const json& j, const char* key, const std::string& path, int fallback, int lo,
+                    int hi) {
+  if (!j.contains(key)) return fallback;
+  const json& v = j.at(key);
+  if (!v.is_number_integer()) return fail(join(path, key) + ": must be an integer");
+  long long i = v.get<long long>();
+  if (i < lo || i > hi) {
+    return fail(join(path, key) + ": must be in " + std::to_string(lo) + ".." + std::to_string(hi));
+  }
+  return static_cast<int>(i);
+}
+
+Result<bool> boolean(const json& j, const char* key, const std::string& path, bool fallback) {
+  if (!j.contains(key)) return fallback;
+  if (!j.at(key).is_boolean()) return fail(join(path, key) + ": must be true or false");
+  return j.at(key).get<bool>();
+}
+
+Result<Vec2> vec(const json& j, const char* key, const std::string& path, Vec2 fallback) {
+  if (!j.contains(key)) return fallback;
+  return parseVec2(j.at(key), join(path, key));
+}
+
+Result<std::uint64_t> categoryBits(const Parser& p, const json& v, const std::string& path) {
+  auto bit = [&](const json& name, const std::string& at) -> Result<std::uint64_t> {
+    if (!name.is_string()) return fail(at + ": must be a category name");
+    const std::string n = name.get<std::string>();
+    for (std::size_t i = 0; i < p.categories.size(); ++i) {
+      if (p.categories[i] == n) return std::uint64_t{1} << i;
+    }
+    return fail(at + ": unknown category \"" + n + "\" (declare it in \"categories\")");
+  };
+  if (v.is_string()) return bit(v, path);
+  if (!v.is_array()) return fail(path + ": must be a category name or an array of names");
+  std::uint64_t bits = 0;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    Result<std::uint64_t> b = bit(v[i], path + "[" + std::to_string(i) + "]");
+    if (!b) return b.error();
+    bits |= *b;
+  }
+  return bits;
+}
+
+// A shape with no filter belongs to every category and accepts every category, so it
+// collides with everything; a filter's category and mask default to all as well.
+Result<Filter> parseFilter(const Parser& p, const json& j, const std::string& path) {
+  Filter f{~std::uint64_t{0}, ~std::uint64_t{0}, 0};
+  if (!j.is_object()) return fail(path + ": must be an object {\"category\", \"mask\", \"group\"}");
+  if (Status s = checkKeys(j, path, {"category", "mask", "group"}); !s) return fail(s.message());
+  if (j.contains("category")) {
+    Result<std::uint64_t> c = categoryBits(p, j.at("category"), path + ".category");
+    if (!c) return c.error();
+    f.category = *c;
+  }
+  if (j.contains("mask")) {
+    Result<std::uint64_t> m = categoryBits(p, j.at("mask"), path + ".mask");
+    if (!m) return m.error();
+    f.mask = *m;
+  }
+  Result<int> g = integer(j, "group", path, 0, -1000000000, 1000000000);
+  if (!g) return g.error();
+  f.group = *g;
+  return f;
+}
+
+// Material keys of a shape (or a generator), over the defaults of ShapeDef.
+Result<ShapeDef> parseMaterial(const Parser& p, const json& j, const std::string& path) {
+  ShapeDef def;
+  Result<float> density = nonNegative(j, "density", path, def.density);
+  if (!density) return density.error();
+  Result<float> friction = nonNegative(j, "friction", path, def.friction);
+  if (!friction) return friction.error();
+  Result<float> restitution = nonNegative(j, "restitution", path, def.restitution);
+  if (!restitution) return restitution.error();
+  Result<bool> sensor = boolean(j, "sensor", path, false);
+  if (!sensor) return sensor.error();
+  def.density = *density;
+  def.friction = *friction;
+  def.restitution = *restitution;
+  def.sensor = *sensor;
+  def.filter = {~std::uint64_t{0}, ~std::uint64_t{0}, 0};
+  if (j.contains("filter")) {
+    Result<Filter> f = parseFilter(p, j.at("filter"), join(path, "filter"));
+    if (!f) return f.error();
+    def.filter = *f;
+  }
+  return def;
+}
+
+Result<SceneShape> parseSceneShape(const Parser& p, const json& j, const std::string& path) {
+  Result<ParsedShape> shape =
+      parseShape(j, path, {"density", "friction", "restitution", "sensor", "filter"});
+  if (!shape) return shape.error();
+  Result<ShapeDef> def = parseMaterial(p, j, path);
+  if (!def) return def.error();
+  return SceneShape{shape->geometry(), *def};
+}
+
+Result<BodyType> parseBodyType(const json& j, const std::string& path, BodyType fallback) {
+  if (!j.contains("type")) return fallback;
+  const json& v = j.at("type");
+  if (v == "static") return BodyType::staticBody;
+  if (v == "kinematic") return BodyType::kinematicBody;
+  if (v == "dynamic") return BodyType::dynamicBody;
+  return fail(join(path, "type") + ": must be \"static\", \"kinematic\" or \"dynamic\"");
+}
+
+Result<SceneBody> parseBody(const Parser& p, const json& j, const std::string& path,
+                            std::size_t index) {
+  if (!j.is_object()) return fail(path + ": must be an object");
+  if (Status s =
+          checkKeys(j, path, {"name", "type", "pos", "angle", "vel", "angvel", "bullet", "shapes"});
+      !s) {
+    return fail(s.message());
+  }
+  SceneBody body;
+  body.name = "body" + std::to_string(index);
+  if (j.contains("name")) {
+    if (!j.at("name").is_string()) return fail(path + ".name: must be a string");
+    body.name = j.at("name").get<std::string>();
+  }
+  Result<BodyType> type = parseBodyType(j, path, BodyType::dynamicBody);
+  if (!type) return type.error();
+  Result<Vec2> pos = vec(j, "pos", path, {});
+  if (!pos) return pos.error();
+  Result<float> angle = number(j, "angle", path, 0.0f);
+  if (!angle) return angle.error();
+  Result<Vec2> vel = vec(j, "vel", path, {});
+  if (!vel) return vel.error();
+  Result<float> angvel = number(j, "angvel", path, 0.0f);
+  if (!angvel) return angvel.error();
+  Result<bool> bullet = boolean(j, "bullet", path, false);
+  if (!bullet) return bullet.error();
+  body.def.type = *type;
+  body.def.position = *pos;
+  body.def.angle = *angle;
+  body.def.linearVelocity = *vel;
+  body.def.angularVelocity = *angvel;
+  body.def.bullet = *bullet;
+  if (j.contains("shapes")) {
+    const json& shapes = j.at("shapes");
+    if (!shapes.is_array()) return fail(path + ".shapes: must be an array");
+    for (std::size_t i = 0; i < shapes.size(); ++i) {
+      Result<SceneShape> s =
+          parseSceneShape(p, shapes[i], path + ".shapes[" + std::to_string(i) + "]");
+      if (!s) return s.error();
+      body.shapes.push_back(*s);
+    }
+  }
+  return body;
+}
+
+// ---- generators ------------------------------------------------------------------------
+
+constexpr int kMaxGenerated = 1000000;
+
+SceneBody makeBody(std::string name, BodyType type, Vec2 pos, float angle, ShapeGeometry g,
+                   const ShapeDef& def) {
+  SceneBody b;
+  b.name = std::move(name);
+  b.def.type = type;
+  b.def.position = pos;
+  b.def.angle = angle;
+  b.shapes.push_back({std::move(g), def});
+  return b;
+}
+
+// One random shape of size about `size` for rain and fields.
+ShapeGeometry randomShape(std::mt19937& rng, const std::vector<std::string>& kinds, float lo,
+                          float hi) {
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  const std::string& kind = kinds[static_cast<std::size_t>(rng() % kinds.size())];
+  float s = lo + (hi - lo) * u(rng);
+  if (kind == "circle") return makeCircle({}, s).value();
+  if (kind == "box") return makeBox(s, s * (0.5f + 0.5f * u(rng))).value();
+  if (kind == "capsule") return makeCapsule({-s, 0}, {s, 0}, 0.5f * s).value();
+  // A random convex polygon: 3 to 8 points on a circle.
+  int n = 3 + static_cast<int>(rng() % 6);
+  std::vector<Vec2> pts;
+  for (int i = 0; i < n; ++i) {
+    float a = 2.0f * kPi * (static_cast<float>(i) + 0.6f * u(rng)) / static_cast<float>(n);
+    pts.push_back(s * Vec2{std::cos(a), std::sin(a)});
+  }
+  return makePolygon(pts).value();
+}
+
+Status generate(const Parser& p, const json& g, const std::string& path, std::size_t index,
+                std::vector<SceneBody>& out) {
+  if (!g.is_object()) return fail(path + ": must be an object with a \"kind\"");
+  if (!g.contains("kind") || !g.at("kind").is_string())
+    return fail(path + ".kind: missing (pyramid, rain, field, tiles)");
+  const std::string kind = g.at("kind").get<std::string>();
+  const std::string prefix = kind + std::to_string(index) + "_";
+  auto material = [&]() { return parseMaterial(p, g, path); };
+  if (kind == "pyramid") {
+    if (Status s = checkKeys(
+            g, path,
+            {"kind", "rows", "half", "pos", "density", "friction", "restitution", "filter"});
+        !s) {
+      return fail(s.message());
+    }
+    Result<int> rows = integer(g, "rows", path, 10, 1, 1000);
+    if (!rows) return rows.error();
+    Result<float> half = number(g, "half", path, 0.5f);
+    if (!half) return half.error();
+    if (*half <= 0.0f) return fail(path + ".half: must be > 0");
+    Result<Vec2> pos = vec(g, "pos", path, {0.0f, *half});
+    if (!pos) return pos.error();
+    Result<ShapeDef> def = material();
+    if (!def) return def.error();
+    Polygon box = makeBox(*half, *half).value();
+    int n = 0;
+    for (int row = 0; row < *rows; ++row) {
+      for (int i = 0; i < *rows - row; ++i) {
+        float x = pos->x + (static_cast<float>(i) - 0.5f * static_cast<float>(*rows - row - 1)) *
+                               2.0f * *half;
+        float y = pos->y + static_cast<float>(row) * 2.0f * *half;
+        out.push_back(
+            makeBody(prefix + std::to_string(n++), BodyType::dynamicBody, {x, y}, 0.0f, box, *def));
+      }
+    }
+    return {};
+  }
+  if (kind == "rain" || kind == "field") {
+    bool rain = kind == "rain";
+    if (Status s = checkKeys(g, path,
+                             {"kind", "count", "pos", "size", "seed", "shapes", "min", "max",
+                              "type", "density", "friction", "restitution", "filter"});
+        !s) {
+      return fail(s.message());
+    }
+    Result<int> count = integer(g, "count", path, 100, 1, kMaxGenerated);
+    if (!count) return count.error();
+    Result<Vec2> pos = vec(g, "pos", path, rain ? Vec2{0, 15} : Vec2{0, 0});
+    if (!pos) return pos.error();
+    Result<Vec2> size = vec(g, "size", path, rain ? Vec2{10, 5} : Vec2{20, 20});
+    if (!size) return size.error();
+    if (size->x < 0.0f || size->y < 0.0f) return fail(path + ".size: must be >= 0");
+    Result<int> seed = integer(g, "seed", path, 1, 0, 2147483647);
+    if (!seed) return seed.error();
+    Result<float> lo = number(g, "min", path, 0.25f);
+    if (!lo) return lo.error();
+    Result<float> hi = number(g, "max", path, 0.5f);
+    if (!hi) return hi.error();
+    if (*lo <= 0.0f || *hi < *lo) return fail(path + ".min: shape sizes need 0 < min <= max");
+    std::vector<std::string> kinds = {"circle", "box", "capsule", "polygon"};
+    if (g.contains("shapes")) {
+      const json& k = g.at("shapes");
+      if (!k.is_array() || k.empty())
+        return fail(path + ".shapes: must be a non-empty array of shape kinds");
+      kinds.clear();
+      for (std::size_t i = 0; i < k.size(); ++i) {
+        if (k[i] != "circle" && k[i] != "box" && k[i] != "capsule" && k[i] != "polygon") {
+          return fail(path + ".shapes[" + std::to_string(i) +
+                      "]: must be circle, box, capsule or polygon");
+        }
+        kinds.push_back(k[i].get<std::string>());
+      }
+    }
+    Result<BodyType> type =
+        parseBodyType(g, path, rain ? BodyType::dynamicBody : BodyType::staticBody);
+    if (!type) return type.error();
+    Result<ShapeDef> def = material();
+    if (!def) return def.error();
+    std::mt19937 rng(static_cast<std::uint32_t>(*seed));
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    for (int i = 0; i < *count; ++i) {
+      Vec2 at{pos->x + size->x * u(rng), pos->y + size->y * u(rng)};
+      float angle = kPi * u(rng);
+      out.push_back(makeBody(prefix + std::to_string(i), *type, at, angle,
+                             randomShape(rng, kinds, *lo, *hi), *def));
+    }
+    return {};
+  }
+  if (kind == "tiles") {
+    if (Status s = checkKeys(
+            g, path,
+            {"kind", "count", "half", "pos", "density", "friction", "restitution", "filter"});
+        !s) {
+      return fail(s.message());
+    }
+    Result<int> count = integer(g, "count", path, 20, 1, kMaxGenerated);
+    if (!count) return count.error();
+    Result<Vec2> half = vec(g, "half", path, {0.5f, 0.5f});
+    if (!half) return half.error();
+    if (half->x <= 0.0f || half->y <= 0.0f) return fail(path + ".half: must be > 0");
+    Result<Vec2> pos = vec(g, "pos", path, {0.0f, -half->y});
+    if (!pos) return pos.error();
+    Result<ShapeDef> def = material();
+    if (!def) return def.error();
+    // Separate static bodies laid flush: the floor a box slides over in the ghost-collision
+    // tests.
+    Polygon tile = makeBox(half->x, half->y).value();
+    for (int i = 0; i < *count; ++i) {
+      Vec2 at{pos->x + (2.0f * static_cast<float>(i) - static_cast<float>(*count - 1)) * half->x,
+              pos->y};
+      out.push_back(
+          makeBody(prefix + std::to_string(i), BodyType::staticBody, at, 0.0f, tile, *def));
+    }
+    return {};
+  }
+  return fail(path + ".kind: unknown generator \"" + kind +
+              "\" (expected pyramid, rain, field, tiles)");
+}
+
+Result<WorldDef> parseWorld(const json& j, const std::string& path) {
+  WorldDef def;
+  if (!j.is_object()) return fail(path + ": must be an object");
+  if (Status s = checkKeys(j, path, {"gravity", "dt", "substeps", "broadphase"}); !s)
+    return fail(s.message());
+  Result<Vec2> gravity = vec(j, "gravity", path, def.gravity);
+  if (!gravity) return gravity.error();
+  Result<float> dt = number(j, "dt", path, def.timeStep);
+  if (!dt) return dt.error();
+  if (*dt <= 0.0f) return fail(path + ".dt: must be > 0");
+  Result<int> substeps = integer(j, "substeps", path, def.substeps, 1, 64);
+  if (!substeps) return substeps.error();
+  def.gravity = *gravity;
+  def.timeStep = *dt;
+  def.substeps = *substeps;
+  if (j.contains("broadphase")) {
+    if (!j.at("broadphase").is_string()) return fail(path + ".broadphase: must be a string");
+    Result<BroadPhaseKind> kind = parseBroadPhaseKind(j.at("broadphase").get<std::string>());
+    if (!kind) return fail(path + ".broadphase: " + kind.error().message);
+    def.broadPhase = *kind;
+  }
+  return def;
+}
+
+}  // namespace
+
+Result<Scene> parseScene(std::string_view text, const std::string& fileName) {
+  Parser p{fileName, {}};
+  json root;
+  try {
+    root = json::parse(text);
+  } catch (const json::exception& e) {
+    // nlohmann's message says where ("at line 3, column 7") and what it expected; a number
+    // too big for a double (1e400) is an out_of_range error, also caught here.
+    return p.error("", std::string("not valid JSON: ") + e.what());
+  }
+  if (!root.is_object()) return p.error("", "a scene must be a JSON object");
+  if (Status s = checkKeys(root, "", {"world", "categories", "bodies", "generate"}); !s) {
+    return p.relabel(fail(s.message()));
+  }
+  Scene scene;
+  scene.file = fileName;
+  if (root.contains("world")) {
+    Result<WorldDef> w = parseWorld(root.at("world"), "world");
+    if (!w) return p.relabel(w.error());
+    scene.world = *w;
+  }
+  if (root.contains("categories")) {
+    const json& c = root.at("categories");
+    if (!c.is_array()) return p.error("categories", "must be an array of names");
+    if (c.size() > 64) return p.error("categories", "at most 64 categories (one bit each)");
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      std::string at = "categories[" + std::to_string(i) + "]";
+      if (!c[i].is_string() || c[i].get<std::string>().empty())
+        return p.error(at, "must be a non-empty name");
+      std::string name = c[i].get<std::string>();
+      for (const std::string& other : p.categories) {
+        if (other == name) return p.error(at, "\"" + name + "\" is declared twice");
+      }
+      p.categories.push_back(name);
+    }
+    scene.categories = p.categories;
+  }
+  if (root.contains("bodies")) {
+    const json& bodies = root.at("bodies");
+    if (!bodies.is_array()) return p.error("bodies", "must be an array");
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      Result<SceneBody> b = parseBody(p, bodies[i], "bodies[" + std::to_string(i) + "]", i);
+      if (!b) return p.relabel(b.error());
+      scene.bodies.push_back(std::move(b).value());
+    }
+  }
+  if (root.contains("generate")) {
+    const json& gens = root.at("generate");
+    if (!gens.is_array()) return p.error("generate", "must be an array");
+    for (std::size_t i = 0; i < gens.size(); ++i) {
+      if (Status s = generate(p, gens[i], "generate[" + std::to_string(i) + "]", i, scene.bodies);
+          !s) {
+        return p.relabel(fail(s.message()));
+      }
+      if (scene.bodies.size() > static_cast<std::size_t>(kMaxGenerated)) {
+        return p.error("generate[" + std::to_string(i) + "]",
+                       "more than 1000000 bodies in the scene");
+      }
+    }
+  }
+  return scene;
+}
+
+Result<Scene> loadScene(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return fail(path + ": cannot open the file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) return fail(path + ": cannot read the file");
+  return parseScene(text.str(), path);
+}
+
+Result<SceneWorld> buildWorld(const Scene& scene) {
+  Result<World> made = World::create(scene.world);
+  if (!made) return fail(scene.file + ": world: " + made.error().message);
+  SceneWorld out{std::move(made).value(), {}, {}};
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const SceneBody& b = scene.bodies[i];
+    Result<BodyId> body = out.world.createBody(b.def);
+    if (!body)
+      return fail(scene.file + ": body " + std::to_string(i) + " \"" + b.name +
+                  "\": " + body.error().message);
+    for (std::size_t k = 0; k < b.shapes.size(); ++k) {
+      Result<ShapeId> s = out.world.createShape(*body, b.shapes[k].def, b.shapes[k].geometry);
+      if (!s) {
+        return fail(scene.file + ": body " + std::to_string(i) + " \"" + b.name + "\" shape " +
+                    std::to_string(k) + ": " + s.error().message);
+      }
+    }
+    out.bodies.push_back(*body);
+    out.names.push_back(b.name);
+  }
+  return out;
+}
+
+}  // namespace quack
