@@ -99,10 +99,18 @@ ToiOutput computeToi(const ShapeProxy& a, const Sweep& sweepA, const ShapeProxy&
     return t + c / (-bb + std::sqrt(disc));
   };
 
+  // A sweep that does not turn keeps one rotation, so the static side of most queries pays
+  // no trigonometry per evaluation; a turning sweep goes through transformAt.
+  const Rot fixedA = Rot::fromAngle(sweepA.a1), fixedB = Rot::fromAngle(sweepB.a1);
+  auto poseAt = [](const Sweep& s, Rot fixed, float t) {
+    if (s.a1 != s.a2) return transformAt(s, t);
+    const Vec2 c = (1.0f - t) * s.c1 + t * s.c2;
+    return Transform{c - rotate(fixed, s.localCenter), fixed};
+  };
   GjkCache cache;
   auto evaluate = [&](float t) {
     DistanceOutput d =
-        computeDistance(a, transformAt(sweepA, t), b, transformAt(sweepB, t), &cache);
+        computeDistance(a, poseAt(sweepA, fixedA, t), b, poseAt(sweepB, fixedB, t), &cache);
     ++out.iterations;
     return Sample{t, d.distance, dot(relativeVelocity, d.normal) + spin, d.pointA, d.normal};
   };
