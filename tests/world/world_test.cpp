@@ -74,7 +74,8 @@ std::vector<float> bounceApexes(float restitution, int steps) {
 TEST(World, BallWithRestitutionOneKeepsNinetyPercentOfItsHeight) {
   std::vector<float> apexes = bounceApexes(1.0f, 60 * 12);
   ASSERT_GE(apexes.size(), 4u);
-  for (std::size_t i = 0; i < 4; ++i) RecordProperty("apex_" + std::to_string(i), std::to_string(apexes[i]));
+  for (std::size_t i = 0; i < 4; ++i)
+    RecordProperty("apex_" + std::to_string(i), std::to_string(apexes[i]));
   for (std::size_t i = 0; i < 4; ++i) {
     SCOPED_TRACE(i);
     EXPECT_GT(apexes[i], 0.9f * 5.0f);   // dropped from 5 m above the ground
