@@ -48,21 +48,29 @@ Aabb World::sweptBox(const FastBody& f) const {
   return inflate(box, kToiTargetSeparation + kToiTolerance);
 }
 
-bool World::findImpact(std::uint32_t fast, bool continuation, ToiCandidate& best) {
+bool World::findImpact(std::uint32_t fast, bool continuation, ToiCandidate& best,
+                       std::uint32_t onlyBody) {
   const FastBody& f = fastBodies_[fast];
   const Body& body = bodies_[f.body];
   toiCandidates_.clear();
-  broadPhase_.queryAabb(sweptBox(f), [&](ProxyId, std::uint64_t user) {
-    auto s = static_cast<std::uint32_t>(user);
+  auto consider = [&](std::uint32_t s) {
     const Shape& other = shapes_[s];
-    if (other.body == f.body || other.def.sensor) return true;
+    if (other.body == f.body || other.def.sensor) return;
     const Body& ob = bodies_[other.body];
     // Fast bodies meet static and kinematic shapes; bullets meet dynamic non-bullets too,
     // as those stand at the end of the step (Box2D's rule, read for understanding).
-    if (ob.type == BodyType::dynamicBody && (!body.bullet || ob.bullet)) return true;
+    if (ob.type == BodyType::dynamicBody && (!body.bullet || ob.bullet)) return;
     toiCandidates_.push_back(s);
-    return true;
-  });
+  };
+  if (onlyBody != 0xffffffffu) {
+    for (std::uint32_t s : bodies_[onlyBody].shapes)
+      consider(s);
+  } else {
+    broadPhase_.queryAabb(f.box, [&](ProxyId, std::uint64_t user) {
+      consider(static_cast<std::uint32_t>(user));
+      return true;
+    });
+  }
   std::sort(toiCandidates_.begin(), toiCandidates_.end());
   bool found = false;
   for (std::uint32_t own : body.shapes) {
@@ -114,6 +122,7 @@ bool World::findImpact(std::uint32_t fast, bool continuation, ToiCandidate& best
 void World::solveContinuous(float dt) {
   if (!def_.enableContinuous) return;
   fastBodies_.clear();
+  int bullets = 0;
   for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
     Body& b = bodies_[i];
     if (!b.alive || !b.fast) continue;
@@ -121,6 +130,8 @@ void World::solveContinuous(float dt) {
     FastBody f;
     f.body = i;
     f.sweep = {b.localCenter, b.startCenter, b.center, b.startAngle, b.endAngle};
+    f.box = sweptBox(f);
+    bullets += b.bullet ? 1 : 0;
     fastBodies_.push_back(f);
   }
   if (fastBodies_.empty()) return;
@@ -129,6 +140,8 @@ void World::solveContinuous(float dt) {
   auto later = [](const ToiCandidate& x, const ToiCandidate& y) { return earlier(y, x); };
   toiQueue_.clear();
   auto push = [&](const ToiCandidate& c) {
+    fastBodies_[c.fast].bestTime = c.time;
+    fastBodies_[c.fast].bestBody = shapes_[c.shapeB].body;
     toiQueue_.push_back(c);
     std::push_heap(toiQueue_.begin(), toiQueue_.end(), later);
   };
@@ -143,6 +156,8 @@ void World::solveContinuous(float dt) {
     toiQueue_.pop_back();
     FastBody& f = fastBodies_[e.fast];
     if (e.stamp != f.stamp) continue;  // the sweep changed since this was found
+    f.bestTime = 2.0f;
+    f.bestBody = 0xffffffffu;
     Body& b = bodies_[f.body];
     const Shape& other = shapes_[e.shapeB];
     Body& ob = bodies_[other.body];
@@ -189,6 +204,7 @@ void World::solveContinuous(float dt) {
       f.sweep = {b.localCenter, c, c, angle, angle};
     }
     f.t0 = e.time;
+    f.box = sweptBox(f);
     ++f.stamp;
     // The body ends the step where its new sweep ends; the broad phase follows at once so
     // that later searches see it there.
@@ -203,20 +219,32 @@ void World::solveContinuous(float dt) {
     // queue in time order; none is earlier than this one.
     ToiCandidate next;
     if (f.events < kMaxToiEventsPerBody && findImpact(e.fast, true, next)) push(next);
-    if (b.bullet) continue;
-    Aabb moved = sweptBox(f);
+    if (b.bullet || bullets == 0) continue;
+    const Aabb moved = f.box;
     for (std::uint32_t g = 0; g < fastBodies_.size(); ++g) {
-      FastBody& other2 = fastBodies_[g];
-      if (g == e.fast || !bodies_[other2.body].bullet || other2.events >= kMaxToiEventsPerBody)
+      FastBody& bullet = fastBodies_[g];
+      if (g == e.fast || !bodies_[bullet.body].bullet || bullet.events >= kMaxToiEventsPerBody)
         continue;
-      if (!overlaps(sweptBox(other2), moved)) continue;
-      if (other2.t0 < e.time) {
-        other2.sweep =
-            advance(other2.sweep, clampf((e.time - other2.t0) / (1.0f - other2.t0), 0.0f, 1.0f));
-        other2.t0 = e.time;
+      if (bullet.bestBody != f.body && !overlaps(bullet.box, moved)) continue;
+      if (bullet.t0 < e.time) {
+        // Only re-parameterised (same path): its queued impact stays valid.
+        bullet.sweep =
+            advance(bullet.sweep, clampf((e.time - bullet.t0) / (1.0f - bullet.t0), 0.0f, 1.0f));
+        bullet.t0 = e.time;
+        bullet.box = sweptBox(bullet);
       }
-      ++other2.stamp;
-      if (findImpact(g, true, next)) push(next);
+      if (bullet.bestBody == f.body) {
+        // Its impact was with this body, which has moved: search again from scratch.
+        ++bullet.stamp;
+        bullet.bestTime = 2.0f;
+        bullet.bestBody = 0xffffffffu;
+        if (findImpact(g, true, next)) push(next);
+      } else if (findImpact(g, true, next, f.body) && next.time < bullet.bestTime) {
+        // Only this body is new to it: an earlier impact with it goes into the queue beside
+        // the old one (same stamp); whichever comes out first is handled, the other is then
+        // stale.
+        push(next);
+      }
     }
   }
 }

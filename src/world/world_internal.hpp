@@ -100,6 +100,9 @@ struct World::FastBody {
   float t0 = 0.0f;
   int events = 0;
   std::uint32_t stamp = 0;  // bumped whenever the sweep changes; older queue entries are stale
+  Aabb box;                 // sweptBox of the sweep
+  float bestTime = 2.0f;    // time of its queued impact (2: none)
+  std::uint32_t bestBody = 0xffffffffu;  // the body that impact is with
 };
 
 // The earliest impact found along a fast body's sweep.

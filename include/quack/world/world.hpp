@@ -233,7 +233,8 @@ class World {
   struct FastBody;
   struct ToiCandidate;
   void solveContinuous(float dt);
-  bool findImpact(std::uint32_t fast, bool continuation, ToiCandidate& best);
+  bool findImpact(std::uint32_t fast, bool continuation, ToiCandidate& best,
+                  std::uint32_t onlyBody = 0xffffffffu);
   Aabb sweptBox(const FastBody& f) const;
   void dispatchCallbacks();
   ShapeId shapeId(std::uint32_t shape) const;
