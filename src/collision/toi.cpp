@@ -118,7 +118,7 @@ ToiOutput computeToi(const ShapeProxy& a, const Sweep& sweepA, const ShapeProxy&
     out.status = status;
     out.t = s.t;
     out.distance = s.distance;
-    if (status == ToiStatus::hit) {
+    if (status == ToiStatus::hit || status == ToiStatus::failed) {
       out.point = s.point;
       out.normal = s.normal;
     }

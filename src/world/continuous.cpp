@@ -172,9 +172,23 @@ void World::solveContinuous(float dt) {
     // Immediate velocity response along the normal (no friction: the next step's contact
     // has it), so the rest of the step's motion goes where the body would go after the
     // impact. Restitution as the solver's: the larger of the pair, above the threshold.
-    const Vec2 n = e.normal;
-    const Vec2 rA = e.point - c;
-    const Vec2 rB = e.point - ob.center;
+    // The impulse acts at the middle of the contact manifold at the impact pose, so that a
+    // face meeting a face is pushed square (TOI's single witness point is a corner, and an
+    // impulse there would start a spurious spin).
+    Vec2 n = e.normal;
+    Vec2 hitPoint = e.point;
+    const Transform xfAt = {c - rotate(Rot::fromAngle(angle), b.localCenter),
+                            Rot::fromAngle(angle)};
+    const Manifold m =
+        quack::collide(refOf(shapes_[e.shapeA].geometry), xfAt, refOf(other.geometry), ob.xf,
+                       kToiTargetSeparation + 2.0f * kToiTolerance);
+    if (m.pointCount > 0) {
+      n = m.normal;
+      hitPoint = m.points[0].point;
+      if (m.pointCount == 2) hitPoint = 0.5f * (m.points[0].point + m.points[1].point);
+    }
+    const Vec2 rA = hitPoint - c;
+    const Vec2 rB = hitPoint - ob.center;
     const bool otherMoves = ob.type == BodyType::dynamicBody;
     const Vec2 vB = ob.v + cross(ob.w, rB);  // zero for static bodies
     const float vn = dot(vB - (b.v + cross(b.w, rA)), n);
@@ -199,7 +213,14 @@ void World::solveContinuous(float dt) {
     ++f.events;
     const float remaining = (1.0f - e.time) * dt;
     if (f.events < kMaxToiEventsPerBody && !e.stop && remaining > 0.0f) {
-      f.sweep = {b.localCenter, c, c + remaining * b.v, angle, angle + remaining * b.w};
+      // A dynamic body hit by a bullet stands at its end-of-step pose for the rest of the
+      // step although the impact set it moving, so the bullet's sweep does not go on
+      // towards it (it would meet the frozen pose again and again); the velocity itself is
+      // kept for the next step.
+      Vec2 sweepVelocity = b.v;
+      const float towards = dot(sweepVelocity, n);
+      if (otherMoves && towards > 0.0f) sweepVelocity -= towards * n;
+      f.sweep = {b.localCenter, c, c + remaining * sweepVelocity, angle, angle + remaining * b.w};
     } else {
       f.sweep = {b.localCenter, c, c, angle, angle};
     }
@@ -218,7 +239,8 @@ void World::solveContinuous(float dt) {
     // body's new end pose (only bullets look at dynamic bodies). New events go into the
     // queue in time order; none is earlier than this one.
     ToiCandidate next;
-    if (f.events < kMaxToiEventsPerBody && findImpact(e.fast, true, next)) push(next);
+    // A stopped body stays where it is for the rest of the step: nothing more to find.
+    if (f.events < kMaxToiEventsPerBody && !e.stop && findImpact(e.fast, true, next)) push(next);
     if (b.bullet || bullets == 0) continue;
     const Aabb moved = f.box;
     for (std::uint32_t g = 0; g < fastBodies_.size(); ++g) {

@@ -195,6 +195,30 @@ TEST(Ccd, BulletDoesNotPassThroughADynamicBox) {
   EXPECT_GT(world.linearVelocity(box).x, 0.0f);  // the box took the impact
 }
 
+// The re-check of the event phase: a fast box is stopped by a wall early in the step; a
+// bullet crossing the spot where the box now ends the step (but not where it would have
+// ended) must meet it, in time order after the box's own event.
+TEST(Ccd, BulletIsRecheckedAgainstABodyThatAnEarlierEventMoved) {
+  World world = World::create({.gravity = {0, 0}}).value();
+  BodyId wall = addWall(world);
+  BodyId box = world.createBody({.position = {-3, 0}, .linearVelocity = {600, 0}}).value();
+  ShapeId boxShape = world.createShape(box, {}, makeBox(0.1f, 0.1f).value()).value();
+  BodyId bullet =
+      world.createBody({.position = {-0.12f, 5}, .linearVelocity = {0, -600}, .bullet = true})
+          .value();
+  ShapeId bulletShape = world.createShape(bullet, {}, makeCircle({}, 0.01f).value()).value();
+  ASSERT_TRUE(world.step().ok());
+  const auto& toi = world.events().toi;
+  ASSERT_EQ(toi.size(), 2u);
+  EXPECT_EQ(toi[0].shapeA, boxShape);
+  EXPECT_EQ(world.body(toi[0].shapeB), wall);
+  EXPECT_EQ(toi[1].shapeA, bulletShape);
+  EXPECT_EQ(toi[1].shapeB, boxShape);
+  EXPECT_LT(toi[0].time, toi[1].time);
+  EXPECT_LT(world.position(box).x, 0.0f);
+  EXPECT_GT(world.position(bullet).y, world.position(box).y);
+}
+
 TEST(Ccd, DeterministicAcrossRunsAndBroadPhases) {
   auto run = [](BroadPhaseKind kind) {
     World world = World::create({.broadPhase = kind}).value();

@@ -92,7 +92,7 @@ struct ToiOutput {
   float distance = 0.0f;  ///< between the shapes at t (hit: in [target, target + tol])
   Vec2 point;             ///< on A's surface, nearest B, at t (overlapped: deepest in B)
   /// Unit, from A to B at t (overlapped: EPA's direction to move B out; never zero). Zero
-  /// when separated or failed.
+  /// when separated.
   Vec2 normal;
   int iterations = 0;  ///< GJK distance evaluations
 };
