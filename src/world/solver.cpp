@@ -254,8 +254,7 @@ void World::solve(float dt, int substeps) {
     b.w = s.w;
     // Continuous collision wants the sweeps of fast bodies (world.hpp, kCcdFastFraction).
     b.fast = b.type == BodyType::dynamicBody && def_.enableContinuous && b.maxExtent > 0.0f &&
-             (b.bullet ||
-              length(s.dp) + absf(s.da) * b.maxExtent > kCcdFastFraction * b.minExtent);
+             (b.bullet || length(s.dp) + absf(s.da) * b.maxExtent > kCcdFastFraction * b.minExtent);
     if (b.fast) {
       b.startCenter = b.center;
       b.startAngle = b.xf.q.angle();
