@@ -1,6 +1,7 @@
 #pragma once
 /// The whole geometry layer.
 #include "quack/geometry/bounds.hpp"
+#include "quack/geometry/decompose.hpp"
 #include "quack/geometry/hull.hpp"
 #include "quack/geometry/mass.hpp"
 #include "quack/geometry/raycast.hpp"
