@@ -56,7 +56,9 @@ class [[nodiscard]] Result {
     return std::get<0>(std::move(state_));
   }
   const T& operator*() const& { return value(); }
+  T& operator*() & { return value(); }
   const T* operator->() const { return &value(); }
+  T* operator->() { return &value(); }
 
   /// Precondition: `!ok()`.
   const Error& error() const& {
