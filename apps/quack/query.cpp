@@ -85,9 +85,68 @@ QueryAnswer answerQuery(const std::string& line) {
       q.contains("pb") ? parsePose(q.at("pb"), "pb") : Result<Transform>(Transform{});
   if (!pb) return rejected(id, pb.error().message);
 
+  json out = {{"id", id}};
+  if (a->concave || b->concave) {
+    // A concave shape is its convex pieces: overlap, distance and penetration are answered
+    // over every pair of pieces (docs/concave.md); the other ops want one convex shape.
+    const char* which = a->concave ? "a" : "b";
+    if (op != "overlap" && op != "distance" && op != "penetration") {
+      return rejected(id, std::string(which) + ": a concave shape supports ops overlap, " +
+                              "distance and penetration only, not " + op);
+    }
+    const std::vector<ShapeProxy> piecesA = a->proxies();
+    const std::vector<ShapeProxy> piecesB = b->proxies();
+    if (op == "overlap") {
+      bool any = false;
+      for (const ShapeProxy& x : piecesA)
+        for (const ShapeProxy& y : piecesB)
+          any = any || testOverlap(x, *pa, y, *pb);
+      out["overlap"] = any;
+      return {out.dump(), true};
+    }
+    // The closest pair of pieces (first in order on ties); for penetration, the deepest
+    // overlapping pair, else the closest.
+    std::size_t bestA = 0, bestB = 0;
+    DistanceOutput closest;
+    bool first = true;
+    for (std::size_t i = 0; i < piecesA.size(); ++i) {
+      for (std::size_t k = 0; k < piecesB.size(); ++k) {
+        DistanceOutput d = computeDistance(piecesA[i], *pa, piecesB[k], *pb);
+        if (first || d.distance < closest.distance) {
+          closest = d;
+          bestA = i;
+          bestB = k;
+          first = false;
+        }
+      }
+    }
+    if (op == "distance") {
+      out["distance"] = closest.distance;
+      out["pointA"] = toJson(closest.pointA);
+      out["pointB"] = toJson(closest.pointB);
+      out["normal"] = toJson(closest.normal);
+      out["iterations"] = closest.iterations;
+      out["status"] = toString(closest.status);
+      return {out.dump(), true};
+    }
+    PenetrationOutput best = computePenetration(piecesA[bestA], *pa, piecesB[bestB], *pb);
+    for (const ShapeProxy& x : piecesA) {
+      for (const ShapeProxy& y : piecesB) {
+        PenetrationOutput p = computePenetration(x, *pa, y, *pb);
+        if (p.overlap && (!best.overlap || p.depth > best.depth)) best = p;
+      }
+    }
+    out["overlap"] = best.overlap;
+    out["depth"] = best.depth;
+    out["normal"] = toJson(best.normal);
+    out["pointA"] = toJson(best.pointA);
+    out["pointB"] = toJson(best.pointB);
+    out["iterations"] = best.iterations;
+    out["status"] = toString(best.status);
+    return {out.dump(), true};
+  }
   ShapeProxy proxyA = a->proxy();
   ShapeProxy proxyB = b->proxy();
-  json out = {{"id", id}};
   if (op == "shapecast") {
     if (!q.contains("translation")) return rejected(id, "translation: missing");
     Result<Vec2> translation = parseVec2(q.at("translation"), "translation");

@@ -143,13 +143,18 @@ Result<ShapeDef> parseMaterial(const Parser& p, const json& j, const std::string
   return def;
 }
 
-Result<SceneShape> parseSceneShape(const Parser& p, const json& j, const std::string& path) {
+// One shape of the file; a concave one becomes its convex pieces, with one material.
+Result<std::vector<SceneShape>> parseSceneShape(const Parser& p, const json& j,
+                                                const std::string& path) {
   Result<ParsedShape> shape =
       parseShape(j, path, {"density", "friction", "restitution", "sensor", "filter"});
   if (!shape) return shape.error();
   Result<ShapeDef> def = parseMaterial(p, j, path);
   if (!def) return def.error();
-  return SceneShape{shape->geometry(), *def};
+  std::vector<SceneShape> out;
+  for (ShapeGeometry& g : shape->geometries())
+    out.push_back({std::move(g), *def});
+  return out;
 }
 
 Result<BodyType> parseBodyType(const json& j, const std::string& path, BodyType fallback) {
@@ -197,10 +202,10 @@ Result<SceneBody> parseBody(const Parser& p, const json& j, const std::string& p
     const json& shapes = j.at("shapes");
     if (!shapes.is_array()) return fail(path + ".shapes: must be an array");
     for (std::size_t i = 0; i < shapes.size(); ++i) {
-      Result<SceneShape> s =
+      Result<std::vector<SceneShape>> s =
           parseSceneShape(p, shapes[i], path + ".shapes[" + std::to_string(i) + "]");
       if (!s) return s.error();
-      body.shapes.push_back(*s);
+      body.shapes.insert(body.shapes.end(), s->begin(), s->end());
     }
   }
   return body;

@@ -4,6 +4,8 @@
 #include <initializer_list>
 #include <vector>
 
+#include "quack/geometry/decompose.hpp"
+
 namespace quack {
 namespace {
 
@@ -50,6 +52,25 @@ Result<float> requiredNumber(const json& j, const char* key, const std::string& 
   return parseNumber(j.at(key), path + "." + key);
 }
 
+// An array of at least 3 and at most 4,096 points [x, y].
+Result<std::vector<Vec2>> parsePointArray(const json& pts, const std::string& path) {
+  if (!pts.is_array()) return fail(path + ": must be an array of [x, y]");
+  if (pts.size() < 3) return fail(path + ": needs at least 3 points");
+  if (pts.size() > 4096) return fail(path + ": too many points");
+  std::vector<Vec2> points;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    Result<Vec2> p = parseVec2(pts[i], path + "[" + std::to_string(i) + "]");
+    if (!p) return p.error();
+    points.push_back(*p);
+  }
+  return points;
+}
+
+Result<std::vector<Vec2>> parsePoints(const json& j, const char* key, const std::string& path) {
+  if (!j.contains(key)) return fail(path + "." + key + ": missing");
+  return parsePointArray(j.at(key), path + "." + key);
+}
+
 // Re-labels a geometry error with the JSON path of the shape.
 Error located(const std::string& path, const Error& e) {
   return fail(path + ": " + e.message);
@@ -83,6 +104,19 @@ ShapeRef ParsedShape::ref() const noexcept {
       return polygon;
   }
   return {};
+}
+
+std::vector<ShapeGeometry> ParsedShape::geometries() const {
+  if (!concave) return {geometry()};
+  return std::vector<ShapeGeometry>(pieces.begin(), pieces.end());
+}
+
+std::vector<ShapeProxy> ParsedShape::proxies() const {
+  if (!concave) return {proxy()};
+  std::vector<ShapeProxy> out;
+  for (const Polygon& p : pieces)
+    out.push_back(makeProxy(p));
+  return out;
 }
 
 ShapeGeometry ParsedShape::geometry() const {
@@ -188,32 +222,49 @@ Result<ParsedShape> parseShape(const json& j, const std::string& path,
   if (type == "polygon") {
     if (Status s = checkKeys(j, path, {"type", "points", "radius"}, extraKeys); !s)
       return fail(s.message());
-    if (!j.contains("points")) return fail(path + ".points: missing");
-    const json& pts = j.at("points");
-    if (!pts.is_array()) return fail(path + ".points: must be an array of [x, y]");
-    if (pts.size() < 3) return fail(path + ".points: needs at least 3 points");
-    if (pts.size() > 4096) return fail(path + ".points: too many points");
-    std::vector<Vec2> points;
-    for (std::size_t i = 0; i < pts.size(); ++i) {
-      Result<Vec2> p = parseVec2(pts[i], path + ".points[" + std::to_string(i) + "]");
-      if (!p) return p.error();
-      points.push_back(*p);
-    }
+    Result<std::vector<Vec2>> points = parsePoints(j, "points", path);
+    if (!points) return points.error();
     Result<float> r = numberOr(j, "radius", path, 0.0f);
     if (!r) return r.error();
     if (*r < 0.0f) return fail(path + ".radius: must be >= 0");
-    Result<Polygon> s = makePolygon(points, *r);
+    Result<Polygon> s = makePolygon(*points, *r);
     if (!s) return located(path, s.error());
     out.type = ShapeType::polygon;
     out.polygon = *s;
     return out;
   }
   if (type == "concave") {
-    return fail(path +
-                ".type: \"concave\" is not supported yet (use convex pieces as \"polygon\")");
+    if (Status s = checkKeys(j, path, {"type", "points", "holes"}, extraKeys); !s)
+      return fail(s.message());
+    Result<std::vector<Vec2>> points = parsePoints(j, "points", path);
+    if (!points) return points.error();
+    std::vector<std::vector<Vec2>> holes;
+    if (j.contains("holes")) {
+      const json& hs = j.at("holes");
+      if (!hs.is_array()) return fail(path + ".holes: must be an array of point arrays");
+      for (std::size_t i = 0; i < hs.size(); ++i) {
+        Result<std::vector<Vec2>> h =
+            parsePointArray(hs[i], path + ".holes[" + std::to_string(i) + "]");
+        if (!h) return h.error();
+        holes.push_back(std::move(*h));
+      }
+    }
+    Result<ConvexDecomposition> d = decomposePolygon(*points, holes);
+    if (!d) {
+      // "decomposePolygon: edges 0 and 2 cross" -> "a: edges 0 and 2 cross"
+      std::string message = d.error().message;
+      const std::string prefix = "decomposePolygon: ";
+      if (message.rfind(prefix, 0) == 0) message = message.substr(prefix.size());
+      return fail(path + ": " + message);
+    }
+    out.type = ShapeType::polygon;
+    out.concave = true;
+    out.pieces = std::move(d->pieces);
+    out.polygon = out.pieces.front();
+    return out;
   }
   return fail(path + ".type: unknown shape type \"" + type +
-              "\" (expected circle, capsule, segment, box, polygon)");
+              "\" (expected circle, capsule, segment, box, polygon, concave)");
 }
 
 }  // namespace quack

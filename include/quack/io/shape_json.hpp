@@ -7,7 +7,10 @@
 ///        {"type": "segment", "p1": [x, y], "p2": [x, y]}
 ///        {"type": "box", "half": [hx, hy], "center": [0, 0], "angle": 0, "radius": 0}
 ///        {"type": "polygon", "points": [[x, y], ...] (convex, 3 to 64), "radius": 0}
-///        {"type": "concave", ...}: an error for now ("not supported yet").
+///        {"type": "concave", "points": [[x, y], ...] (a simple polygon, either orientation,
+///         3 to 1,024 points with its holes), "holes": [[[x, y], ...], ...] (optional)}:
+///         split into convex pieces by decomposePolygon (geometry/decompose.hpp); no radius
+///         (rounded pieces would overlap and bulge at the seams).
 /// Pose:  {"pos": [x, y] (default [0, 0]), "angle": radians (default 0)}; a missing pose
 ///        is the identity.
 /// Unknown keys are errors; every error names the field, e.g. "a.radius: must be > 0".
@@ -15,6 +18,7 @@
 #include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "quack/collision/manifold.hpp"
 #include "quack/collision/proxy.hpp"
@@ -30,9 +34,18 @@ struct ParsedShape {
   Circle circle;
   Capsule capsule;
   Segment segment;
-  Polygon polygon;
+  Polygon polygon;  ///< for a concave shape, its first piece
+  /// A "concave" shape: `pieces` holds its convex pieces (type is polygon). Use
+  /// geometries() or proxies() to see every piece; the single-shape accessors below give
+  /// the first piece only.
+  bool concave = false;
+  std::vector<Polygon> pieces;
 
   ShapeProxy proxy() const noexcept;
+  /// Every piece (one for a convex shape), viewing this object's storage.
+  std::vector<ShapeProxy> proxies() const;
+  /// Every piece as a world geometry (copies; one for a convex shape).
+  std::vector<ShapeGeometry> geometries() const;
   /// The shape for the manifold dispatch table (refers to this object's storage).
   ShapeRef ref() const noexcept;
   /// The shape as a world geometry (a copy).
