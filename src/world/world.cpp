@@ -306,6 +306,7 @@ Result<ShapeId> World::createShape(BodyId bodyId, const ShapeDef& def,
   s.proxy = proxy.value();
   body.shapes.push_back(index);
   ++shapeCount_;
+  if (body.type == BodyType::staticBody) staticEdgesDirty_ = true;
   updateMass(bodyId.index);
   return ShapeId{index, generation};
 }
@@ -333,6 +334,7 @@ void World::destroyShapeNow(std::uint32_t index) {
   QUACK_ASSERT(st.ok());
   (void)st;
   Body& body = bodies_[s.body];
+  if (body.type == BodyType::staticBody) staticEdgesDirty_ = true;
   body.shapes.erase(std::find(body.shapes.begin(), body.shapes.end(), index));
   s.alive = false;
   s.pendingDestroy = false;
@@ -415,6 +417,7 @@ void World::findNewContacts() {
 }
 
 void World::collide() {
+  if (staticEdgesDirty_) updateStaticEdges();
   for (std::uint32_t i = 0; i < contacts_.size(); ++i) {
     Contact& c = contacts_[i];
     if (!c.alive) continue;
@@ -441,6 +444,8 @@ void World::collide() {
     std::copy(c.tangentImpulse, c.tangentImpulse + kMaxManifoldPoints, oldTangent);
     c.manifold =
         c.fn(refOf(sa.geometry).shape, xa, refOf(sb.geometry).shape, xb, def_.speculativeDistance);
+    // Ghost collisions: only contacts with flagged static shapes pay for the check.
+    if (edgeShapes_ != 0 && (sa.edges.active || sb.edges.active)) removeGhostContacts(c);
     // Warm start: a point keeps the impulses of the old point with the same feature id.
     for (int k = 0; k < c.manifold.pointCount; ++k) {
       c.normalImpulse[k] = 0.0f;
@@ -673,6 +678,7 @@ Status World::setTransform(BodyId id, Vec2 position, float angle) {
   Body& b = bodies_[id.index];
   b.xf = makeTransform(position, angle);
   b.center = transformPoint(b.xf, b.localCenter);
+  if (b.type == BodyType::staticBody) staticEdgesDirty_ = true;
   updateShapeBoxes(id.index, Vec2{});
   return {};
 }

@@ -33,6 +33,30 @@ struct World::Body {
   std::vector<std::uint32_t> shapes;
 };
 
+// What a static shape knows about its neighbours, for ghost-collision removal (edges.cpp).
+// Shape frame. Vertex i of a polygon joins edge i - 1 and edge i; a chain segment has
+// vertices 0 (p1) and 1 (p2) and one edge.
+struct EdgeCone {
+  enum class Kind : std::uint8_t {
+    natural,  // no correction at this vertex
+    range,    // normals from `lo` counter-clockwise to `hi` (lo == hi: one normal)
+    snap,     // a reflex corner of the union: the nearer of `lo` and `hi`
+    inside,   // the vertex is inside the union of flush shapes: contacts here are ghosts
+  };
+  Kind kind = Kind::natural;
+  Vec2 lo, hi;
+};
+
+struct StaticEdges {
+  bool active = false;              // contacts with this shape go through removeGhostContacts
+  std::uint64_t internalEdges = 0;  // bit i: edge i lies flush against another static shape
+  std::vector<EdgeCone> cones;      // per vertex
+  // Chains: the segment pushes only along `normal` (right of p1 -> p2); ghost vertices.
+  bool chain = false;
+  bool hasPrev = false, hasNext = false;
+  Vec2 prev, next;  // the neighbouring chain points before p1 and after p2
+};
+
 struct World::Shape {
   std::uint32_t generation = 0;
   bool alive = false;
@@ -42,6 +66,7 @@ struct World::Shape {
   ShapeDef def;
   ProxyId proxy;
   std::vector<std::uint32_t> contacts;
+  StaticEdges edges;
 };
 
 struct World::Contact {

@@ -25,6 +25,7 @@
 
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -58,7 +59,24 @@ struct WorldDef {
   /// Continuous collision (swept boxes, time of impact, the time-ordered event phase) for
   /// fast bodies and bullets. On by default; off gives the discrete solver alone.
   bool enableContinuous = true;
+  /// Ghost-collision removal on static geometry (docs/concave.md): edges of static polygons
+  /// laid flush against an opposite edge of another static polygon are internal, contacts
+  /// on them are dropped, and contact normals at vertices where flush faces meet are turned
+  /// into the cone of the faces that really meet there; chains (createChain) use their
+  /// neighbours the same way. Costs nothing per contact when no static shape is flagged.
+  bool removeGhostCollisions = true;
 };
+
+/// Two edges of static polygons whose ends are this close (metres), running opposite ways,
+/// are laid flush: the seam between two tiles. A tenth of a slop: tiles placed by float
+/// arithmetic meet within a few ulps, while a step a body should feel is at least a slop.
+inline constexpr float kFlushEdgeTolerance = 0.1f * kLinearSlop;
+
+/// A contact point within this distance (metres) of a vertex where flush faces meet (or of
+/// a chain joint) is treated as touching that vertex. The speculative distance plus a slop:
+/// a body's corner reaches that far past the seam while its contact is still speculative or
+/// resolving the slop, which is when ghost normals appear.
+inline constexpr float kGhostVertexRadius = kSpeculativeDistance + kLinearSlop;
 
 /// A dynamic body is fast, and gets continuous collision in a step, when its centre moves
 /// more than this fraction of its smallest half-thickness (plus its rotation times its
@@ -118,6 +136,17 @@ class World {
   /// bad numbers in `def`, a shape not built by the make* functions (validated again).
   Result<ShapeId> createShape(BodyId body, const ShapeDef& def, const ShapeGeometry& geometry);
   Status destroyShape(ShapeId shape);
+  /// A chain of one-sided segments on a static body (body frame points, metres): segment i
+  /// joins points[i] and points[i + 1] (and, with `loop`, the last point to the first).
+  /// Collision is one-sided, as Box2D's chain: a segment pushes only towards the right of
+  /// its direction (the outward side of a counter-clockwise loop; a floor listed from right
+  /// to left pushes up), and a body whose centre is behind it passes through. At each joint
+  /// the neighbouring segment serves as a ghost vertex, so a body sliding or rolling along
+  /// the chain does not catch on the joints. Errors: a body that is not static, fewer than
+  /// 2 points (3 for a loop), a non-finite point, two consecutive points closer than
+  /// kFlushEdgeTolerance, and those of createShape. On error nothing is created.
+  Result<std::vector<ShapeId>> createChain(BodyId body, const ShapeDef& def,
+                                           std::span<const Vec2> points, bool loop = false);
 
   bool isValid(BodyId body) const noexcept;
   bool isValid(ShapeId shape) const noexcept;
@@ -229,6 +258,8 @@ class World {
   void destroyBodyNow(std::uint32_t body);
   void findNewContacts();
   void collide();
+  void updateStaticEdges();
+  void removeGhostContacts(Contact& c);
   void solve(float dt, int substeps);
   struct FastBody;
   struct ToiCandidate;
@@ -266,6 +297,8 @@ class World {
   std::size_t contactCount_ = 0;
   std::uint64_t stepCount_ = 0;
   double time_ = 0.0;
+  bool staticEdgesDirty_ = false;  // static geometry changed: re-find flush edges
+  std::size_t edgeShapes_ = 0;     // static shapes with ghost-collision data
   bool inStep_ = false;
   bool inCallbacks_ = false;
 };

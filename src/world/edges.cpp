@@ -1,0 +1,378 @@
+// Ghost-collision removal on static geometry, and chains.
+//
+// A body sliding over a floor of separate tiles meets, at every seam, the side face and the
+// corner of the next tile: its manifold with that tile may take the side face (or the
+// corner's diagonal) as the normal, and the body catches or hops. The union of the tiles
+// has no such face. So, when static geometry changes, we find the edges of static polygons
+// that lie flush against an opposite edge of another static polygon (internal edges), and
+// at each vertex touching an internal edge the faces of the union that really meet there;
+// in the narrow phase, a contact point on an internal edge is dropped and a normal at such
+// a vertex is turned into the cone of those faces, its separation measured again along
+// the new normal. Chains use their neighbouring points (ghost vertices) the same way, and
+// are one-sided. The idea is that of Bullet's btAdjustInternalEdgeContacts and Jolt's
+// InternalEdgeRemovingCollector (read for understanding; this is our own formulation).
+// docs/concave.md has the method, its limits and the measured figures.
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <string>
+
+#include "quack/world/world.hpp"
+#include "world_internal.hpp"
+
+namespace quack {
+namespace {
+
+// Normals closer than this (sine of the angle between them) count as parallel: a flat
+// joint between two flush faces. About 0.006 degrees: float noise of a normalised edge,
+// far below a slope a body should feel.
+constexpr float kFlatJointSine = 1e-4f;
+
+Vec2 clampToCone(Vec2 n, Vec2 lo, Vec2 hi) {
+  if (absf(cross(lo, hi)) <= kFlatJointSine && dot(lo, hi) > 0.0f) return lo;
+  // The cones are convex corners of polygons or chains: narrower than a half turn.
+  if (cross(lo, n) >= 0.0f && cross(n, hi) >= 0.0f) return n;
+  return dot(n, lo) >= dot(n, hi) ? lo : hi;
+}
+
+// The cone of normals at a vertex where the union's boundary arrives along the edge with
+// normal nIn (direction dIn) and leaves along nOut (dOut); world frame.
+EdgeCone coneBetween(Vec2 dIn, Vec2 nIn, Vec2 dOut, Vec2 nOut) {
+  EdgeCone c;
+  float turn = cross(dIn, dOut);
+  if (absf(turn) <= kFlatJointSine && dot(dIn, dOut) > 0.0f) {
+    c.kind = EdgeCone::Kind::range;
+    c.lo = c.hi = normalize(nIn + nOut);
+  } else if (turn > 0.0f) {
+    c.kind = EdgeCone::Kind::range;
+    c.lo = nIn;
+    c.hi = nOut;
+  } else {
+    c.kind = EdgeCone::Kind::snap;
+    c.lo = nIn;
+    c.hi = nOut;
+  }
+  return c;
+}
+
+// Cells of side 4 tolerances: two points within the tolerance are in the same or
+// neighbouring cells.
+using Cell = std::pair<long long, long long>;
+Cell cellOf(Vec2 p) {
+  const float size = 4.0f * kFlushEdgeTolerance;
+  return {static_cast<long long>(std::floor(p.x / size)),
+          static_cast<long long>(std::floor(p.y / size))};
+}
+
+bool near(Vec2 a, Vec2 b) {
+  return distanceSquared(a, b) <= kFlushEdgeTolerance * kFlushEdgeTolerance;
+}
+
+}  // namespace
+
+Result<std::vector<ShapeId>> World::createChain(BodyId bodyId, const ShapeDef& def,
+                                                std::span<const Vec2> points, bool loop) {
+  if (Status s = checkBody(bodyId, "createChain"); !s) return fail(s.message());
+  if (bodies_[bodyId.index].type != BodyType::staticBody)
+    return fail("createChain: body must be static (chains are terrain)");
+  const std::size_t n = points.size();
+  if (n < (loop ? 3u : 2u)) {
+    return fail("createChain: points: needs at least " + std::string(loop ? "3" : "2") +
+                " points, got " + std::to_string(n));
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!isFinite(points[i]))
+      return fail("createChain: points[" + std::to_string(i) + "] is not finite");
+  }
+  const std::size_t segments = loop ? n : n - 1;
+  for (std::size_t i = 0; i < segments; ++i) {
+    if (near(points[i], points[(i + 1) % n])) {
+      return fail("createChain: points[" + std::to_string(i) + "] and points[" +
+                  std::to_string((i + 1) % n) + "] coincide");
+    }
+  }
+  std::vector<ShapeId> out;
+  for (std::size_t i = 0; i < segments; ++i) {
+    Result<Segment> seg = makeSegment(points[i], points[(i + 1) % n]);
+    Result<ShapeId> id =
+        seg ? createShape(bodyId, def, *seg) : Result<ShapeId>(fail(seg.error().message));
+    if (!id) {
+      for (ShapeId s : out)
+        destroyShapeNow(s.index);
+      return fail("createChain: segment " + std::to_string(i) + ": " + id.error().message);
+    }
+    StaticEdges& e = shapes_[id->index].edges;
+    e.chain = true;
+    e.hasPrev = loop || i > 0;
+    e.hasNext = loop || i + 1 < segments;
+    e.prev = points[(i + n - 1) % n];
+    e.next = points[(i + 2) % n];
+    out.push_back(*id);
+  }
+  staticEdgesDirty_ = true;
+  return out;
+}
+
+void World::updateStaticEdges() {
+  staticEdgesDirty_ = false;
+  edgeShapes_ = 0;
+  struct WorldEdge {
+    std::uint32_t shape;
+    int edge;
+    Vec2 a, b, n;
+  };
+  std::vector<WorldEdge> edges;
+  for (std::uint32_t s = 0; s < shapes_.size(); ++s) {
+    Shape& shape = shapes_[s];
+    if (!shape.alive || bodies_[shape.body].type != BodyType::staticBody) continue;
+    StaticEdges& e = shape.edges;
+    if (e.chain) {
+      // Ghost vertices: the cone at each joint is that of the two segments meeting there.
+      const Segment& seg = std::get<Segment>(shape.geometry);
+      Vec2 d = normalize(seg.p2 - seg.p1);
+      Vec2 n = rightPerp(d);
+      e.cones.assign(2, EdgeCone{});
+      if (e.hasPrev) {
+        Vec2 dp = normalize(seg.p1 - e.prev);
+        e.cones[0] = coneBetween(dp, rightPerp(dp), d, n);
+        // At a valley the other segment answers for its own face: keep this one's.
+        if (e.cones[0].kind == EdgeCone::Kind::snap) e.cones[0].lo = e.cones[0].hi = n;
+      }
+      if (e.hasNext) {
+        Vec2 dn = normalize(e.next - seg.p2);
+        e.cones[1] = coneBetween(d, n, dn, rightPerp(dn));
+        if (e.cones[1].kind == EdgeCone::Kind::snap) e.cones[1].lo = e.cones[1].hi = n;
+      }
+      e.active = true;
+      ++edgeShapes_;
+      continue;
+    }
+    e = StaticEdges{};
+    if (!def_.removeGhostCollisions) continue;
+    const Polygon* p = std::get_if<Polygon>(&shape.geometry);
+    if (p == nullptr) continue;
+    const Transform xf = bodies_[shape.body].xf;
+    for (int i = 0; i < p->count; ++i) {
+      edges.push_back({s, i, transformPoint(xf, p->vertices[i]),
+                       transformPoint(xf, p->vertices[(i + 1) % p->count]),
+                       rotate(xf.q, p->normals[i])});
+    }
+  }
+  if (edges.empty()) return;
+  std::map<Cell, std::vector<std::size_t>> starts, ends;
+  for (std::size_t k = 0; k < edges.size(); ++k) {
+    starts[cellOf(edges[k].a)].push_back(k);
+    ends[cellOf(edges[k].b)].push_back(k);
+  }
+  auto around = [](const std::map<Cell, std::vector<std::size_t>>& cells, Vec2 p, auto&& f) {
+    Cell c = cellOf(p);
+    for (long long dx = -1; dx <= 1; ++dx) {
+      for (long long dy = -1; dy <= 1; ++dy) {
+        auto it = cells.find({c.first + dx, c.second + dy});
+        if (it == cells.end()) continue;
+        for (std::size_t k : it->second)
+          f(k);
+      }
+    }
+  };
+  // Internal edges: an opposite edge of another static shape with the same ends.
+  std::vector<bool> internal(edges.size(), false);
+  for (std::size_t k = 0; k < edges.size(); ++k) {
+    around(starts, edges[k].b, [&](std::size_t j) {
+      if (edges[j].shape != edges[k].shape && near(edges[j].a, edges[k].b) &&
+          near(edges[j].b, edges[k].a)) {
+        internal[k] = true;
+      }
+    });
+  }
+  // Vertices touching an internal edge: the faces of the union that meet there.
+  for (std::size_t k = 0; k < edges.size(); ++k) {
+    if (!internal[k]) continue;
+    Shape& shape = shapes_[edges[k].shape];
+    StaticEdges& e = shape.edges;
+    const Polygon& p = std::get<Polygon>(shape.geometry);
+    if (!e.active) {
+      e.active = true;
+      e.cones.assign(static_cast<std::size_t>(p.count), EdgeCone{});
+      ++edgeShapes_;
+    }
+    e.internalEdges |= std::uint64_t{1} << edges[k].edge;
+    const Rot q = bodies_[shape.body].xf.q;
+    // Edge i joins vertices i and i + 1.
+    for (int v : {edges[k].edge, (edges[k].edge + 1) % p.count}) {
+      Vec2 at = transformPoint(bodies_[shape.body].xf, p.vertices[v]);
+      int inCount = 0, outCount = 0;
+      std::size_t in = 0, out = 0;
+      around(ends, at, [&](std::size_t j) {
+        if (!internal[j] && near(edges[j].b, at)) {
+          ++inCount;
+          in = j;
+        }
+      });
+      around(starts, at, [&](std::size_t j) {
+        if (!internal[j] && near(edges[j].a, at)) {
+          ++outCount;
+          out = j;
+        }
+      });
+      EdgeCone cone;
+      if (inCount == 1 && outCount == 1) {
+        Vec2 dIn = normalize(edges[in].b - edges[in].a);
+        Vec2 dOut = normalize(edges[out].b - edges[out].a);
+        cone = coneBetween(dIn, edges[in].n, dOut, edges[out].n);
+        cone.lo = invRotate(q, cone.lo);
+        cone.hi = invRotate(q, cone.hi);
+      } else if (inCount == 0 && outCount == 0) {
+        cone.kind = EdgeCone::Kind::inside;
+      }
+      // Otherwise several faces meet here (a chequerboard corner): leave the vertex alone.
+      e.cones[static_cast<std::size_t>(v)] = cone;
+    }
+  }
+}
+
+void World::removeGhostContacts(Contact& c) {
+  Manifold& m = c.manifold;
+  if (m.pointCount == 0) return;
+  const bool staticIsA = shapes_[c.shapeA].edges.active &&
+                         bodies_[shapes_[c.shapeA].body].type == BodyType::staticBody;
+  const Shape& S = shapes_[staticIsA ? c.shapeA : c.shapeB];
+  const Shape& D = shapes_[staticIsA ? c.shapeB : c.shapeA];
+  if (!S.edges.active || bodies_[S.body].type != BodyType::staticBody) return;
+  const Transform xs = bodies_[S.body].xf;
+  const Transform xd = bodies_[D.body].xf;
+  const Vec2 nOut = staticIsA ? m.normal : -m.normal;  // out of the static shape
+
+  // The static shape's vertices and edges, shape frame.
+  Vec2 segmentPoints[2];
+  const Vec2* vertices = nullptr;
+  int count = 0;
+  if (const Polygon* p = std::get_if<Polygon>(&S.geometry)) {
+    vertices = p->vertices;
+    count = p->count;
+  } else if (const Segment* seg = std::get_if<Segment>(&S.geometry)) {
+    segmentPoints[0] = seg->p1;
+    segmentPoints[1] = seg->p2;
+    vertices = segmentPoints;
+    count = 2;
+  } else {
+    return;
+  }
+  const int edgeCount = S.edges.chain ? 1 : count;
+  auto edgeNormal = [&](int i) {
+    return rightPerp(normalize(vertices[(i + 1) % count] - vertices[i]));
+  };
+
+  if (S.edges.chain) {
+    // One-sided: a body whose centre is behind the segment passes through it.
+    Vec2 center = transformPoint(xd, proxyOf(D.geometry).center());
+    if (dot(invTransformPoint(xs, center) - vertices[0], edgeNormal(0)) < 0.0f) {
+      m.pointCount = 0;
+      return;
+    }
+  }
+
+  const Vec2 localN = invRotate(xs.q, nOut);
+  bool haveTarget = false;
+  Vec2 target;
+  float targetSeparation = 0.0f;
+  int kept = 0;
+  for (int k = 0; k < m.pointCount; ++k) {
+    const ManifoldPoint mp = m.points[k];
+    Vec2 local = invTransformPoint(xs, mp.point - 0.5f * mp.separation * nOut);
+    int vertex = -1;
+    float best = kGhostVertexRadius * kGhostVertexRadius;
+    for (int i = 0; i < count; ++i) {
+      float d2 = distanceSquared(local, vertices[i]);
+      if (d2 <= best) {
+        best = d2;
+        vertex = i;
+      }
+    }
+    bool drop = false;
+    bool corrected = false;
+    Vec2 t;
+    if (vertex >= 0) {
+      const EdgeCone& cone = S.edges.cones[static_cast<std::size_t>(vertex)];
+      switch (cone.kind) {
+        case EdgeCone::Kind::natural:
+          break;
+        case EdgeCone::Kind::range:
+          t = clampToCone(localN, cone.lo, cone.hi);
+          corrected = true;
+          break;
+        case EdgeCone::Kind::snap:
+          t = dot(localN, cone.lo) >= dot(localN, cone.hi) ? cone.lo : cone.hi;
+          corrected = true;
+          break;
+        case EdgeCone::Kind::inside:
+          drop = true;
+          break;
+      }
+    } else {
+      int edge = 0;
+      float bestEdge = std::numeric_limits<float>::max();
+      for (int i = 0; i < edgeCount; ++i) {
+        Vec2 a = vertices[i], b = vertices[(i + 1) % count];
+        Vec2 ab = b - a;
+        float u = clampf(dot(local - a, ab) / lengthSquared(ab), 0.0f, 1.0f);
+        float d2 = distanceSquared(local, a + u * ab);
+        if (d2 < bestEdge) {
+          bestEdge = d2;
+          edge = i;
+        }
+      }
+      if ((S.edges.internalEdges >> edge) & 1u) {
+        drop = true;
+      } else if (S.edges.chain && dot(localN, edgeNormal(edge)) <= 0.0f) {
+        t = edgeNormal(edge);
+        corrected = true;
+      }
+    }
+    if (drop) continue;
+    if (corrected && (!haveTarget || mp.separation < targetSeparation)) {
+      haveTarget = true;
+      target = t;
+      targetSeparation = mp.separation;
+    }
+    m.points[kept++] = mp;
+  }
+  m.pointCount = kept;
+  if (!haveTarget || kept == 0) return;
+  const Vec2 nNew = rotate(xs.q, target);
+  // Already inside the cone (to float noise): leave the routine's answer untouched.
+  if (dot(nNew, nOut) >= 1.0f - 1e-6f) return;
+
+  // Measure again along the new normal: the separation of the dynamic shape from the face
+  // through the static point, using its deepest point along the normal where that is deeper
+  // than the point the routine found (a circle's lowest point, not its diagonal one).
+  const ShapeProxy proxy = proxyOf(D.geometry);
+  const Vec2 dir = invRotate(xd.q, -nNew);
+  int deepest = 0;
+  for (int i = 1; i < proxy.count(); ++i) {
+    if (dot(proxy.points()[i], dir) > dot(proxy.points()[deepest], dir)) deepest = i;
+  }
+  const Vec2 support = transformPoint(xd, proxy.points()[deepest]) - proxy.radius() * nNew;
+  const Transform xa = bodies_[shapes_[c.shapeA].body].xf;
+  const Transform xb = bodies_[shapes_[c.shapeB].body].xf;
+  for (int k = 0; k < m.pointCount; ++k) {
+    ManifoldPoint& mp = m.points[k];
+    Vec2 onStatic = mp.point - 0.5f * mp.separation * nOut;
+    Vec2 onDynamic = mp.point + 0.5f * mp.separation * nOut;
+    float gap = dot(onDynamic - onStatic, nNew);
+    float supportGap = dot(support - onStatic, nNew);
+    if (supportGap < gap) {
+      onDynamic = support;
+      gap = supportGap;
+    }
+    mp.separation = gap;
+    mp.point = onDynamic - 0.5f * gap * nNew;
+    mp.anchorA = mp.point - xa.p;
+    mp.anchorB = mp.point - xb.p;
+  }
+  m.normal = staticIsA ? nNew : -nNew;
+}
+
+}  // namespace quack
