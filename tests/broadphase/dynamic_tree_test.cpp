@@ -162,3 +162,37 @@ TEST(DynamicTree, RayCastVisitsNearestFirstAndClips) {
 
 }  // namespace
 }  // namespace quack
+
+namespace quack {
+namespace {
+
+// The node visitor sees every internal node once: a tree of n leaves has n - 1 of them,
+// each box holds its children, and depths never exceed the height.
+TEST(DynamicTree, VisitInternalNodesCoversTheHierarchy) {
+  DynamicTree tree;
+  std::mt19937 rng(404);
+  std::uniform_real_distribution<float> u(-50, 50);
+  std::vector<Aabb> boxes;
+  for (std::uint32_t i = 0; i < 300; ++i) {
+    Vec2 c{u(rng), u(rng)};
+    boxes.push_back({c - Vec2{0.5f, 0.5f}, c + Vec2{0.5f, 0.5f}});
+    tree.insert(i, boxes.back());
+  }
+  int nodes = 0, deepest = 0;
+  Aabb root{};
+  tree.visitInternalNodes([&](Aabb box, int depth) {
+    if (depth == 0) root = box;
+    ++nodes;
+    deepest = std::max(deepest, depth);
+  });
+  EXPECT_EQ(nodes, 299);
+  EXPECT_LT(deepest, tree.height());
+  for (const Aabb& b : boxes) EXPECT_TRUE(contains(root, b));
+  DynamicTree empty;
+  int none = 0;
+  empty.visitInternalNodes([&](Aabb, int) { ++none; });
+  EXPECT_EQ(none, 0);
+}
+
+}  // namespace
+}  // namespace quack

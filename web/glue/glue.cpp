@@ -406,6 +406,15 @@ EMSCRIPTEN_KEEPALIVE const char* qk_world_state() {
                  fat.push_back(aabbJson(bp.fatBox(id)));
                  return true;
                });
+  // The tree's internal nodes (x0, y0, x1, y1, depth), when the broad phase is the tree.
+  json treeBoxes = json::array();
+  if (const DynamicTree* tree = bp.tree()) {
+    tree->visitInternalNodes([&](Aabb box, int depth) {
+      json b = aabbJson(box);
+      b.push_back(depth);
+      treeBoxes.push_back(b);
+    });
+  }
   json contacts = json::array();
   for (const World::ContactView& c : world.touchingContacts()) {
     json points = json::array();
@@ -421,6 +430,7 @@ EMSCRIPTEN_KEEPALIVE const char* qk_world_state() {
   BroadPhaseStats stats = bp.stats();
   return answer({{"shapes", shapes},
                  {"fatBoxes", fat},
+                 {"treeBoxes", treeBoxes},
                  {"contacts", contacts},
                  {"broadPhase",
                   {{"kind", std::string(nameOf(bp.kind()))},

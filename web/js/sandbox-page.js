@@ -85,6 +85,19 @@ function draw() {
     }
     ctx.restore();
   }
+  if ($('show-tree').checked && w.treeBoxes.length > 0) {
+    // The tree's internal nodes, the root darkest.
+    ctx.save();
+    ctx.lineWidth = 1;
+    const deepest = Math.max(...w.treeBoxes.map((b) => b[4]), 1);
+    for (const [x0, y0, x1, y1, depth] of w.treeBoxes) {
+      ctx.strokeStyle = `rgba(60,60,200,${0.85 - 0.6 * depth / deepest})`;
+      const [cx0, cy0] = view.toCanvas([x0, y1]);
+      const [cx1, cy1] = view.toCanvas([x1, y0]);
+      ctx.strokeRect(cx0, cy0, cx1 - cx0, cy1 - cy0);
+    }
+    ctx.restore();
+  }
   if ($('show-contacts').checked) {
     for (const c of w.contacts) {
       for (const p of c.points) {

@@ -42,6 +42,16 @@ test('a click drops a shape, and shapes collide: contacts and begin events', asy
   assert.equal(s.world.fatBoxes.length, s.world.broadPhase.proxies);
   assert.equal(s.world.broadPhase.kind, 'tree');
   assert.ok(s.world.broadPhase.height >= 1);
+  // The tree's hierarchy: a binary tree of n leaves has n - 1 internal nodes.
+  assert.equal(s.world.treeBoxes.length, s.world.broadPhase.proxies - 1);
+  await page.check('#show-tree');
+  await page.keyboard.press(' ');  // pause, so only the tree drawing can change the picture
+  await sleep(100);
+  const withTree = await snapshot(page, 'world');
+  await page.uncheck('#show-tree');
+  await sleep(100);
+  assert.notEqual(await snapshot(page, 'world'), withTree, 'the tree nodes did not draw');
+  await page.keyboard.press(' ');
   assert.notEqual(await page.textContent('#events'), '');
 });
 

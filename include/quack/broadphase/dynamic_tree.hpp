@@ -71,6 +71,12 @@ class DynamicTree {
   /// and their boxes are unchanged; only the shape of the tree changes.
   void rebuild();
 
+  /// Calls `visit(Aabb box, int depth)` for every internal node, the root at depth 0, with
+  /// the node's box (the union of its children's): the hierarchy, for drawing and tools.
+  /// Leaves are the proxies' own boxes and are not visited.
+  template <class Visit>
+  void visitInternalNodes(Visit&& visit) const;
+
   /// Height of the tree: 0 for empty or a single leaf, else 1 + the taller child.
   int height() const noexcept;
   /// Sum of the perimeters of all internal nodes divided by the root's perimeter: 0 when
@@ -188,6 +194,26 @@ void DynamicTree::rayCast(Vec2 origin, Vec2 translation, float maxFraction, Vec2
     }
     // The nearer internal child goes on top so it is popped first.
     if (deferred != kNullIndex) stack.push(deferred);
+  }
+}
+
+template <class Visit>
+void DynamicTree::visitInternalNodes(Visit&& visit) const {
+  if (root_ == kNullIndex || isLeaf(root_)) return;
+  struct Item {
+    std::uint32_t node;
+    int depth;
+    Aabb box;
+  };
+  std::vector<Item> stack{{root_, 0, rootBox_}};
+  while (!stack.empty()) {
+    Item item = stack.back();
+    stack.pop_back();
+    visit(item.box, item.depth);
+    const Node& n = nodes_[item.node];
+    for (int i = 0; i < 2; ++i) {
+      if (!isLeaf(n.child[i])) stack.push_back({n.child[i], item.depth + 1, n.childBox[i]});
+    }
   }
 }
 
