@@ -187,7 +187,8 @@ TEST(DynamicTree, VisitInternalNodesCoversTheHierarchy) {
   });
   EXPECT_EQ(nodes, 299);
   EXPECT_LT(deepest, tree.height());
-  for (const Aabb& b : boxes) EXPECT_TRUE(contains(root, b));
+  for (const Aabb& b : boxes)
+    EXPECT_TRUE(contains(root, b));
   DynamicTree empty;
   int none = 0;
   empty.visitInternalNodes([&](Aabb, int) { ++none; });
