@@ -171,7 +171,7 @@ Result<ConvexDecomposition> decomposePolygon(std::span<const Vec2> outline,
       }
       lower = minv(lower, pts[i]);
       upper = maxv(upper, pts[i]);
-      rings[r].p.push_back({pts[i].x, pts[i].y});
+      rings[r].p.push_back({static_cast<double>(pts[i].x), static_cast<double>(pts[i].y)});
       rings[r].source.push_back(static_cast<int>(i));
     }
   }
