@@ -109,6 +109,10 @@ bool World::findImpact(std::uint32_t fast, bool continuation, ToiCandidate& best
       c.stamp = f.stamp;
       c.shapeA = own;
       c.shapeB = s;
+      // Ghost collisions: an impact on a flush seam of static geometry, or from behind a
+      // chain, is not a surface (edges.cpp); the discrete contacts handle the real ones.
+      if (edgeShapes_ != 0 && other.edges.active && isGhostImpact(s, toi.point, -toi.normal))
+        continue;
       c.point = toi.point;
       c.normal = toi.normal;
       c.stop = stop || toi.status == ToiStatus::failed;

@@ -161,6 +161,79 @@ void World::updateStaticEdges() {
     }
   }
   if (edges.empty()) return;
+
+  // Coverage: the parts of each edge that lie against an opposite, collinear edge of another
+  // static shape, as intervals of the edge's length. Candidate pairs come from a grid of
+  // cells about one mean edge long, each edge entered in the cells its box touches.
+  float meanLength = 0.0f;
+  for (const WorldEdge& w : edges)
+    meanLength += length(w.b - w.a);
+  meanLength /= static_cast<float>(edges.size());
+  const float cellSize = maxf(meanLength, 16.0f * kFlushEdgeTolerance);
+  auto cellIndex = [&](float x) { return static_cast<long long>(std::floor(x / cellSize)); };
+  std::map<Cell, std::vector<std::size_t>> grid;
+  for (std::size_t k = 0; k < edges.size(); ++k) {
+    Vec2 lo = minv(edges[k].a, edges[k].b), hi = maxv(edges[k].a, edges[k].b);
+    long long x0 = cellIndex(lo.x - kFlushEdgeTolerance),
+              x1 = cellIndex(hi.x + kFlushEdgeTolerance);
+    long long y0 = cellIndex(lo.y - kFlushEdgeTolerance),
+              y1 = cellIndex(hi.y + kFlushEdgeTolerance);
+    // An edge spanning more cells than this (a long ground under many small tiles) is
+    // entered once per cell anyway, but never more than kMaxEdgeCells: beyond that it is
+    // left out of the search (its seams keep their ghosts; documented in docs/concave.md).
+    constexpr long long kMaxEdgeCells = 4096;
+    if ((x1 - x0 + 1) * (y1 - y0 + 1) > kMaxEdgeCells) continue;
+    for (long long x = x0; x <= x1; ++x)
+      for (long long y = y0; y <= y1; ++y)
+        grid[{x, y}].push_back(k);
+  }
+  struct Interval {
+    float t0, t1;  // metres along the edge from its start
+  };
+  std::vector<std::vector<Interval>> covered(edges.size());
+  auto addCover = [&](std::size_t k, float t0, float t1) {
+    float len = length(edges[k].b - edges[k].a);
+    t0 = maxf(t0, 0.0f);
+    t1 = minf(t1, len);
+    if (t1 - t0 <= kFlushEdgeTolerance) return;
+    std::vector<Interval>& list = covered[k];
+    for (Interval& i : list) {
+      if (t0 <= i.t1 + kFlushEdgeTolerance && i.t0 <= t1 + kFlushEdgeTolerance) {
+        i.t0 = minf(i.t0, t0);
+        i.t1 = maxf(i.t1, t1);
+        return;
+      }
+    }
+    list.push_back({t0, t1});
+  };
+  auto lineDistance = [&](std::size_t k, Vec2 p) {
+    return absf(cross(normalize(edges[k].b - edges[k].a), p - edges[k].a));
+  };
+  // A pair that shares several cells is covered once per cell; the intervals merge.
+  for (const auto& [cell, list] : grid) {
+    for (std::size_t x = 0; x < list.size(); ++x) {
+      for (std::size_t y = x + 1; y < list.size(); ++y) {
+        std::size_t k = list[x], j = list[y];
+        if (edges[k].shape == edges[j].shape) continue;
+        Vec2 dk = normalize(edges[k].b - edges[k].a), dj = normalize(edges[j].b - edges[j].a);
+        if (dot(dk, dj) >= 0.0f || absf(cross(dk, dj)) > kFlatJointSine) continue;
+        if (lineDistance(k, edges[j].a) > kFlushEdgeTolerance ||
+            lineDistance(k, edges[j].b) > kFlushEdgeTolerance) {
+          continue;
+        }
+        float ja = dot(edges[j].a - edges[k].a, dk), jb = dot(edges[j].b - edges[k].a, dk);
+        addCover(k, minf(ja, jb), maxf(ja, jb));
+        float ka = dot(edges[k].a - edges[j].a, dj), kb = dot(edges[k].b - edges[j].a, dj);
+        addCover(j, minf(ka, kb), maxf(ka, kb));
+      }
+    }
+  }
+  auto coveredAt = [&](std::size_t k, float t) {
+    for (const Interval& i : covered[k])
+      if (t >= i.t0 - kFlushEdgeTolerance && t <= i.t1 + kFlushEdgeTolerance) return true;
+    return false;
+  };
+
   std::map<Cell, std::vector<std::size_t>> starts, ends;
   for (std::size_t k = 0; k < edges.size(); ++k) {
     starts[cellOf(edges[k].a)].push_back(k);
@@ -177,19 +250,10 @@ void World::updateStaticEdges() {
       }
     }
   };
-  // Internal edges: an opposite edge of another static shape with the same ends.
-  std::vector<bool> internal(edges.size(), false);
+  // Shapes with covered edges get the covered intervals (shape frame: the same lengths) and,
+  // at each vertex an edge is covered up to, the faces of the union that meet there.
   for (std::size_t k = 0; k < edges.size(); ++k) {
-    around(starts, edges[k].b, [&](std::size_t j) {
-      if (edges[j].shape != edges[k].shape && near(edges[j].a, edges[k].b) &&
-          near(edges[j].b, edges[k].a)) {
-        internal[k] = true;
-      }
-    });
-  }
-  // Vertices touching an internal edge: the faces of the union that meet there.
-  for (std::size_t k = 0; k < edges.size(); ++k) {
-    if (!internal[k]) continue;
+    if (covered[k].empty()) continue;
     Shape& shape = shapes_[edges[k].shape];
     StaticEdges& e = shape.edges;
     const Polygon& p = std::get<Polygon>(shape.geometry);
@@ -198,21 +262,25 @@ void World::updateStaticEdges() {
       e.cones.assign(static_cast<std::size_t>(p.count), EdgeCone{});
       ++edgeShapes_;
     }
-    e.internalEdges |= std::uint64_t{1} << edges[k].edge;
+    for (const Interval& i : covered[k])
+      e.covered.push_back({edges[k].edge, i.t0, i.t1});
     const Rot q = bodies_[shape.body].xf.q;
+    const float len = length(edges[k].b - edges[k].a);
     // Edge i joins vertices i and i + 1.
-    for (int v : {edges[k].edge, (edges[k].edge + 1) % p.count}) {
-      Vec2 at = transformPoint(bodies_[shape.body].xf, p.vertices[v]);
+    for (int end = 0; end < 2; ++end) {
+      if (!coveredAt(k, end == 0 ? 0.0f : len)) continue;
+      int v = (edges[k].edge + end) % p.count;
+      Vec2 at = end == 0 ? edges[k].a : edges[k].b;
       int inCount = 0, outCount = 0;
       std::size_t in = 0, out = 0;
       around(ends, at, [&](std::size_t j) {
-        if (!internal[j] && near(edges[j].b, at)) {
+        if (near(edges[j].b, at) && !coveredAt(j, length(edges[j].b - edges[j].a))) {
           ++inCount;
           in = j;
         }
       });
       around(starts, at, [&](std::size_t j) {
-        if (!internal[j] && near(edges[j].a, at)) {
+        if (near(edges[j].a, at) && !coveredAt(j, 0.0f)) {
           ++outCount;
           out = j;
         }
@@ -227,10 +295,100 @@ void World::updateStaticEdges() {
       } else if (inCount == 0 && outCount == 0) {
         cone.kind = EdgeCone::Kind::inside;
       }
-      // Otherwise several faces meet here (a chequerboard corner): leave the vertex alone.
+      // Otherwise several faces meet here (a chequerboard corner), or the union's boundary
+      // passes through the middle of another shape's edge: leave the vertex alone.
       e.cones[static_cast<std::size_t>(v)] = cone;
     }
   }
+}
+
+namespace {
+
+enum class Verdict { keep, drop, correct };
+
+// What a contact on static shape `S` at `local` (on its surface, shape frame) with the
+// normal `localN` (out of S, shape frame) is: genuine (keep), on a covered part of an edge
+// or at a vertex inside the union (drop), or at a flush vertex or chain joint whose cone
+// does not hold the normal (correct: `target` is the nearest normal in the cone).
+Verdict classify(const StaticEdges& edges, const ShapeGeometry& geometry, Vec2 local, Vec2 localN,
+                 Vec2& target) {
+  Vec2 segmentPoints[2];
+  const Vec2* vertices = nullptr;
+  int count = 0;
+  if (const Polygon* p = std::get_if<Polygon>(&geometry)) {
+    vertices = p->vertices;
+    count = p->count;
+  } else if (const Segment* seg = std::get_if<Segment>(&geometry)) {
+    segmentPoints[0] = seg->p1;
+    segmentPoints[1] = seg->p2;
+    vertices = segmentPoints;
+    count = 2;
+  } else {
+    return Verdict::keep;
+  }
+  int vertex = -1;
+  float best = kGhostVertexRadius * kGhostVertexRadius;
+  for (int i = 0; i < count; ++i) {
+    float d2 = distanceSquared(local, vertices[i]);
+    if (d2 <= best) {
+      best = d2;
+      vertex = i;
+    }
+  }
+  if (vertex >= 0) {
+    const EdgeCone& cone = edges.cones[static_cast<std::size_t>(vertex)];
+    switch (cone.kind) {
+      case EdgeCone::Kind::natural:
+        return Verdict::keep;
+      case EdgeCone::Kind::range:
+        target = clampToCone(localN, cone.lo, cone.hi);
+        return Verdict::correct;
+      case EdgeCone::Kind::snap:
+        target = dot(localN, cone.lo) >= dot(localN, cone.hi) ? cone.lo : cone.hi;
+        return Verdict::correct;
+      case EdgeCone::Kind::inside:
+        return Verdict::drop;
+    }
+  }
+  const int edgeCount = edges.chain ? 1 : count;
+  int edge = 0;
+  float bestEdge = std::numeric_limits<float>::max();
+  for (int i = 0; i < edgeCount; ++i) {
+    Vec2 a = vertices[i], ab = vertices[(i + 1) % count] - a;
+    float u = clampf(dot(local - a, ab) / lengthSquared(ab), 0.0f, 1.0f);
+    float d2 = distanceSquared(local, a + u * ab);
+    if (d2 < bestEdge) {
+      bestEdge = d2;
+      edge = i;
+    }
+  }
+  Vec2 a = vertices[edge], d = normalize(vertices[(edge + 1) % count] - a);
+  float along = dot(local - a, d);
+  for (const CoveredSpan& span : edges.covered) {
+    if (span.edge == edge && along >= span.t0 - kFlushEdgeTolerance &&
+        along <= span.t1 + kFlushEdgeTolerance) {
+      return Verdict::drop;
+    }
+  }
+  if (edges.chain && dot(localN, rightPerp(d)) <= 0.0f) {
+    target = rightPerp(d);
+    return Verdict::correct;
+  }
+  return Verdict::keep;
+}
+
+}  // namespace
+
+bool World::isGhostImpact(std::uint32_t staticShape, Vec2 point, Vec2 normal) const {
+  const Shape& S = shapes_[staticShape];
+  if (!S.edges.active || bodies_[S.body].type != BodyType::staticBody) return false;
+  const Transform xs = bodies_[S.body].xf;
+  Vec2 target;
+  Vec2 localN = invRotate(xs.q, normal);
+  Verdict v = classify(S.edges, S.geometry, invTransformPoint(xs, point), localN, target);
+  if (v == Verdict::drop) return true;
+  // A turned normal is a ghost when it leaves the cone by more than float noise.
+  return v == Verdict::correct && dot(target, localN) < 1.0f - 1e-6f;
 }
 
 void World::removeGhostContacts(Contact& c) {
@@ -245,30 +403,11 @@ void World::removeGhostContacts(Contact& c) {
   const Transform xd = bodies_[D.body].xf;
   const Vec2 nOut = staticIsA ? m.normal : -m.normal;  // out of the static shape
 
-  // The static shape's vertices and edges, shape frame.
-  Vec2 segmentPoints[2];
-  const Vec2* vertices = nullptr;
-  int count = 0;
-  if (const Polygon* p = std::get_if<Polygon>(&S.geometry)) {
-    vertices = p->vertices;
-    count = p->count;
-  } else if (const Segment* seg = std::get_if<Segment>(&S.geometry)) {
-    segmentPoints[0] = seg->p1;
-    segmentPoints[1] = seg->p2;
-    vertices = segmentPoints;
-    count = 2;
-  } else {
-    return;
-  }
-  const int edgeCount = S.edges.chain ? 1 : count;
-  auto edgeNormal = [&](int i) {
-    return rightPerp(normalize(vertices[(i + 1) % count] - vertices[i]));
-  };
-
   if (S.edges.chain) {
     // One-sided: a body whose centre is behind the segment passes through it.
-    Vec2 center = transformPoint(xd, proxyOf(D.geometry).center());
-    if (dot(invTransformPoint(xs, center) - vertices[0], edgeNormal(0)) < 0.0f) {
+    const Segment& seg = std::get<Segment>(S.geometry);
+    Vec2 center = invTransformPoint(xs, transformPoint(xd, proxyOf(D.geometry).center()));
+    if (dot(center - seg.p1, rightPerp(seg.p2 - seg.p1)) < 0.0f) {
       m.pointCount = 0;
       return;
     }
@@ -282,57 +421,10 @@ void World::removeGhostContacts(Contact& c) {
   for (int k = 0; k < m.pointCount; ++k) {
     const ManifoldPoint mp = m.points[k];
     Vec2 local = invTransformPoint(xs, mp.point - 0.5f * mp.separation * nOut);
-    int vertex = -1;
-    float best = kGhostVertexRadius * kGhostVertexRadius;
-    for (int i = 0; i < count; ++i) {
-      float d2 = distanceSquared(local, vertices[i]);
-      if (d2 <= best) {
-        best = d2;
-        vertex = i;
-      }
-    }
-    bool drop = false;
-    bool corrected = false;
     Vec2 t;
-    if (vertex >= 0) {
-      const EdgeCone& cone = S.edges.cones[static_cast<std::size_t>(vertex)];
-      switch (cone.kind) {
-        case EdgeCone::Kind::natural:
-          break;
-        case EdgeCone::Kind::range:
-          t = clampToCone(localN, cone.lo, cone.hi);
-          corrected = true;
-          break;
-        case EdgeCone::Kind::snap:
-          t = dot(localN, cone.lo) >= dot(localN, cone.hi) ? cone.lo : cone.hi;
-          corrected = true;
-          break;
-        case EdgeCone::Kind::inside:
-          drop = true;
-          break;
-      }
-    } else {
-      int edge = 0;
-      float bestEdge = std::numeric_limits<float>::max();
-      for (int i = 0; i < edgeCount; ++i) {
-        Vec2 a = vertices[i], b = vertices[(i + 1) % count];
-        Vec2 ab = b - a;
-        float u = clampf(dot(local - a, ab) / lengthSquared(ab), 0.0f, 1.0f);
-        float d2 = distanceSquared(local, a + u * ab);
-        if (d2 < bestEdge) {
-          bestEdge = d2;
-          edge = i;
-        }
-      }
-      if ((S.edges.internalEdges >> edge) & 1u) {
-        drop = true;
-      } else if (S.edges.chain && dot(localN, edgeNormal(edge)) <= 0.0f) {
-        t = edgeNormal(edge);
-        corrected = true;
-      }
-    }
-    if (drop) continue;
-    if (corrected && (!haveTarget || mp.separation < targetSeparation)) {
+    Verdict v = classify(S.edges, S.geometry, local, localN, t);
+    if (v == Verdict::drop) continue;
+    if (v == Verdict::correct && (!haveTarget || mp.separation < targetSeparation)) {
       haveTarget = true;
       target = t;
       targetSeparation = mp.separation;

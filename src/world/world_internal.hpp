@@ -47,10 +47,17 @@ struct EdgeCone {
   Vec2 lo, hi;
 };
 
+// The part of edge `edge` from t0 to t1 metres along it that lies flush against an
+// opposite edge of another static shape: inside the union, so no contact belongs there.
+struct CoveredSpan {
+  int edge = 0;
+  float t0 = 0.0f, t1 = 0.0f;
+};
+
 struct StaticEdges {
-  bool active = false;              // contacts with this shape go through removeGhostContacts
-  std::uint64_t internalEdges = 0;  // bit i: edge i lies flush against another static shape
-  std::vector<EdgeCone> cones;      // per vertex
+  bool active = false;               // contacts with this shape go through removeGhostContacts
+  std::vector<CoveredSpan> covered;  // internal (parts of) edges
+  std::vector<EdgeCone> cones;       // per vertex
   // Chains: the segment pushes only along `normal` (right of p1 -> p2); ghost vertices.
   bool chain = false;
   bool hasPrev = false, hasNext = false;

@@ -260,6 +260,7 @@ class World {
   void collide();
   void updateStaticEdges();
   void removeGhostContacts(Contact& c);
+  bool isGhostImpact(std::uint32_t staticShape, Vec2 point, Vec2 normal) const;
   void solve(float dt, int substeps);
   struct FastBody;
   struct ToiCandidate;
