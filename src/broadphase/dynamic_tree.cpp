@@ -15,7 +15,7 @@ constexpr int kBinCount = 16;
 constexpr int kMaxSahDepth = 64;
 // Node indices are stored shifted left by one (with the child slot), and kAbsent must stay
 // out of reach.
-constexpr std::uint32_t kMaxNodes = 0x3fffffffu;
+[[maybe_unused]] constexpr std::uint32_t kMaxNodes = 0x3fffffffu;
 
 std::string at(const char* what, std::uint32_t index) {
   return std::string(what) + " " + std::to_string(index);
