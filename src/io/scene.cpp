@@ -157,6 +157,45 @@ Result<std::vector<SceneShape>> parseSceneShape(const Parser& p, const json& j,
   return out;
 }
 
+// {"type": "chain", "points": [[x, y], ...], "loop": false, material...}: one-sided segments
+// (World::createChain), at least 2 points (3 for a loop), consecutive points apart.
+Result<SceneChain> parseChain(const Parser& p, const json& j, const std::string& path) {
+  if (Status s = checkKeys(
+          j, path,
+          {"type", "points", "loop", "density", "friction", "restitution", "sensor", "filter"});
+      !s) {
+    return fail(s.message());
+  }
+  SceneChain chain;
+  if (!j.contains("points")) return fail(path + ".points: missing");
+  const json& pts = j.at("points");
+  if (!pts.is_array()) return fail(path + ".points: must be an array of [x, y]");
+  if (pts.size() > 100000) return fail(path + ".points: too many points");
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    Result<Vec2> v = parseVec2(pts[i], path + ".points[" + std::to_string(i) + "]");
+    if (!v) return v.error();
+    chain.points.push_back(*v);
+  }
+  Result<bool> loop = boolean(j, "loop", path, false);
+  if (!loop) return loop.error();
+  chain.loop = *loop;
+  std::size_t least = chain.loop ? 3 : 2;
+  if (chain.points.size() < least)
+    return fail(path + ".points: needs at least " + std::to_string(least) + " points");
+  std::size_t n = chain.points.size();
+  for (std::size_t i = 0; i + (chain.loop ? 0 : 1) < n; ++i) {
+    if (distanceSquared(chain.points[i], chain.points[(i + 1) % n]) <=
+        kFlushEdgeTolerance * kFlushEdgeTolerance) {
+      return fail(path + ".points[" + std::to_string((i + 1) % n) +
+                  "]: coincides with the point before it");
+    }
+  }
+  Result<ShapeDef> def = parseMaterial(p, j, path);
+  if (!def) return def.error();
+  chain.def = *def;
+  return chain;
+}
+
 Result<BodyType> parseBodyType(const json& j, const std::string& path, BodyType fallback) {
   if (!j.contains("type")) return fallback;
   const json& v = j.at("type");
@@ -202,6 +241,15 @@ Result<SceneBody> parseBody(const Parser& p, const json& j, const std::string& p
     const json& shapes = j.at("shapes");
     if (!shapes.is_array()) return fail(path + ".shapes: must be an array");
     for (std::size_t i = 0; i < shapes.size(); ++i) {
+      const std::string at = path + ".shapes[" + std::to_string(i) + "]";
+      if (shapes[i].is_object() && shapes[i].contains("type") && shapes[i].at("type") == "chain") {
+        Result<SceneChain> c = parseChain(p, shapes[i], at);
+        if (!c) return c.error();
+        if (body.def.type != BodyType::staticBody)
+          return fail(at + ".type: a chain needs a static body (chains are terrain)");
+        body.chains.push_back(std::move(*c));
+        continue;
+      }
       Result<std::vector<SceneShape>> s =
           parseSceneShape(p, shapes[i], path + ".shapes[" + std::to_string(i) + "]");
       if (!s) return s.error();
@@ -477,6 +525,14 @@ Result<SceneWorld> buildWorld(const Scene& scene) {
       if (!s) {
         return fail(scene.file + ": body " + std::to_string(i) + " \"" + b.name + "\" shape " +
                     std::to_string(k) + ": " + s.error().message);
+      }
+    }
+    for (std::size_t k = 0; k < b.chains.size(); ++k) {
+      Result<std::vector<ShapeId>> c =
+          out.world.createChain(*body, b.chains[k].def, b.chains[k].points, b.chains[k].loop);
+      if (!c) {
+        return fail(scene.file + ": body " + std::to_string(i) + " \"" + b.name + "\" chain " +
+                    std::to_string(k) + ": " + c.error().message);
       }
     }
     out.bodies.push_back(*body);

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -141,6 +143,44 @@ TEST(Scene, Generators) {
   ASSERT_TRUE(again.ok());
   EXPECT_EQ(again->bodies[3].def.position, bodies[18].def.position);
   EXPECT_EQ(std::get<Circle>(bodies[47].shapes[0].geometry).radius, 0.3f);
+}
+
+}  // namespace
+}  // namespace quack
+
+namespace quack {
+namespace {
+
+TEST(Scene, BoxSlidesOverTheTilesGeneratorsFloor) {
+  // The `tiles` generator's 100 separate static bodies: a frictionless box keeps its speed
+  // and never hops (ghost-collision removal, docs/concave.md); and a chain holds a ball.
+  Result<Scene> s = parseScene(R"({
+      "bodies": [
+        {"name": "box", "pos": [-49, 0.5], "vel": [8, 0],
+         "shapes": [{"type": "box", "half": [0.5, 0.5], "friction": 0}]},
+        {"name": "rail", "type": "static", "pos": [0, 4],
+         "shapes": [{"type": "chain", "points": [[50, 0], [0, 0], [-50, 0]]}]},
+        {"name": "ball", "pos": [-45, 4.5], "shapes": [{"type": "circle", "radius": 0.5}]}],
+      "generate": [{"kind": "tiles", "count": 100, "friction": 0}]})",
+                               "tiles");
+  ASSERT_TRUE(s.ok()) << s.error().message;
+  ASSERT_EQ(s->bodies[1].chains.size(), 1u);
+  Result<SceneWorld> w = buildWorld(*s);
+  ASSERT_TRUE(w.ok()) << w.error().message;
+  World& world = w->world;
+  BodyId box = w->bodies[0];
+  float minV = 8, maxV = 8, maxVy = 0;
+  for (int step = 0; step < 900 && world.position(box).x < 48.0f; ++step) {
+    ASSERT_TRUE(world.step().ok());
+    minV = std::min(minV, world.linearVelocity(box).x);
+    maxV = std::max(maxV, world.linearVelocity(box).x);
+    maxVy = std::max(maxVy, std::fabs(world.linearVelocity(box).y));
+  }
+  EXPECT_GT(world.position(box).x, 47.0f);
+  EXPECT_GT(minV, 0.98f * 8);
+  EXPECT_LT(maxV, 1.02f * 8);
+  EXPECT_LT(maxVy, 0.05f);
+  EXPECT_NEAR(world.position(w->bodies[2]).y, 4.5f, 0.01f);
 }
 
 }  // namespace

@@ -21,11 +21,20 @@ struct SceneShape {
   ShapeDef def;
 };
 
+/// A chain of one-sided segments on a static scene body (World::createChain), body frame.
+struct SceneChain {
+  std::vector<Vec2> points;
+  bool loop = false;
+  ShapeDef def;
+};
+
 /// A body of a scene, listed or generated.
 struct SceneBody {
   std::string name;
   BodyDef def;
   std::vector<SceneShape> shapes;
+  /// Chains, made after the shapes ({"type": "chain"} in the file; static bodies only).
+  std::vector<SceneChain> chains;
 };
 
 /// A parsed scene: the world settings and every body, listed bodies first, then the
