@@ -60,10 +60,16 @@ EdgeCone coneBetween(Vec2 dIn, Vec2 nIn, Vec2 dOut, Vec2 nOut) {
 // Cells of side 4 tolerances: two points within the tolerance are in the same or
 // neighbouring cells.
 using Cell = std::pair<long long, long long>;
+// A cell index along one axis, clamped so that a body parked at 1e30 m cannot overflow the
+// integer (the world keeps shapes within kMaxCoordinate, so this is belt and braces).
+long long cellIndexOf(float x, float size) {
+  double c = std::floor(static_cast<double>(x) / static_cast<double>(size));
+  return static_cast<long long>(std::clamp(c, -1e15, 1e15));
+}
+
 Cell cellOf(Vec2 p) {
   const float size = 4.0f * kFlushEdgeTolerance;
-  return {static_cast<long long>(std::floor(p.x / size)),
-          static_cast<long long>(std::floor(p.y / size))};
+  return {cellIndexOf(p.x, size), cellIndexOf(p.y, size)};
 }
 
 bool near(Vec2 a, Vec2 b) {
@@ -170,7 +176,7 @@ void World::updateStaticEdges() {
     meanLength += length(w.b - w.a);
   meanLength /= static_cast<float>(edges.size());
   const float cellSize = maxf(meanLength, 16.0f * kFlushEdgeTolerance);
-  auto cellIndex = [&](float x) { return static_cast<long long>(std::floor(x / cellSize)); };
+  auto cellIndex = [&](float x) { return cellIndexOf(x, cellSize); };
   std::map<Cell, std::vector<std::size_t>> grid;
   for (std::size_t k = 0; k < edges.size(); ++k) {
     Vec2 lo = minv(edges[k].a, edges[k].b), hi = maxv(edges[k].a, edges[k].b);
@@ -182,7 +188,10 @@ void World::updateStaticEdges() {
     // entered once per cell anyway, but never more than kMaxEdgeCells: beyond that it is
     // left out of the search (its seams keep their ghosts; documented in docs/concave.md).
     constexpr long long kMaxEdgeCells = 4096;
-    if ((x1 - x0 + 1) * (y1 - y0 + 1) > kMaxEdgeCells) continue;
+    if (x1 - x0 >= kMaxEdgeCells || y1 - y0 >= kMaxEdgeCells ||
+        (x1 - x0 + 1) * (y1 - y0 + 1) > kMaxEdgeCells) {
+      continue;
+    }
     for (long long x = x0; x <= x1; ++x)
       for (long long y = y0; y <= y1; ++y)
         grid[{x, y}].push_back(k);

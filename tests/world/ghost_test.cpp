@@ -337,5 +337,23 @@ TEST(Ghost, DestroyingATileRestoresItsNeighboursEdges) {
   EXPECT_LT(world.position(box).x, 6.0f - 0.3f + 0.02f);
 }
 
+TEST(Ghost, FarAwayAndHugeStaticShapesAreHandled) {
+  // Tiles 1e8 m away (the world refuses beyond 1e9 m), a ground 10 km long under small tiles, and
+  // flush tiles near the origin: the layout search neither overflows nor stalls, and the near seam
+  // is still found.
+  World world = World::create({}).value();
+  testing::addStaticBox(world, {1e8f, 0}, {0.5f, 0.5f});
+  testing::addStaticBox(world, {1e8f + 8.0f, 0}, {0.5f, 0.5f});
+  testing::addStaticBox(world, {0, -10}, {5e3f, 0.5f});
+  for (int i = 0; i < 20; ++i)
+    testing::addStaticBox(world, {-5.0f + static_cast<float>(i), -9.0f}, {0.5f, 0.5f});
+  addTiles(world, 20, {0.5f, 0.5f}, 0.0f, {.friction = 0.0f});
+  BodyId box = world.createBody({.position = {1.0f, 0.5f}, .linearVelocity = {6, 0}}).value();
+  (void)world.createShape(box, {.friction = 0.0f}, makeBox(0.5f, 0.5f).value()).value();
+  for (int step = 0; step < 120 && world.position(box).x < 18.0f; ++step)
+    ASSERT_TRUE(world.step().ok());
+  EXPECT_GT(world.linearVelocity(box).x, 0.98f * 6.0f);
+}
+
 }  // namespace
 }  // namespace quack
