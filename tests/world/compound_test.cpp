@@ -66,8 +66,7 @@ void checkBody(const std::vector<Vec2>& outline, const std::vector<std::vector<V
   double size = std::sqrt(ref.area);
   EXPECT_NEAR(c.x, ref.cx, 1e-4 * size);
   EXPECT_NEAR(c.y, ref.cy, 1e-4 * size);
-  EXPECT_NEAR(world.rotationalInertia(body), density * ref.inertia,
-              2e-4 * density * ref.inertia);
+  EXPECT_NEAR(world.rotationalInertia(body), density * ref.inertia, 2e-4 * density * ref.inertia);
 }
 
 TEST(Compound, ConcaveBodyMassMatchesTheOutline) {
