@@ -63,8 +63,19 @@ int findNearestEdge(const Polytope2& p, Vec2 c) noexcept {
   }
   float tie = p.distances[best] + kEpaTieRelativeTolerance * p.size;
   float bestAlign = dot(p.normals[best], c);
+  // A tying edge counts only if the origin projects onto it: next to the nearest edge, a
+  // neighbour at almost the same distance has its foot just past the shared vertex, and its
+  // witness points would not agree with its normal (regression test
+  // Epa.TieBreakKeepsWitnessesOnTheEdge).
+  auto projectsInside = [&](int i) {
+    Vec2 v0 = p.vertices[i].w;
+    Vec2 e = p.vertices[(i + 1) % p.count].w - v0;
+    float ee = dot(e, e);
+    float t = ee > 0.0f ? -dot(v0, e) / ee : 0.0f;
+    return t >= 0.0f && t <= 1.0f;
+  };
   for (int i = 0; i < p.count; ++i) {
-    if (i == best || p.distances[i] > tie) continue;
+    if (i == best || p.distances[i] > tie || !projectsInside(i)) continue;
     float align = dot(p.normals[i], c);
     if (align < bestAlign) {
       best = i;

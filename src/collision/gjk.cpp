@@ -23,6 +23,10 @@ const char* toString(GjkStatus status) noexcept {
 namespace detail {
 namespace {
 
+// Rises of |v|^2 within this fraction count as rounding, not as a step backwards: about 8
+// float ulps, above the cancellation of the segment projection, below any real rise.
+constexpr float kGjkStallRelativeTolerance = 8.0f * std::numeric_limits<float>::epsilon();
+
 SupportPoint supportFromIndices(const ShapeProxy& a, const ShapeProxy& b, Transform aFromB,
                                 int indexA, int indexB) noexcept {
   SupportPoint s;
@@ -119,7 +123,11 @@ GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, Transform aFromB, GjkCac
     // vertex |v| changes to second order while its direction still changes to first order
     // (the normal would be off by 1e-4 if GJK stopped here); the repeated-support test or
     // a third unchanged step ends it.
-    if (vv == previousVV && ++unchangedSteps <= 2) {
+    // "Unchanged" allows a few ulps of rise: a new support point that improves |v| only to
+    // second order (far along an edge nearly square to v) can come out a rounding step
+    // worse, and stopping there left GJK 1.7e-4 short on a thin pair (regression test
+    // Gjk.NearlyFlatFirstEdgeDoesNotStall).
+    if (vv <= previousVV * (1.0f + kGjkStallRelativeTolerance) && ++unchangedSteps <= 2) {
       // fall through with the new simplex
     } else if (!(vv < previousVV)) {
       if (previous.count > 0) {

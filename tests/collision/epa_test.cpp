@@ -204,3 +204,47 @@ TEST(Epa, SwapAndRigidMotionInvariance) {
 
 }  // namespace
 }  // namespace quack
+
+namespace quack {
+namespace {
+
+// Regression: two polytope edges within the tie tolerance, and the tie-break picked the
+// neighbour whose foot lies past the shared vertex, so the witness points disagreed with
+// the normal by 1.5e-3 (found in a clang build by AgreesWithSatAndBruteForceOnRandomPolygons).
+TEST(Epa, TieBreakKeepsWitnessesOnTheEdge) {
+  const std::vector<Vec2> a = {{-0.880401611f, 0.0213922262f}, {-0.864321768f, -0.157161146f},
+                               {-0.838735044f, -0.258731872f}, {-0.796235085f, -0.368552774f},
+                               {-0.605027139f, -0.638194144f}, {-0.357128382f, -0.808786988f},
+                               {-0.281656027f, -0.839626789f}, {-0.0605751872f, -0.887500286f},
+                               {0.684521258f, -0.569914043f},  {0.774729967f, -0.434245139f},
+                               {0.786720097f, -0.411144018f},  {0.833273292f, -0.299579948f},
+                               {0.830152392f, 0.284675211f},   {0.608410597f, 0.634891093f},
+                               {0.436495423f, 0.767049193f},   {0.434022963f, 0.768507004f},
+                               {0.225471109f, 0.85753727f},    {-0.112043053f, 0.884860456f},
+                               {-0.181431472f, 0.873989344f},  {-0.2584185f, 0.854991555f},
+                               {-0.392277986f, 0.802872658f},  {-0.620346546f, 0.64085418f},
+                               {-0.623345375f, 0.637871504f},  {-0.802099586f, 0.378776789f}};
+  const std::vector<Vec2> b = {{-1.00929618f, -0.00362847745f}, {-0.955309033f, -0.32569164f},
+                               {0.155958727f, -1.01523209f},    {0.31364876f, -0.977677107f},
+                               {0.456210673f, -0.918501556f},   {0.772013903f, -0.665947914f},
+                               {0.799692333f, -0.631163597f},   {1.00701118f, -0.0757198632f},
+                               {1.00780725f, 0.0505549014f},    {0.923122406f, 0.40966633f},
+                               {0.916110456f, 0.425476938f},    {0.790849924f, 0.633179665f},
+                               {0.788002133f, 0.636832356f},    {0.577292323f, 0.838688135f},
+                               {0.463385999f, 0.909278631f},    {-0.0203087181f, 1.02654409f},
+                               {-0.124732107f, 1.01950586f},    {-0.244969472f, 0.997397125f},
+                               {-0.327704906f, 0.972970307f},   {-0.34611246f, 0.966450095f},
+                               {-0.515949309f, 0.885444582f},   {-0.681398094f, 0.761446357f},
+                               {-0.692422032f, 0.751096785f},   {-0.824839771f, 0.596616089f}};
+  Polygon pa = makePolygon(a).value(), pb = makePolygon(b).value();
+  Transform xa{{-0.0827888846f, -0.233410478f}, {-0.687810242f, -0.725890517f}};
+  Transform xb{{0.286446333f, 0.722629309f}, {-0.986461878f, -0.163990676f}};
+  PenetrationOutput p = computePenetration(makeProxy(pa), xa, makeProxy(pb), xb);
+  SatOutput s = computeSat(pa, xa, pb, xb);
+  EXPECT_NEAR(p.depth, -s.separation, 1e-5f);
+  EXPECT_GT(dot(p.normal, s.normal), 1.0f - 1e-6f);
+  expectNear(p.pointB, p.pointA - p.depth * p.normal, 1e-5f);
+}
+
+}  // namespace
+}  // namespace quack

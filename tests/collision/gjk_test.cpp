@@ -222,3 +222,43 @@ TEST(Gjk, SwapAndRigidMotionInvariance) {
 
 }  // namespace
 }  // namespace quack
+
+namespace quack {
+namespace {
+
+// Regression: on this thin pair (found by the GEOS oracle in a clang build) the first
+// segment improved |v| only to second order, rounding made it look a step backwards, and
+// GJK stopped on its first vertex 1.7e-4 short of the true distance.
+TEST(Gjk, NearlyFlatFirstEdgeDoesNotStall) {
+  const std::vector<Vec2> a = {{-1.70791757f, -0.540662408f}, {-1.60329497f, -1.13481164f},
+                               {0.824183524f, -0.85710144f},  {1.54453552f, 1.21756089f},
+                               {1.1751852f, 1.46354365f},     {-0.0775203109f, 1.32325244f},
+                               {-0.0801520348f, 1.32209468f}, {-0.503201127f, 1.09337091f},
+                               {-1.5761646f, -0.0962294936f}, {-1.62740135f, -0.221733212f}};
+  const std::vector<Vec2> b = {{-0.552049398f, -0.000213369727f}, {-0.551976323f, -0.00284109265f},
+                               {-0.549506545f, -0.0431181453f},   {-0.507532895f, -0.219441548f},
+                               {-0.355274528f, -0.444734871f},    {-0.349210292f, -0.450320542f},
+                               {-0.28760165f, -0.499105275f},     {-0.257555515f, -0.518360734f},
+                               {0.0207981393f, -0.594762743f},    {0.0216794014f, -0.594752192f},
+                               {0.252104759f, -0.536437571f},     {0.425534755f, -0.391526014f},
+                               {0.505517483f, -0.254300773f},     {0.529232919f, -0.185507119f},
+                               {0.544132948f, -0.117678791f},     {0.55081135f, -0.0593008772f},
+                               {0.552050889f, -0.0327043459f},    {0.547725499f, 0.059903726f},
+                               {0.543376863f, 0.0902045369f},     {0.452282786f, 0.327858269f},
+                               {0.215193301f, 0.541232407f},      {0.212110654f, 0.542715609f},
+                               {-0.0232312307f, 0.5947299f},      {-0.117235646f, 0.584476113f},
+                               {-0.15451856f, 0.57537967f},       {-0.2934618f, 0.512331963f},
+                               {-0.444860965f, 0.36543414f},      {-0.507475257f, 0.249508262f},
+                               {-0.510983109f, 0.24061121f},      {-0.539057672f, 0.145128727f},
+                               {-0.549224913f, 0.0784583837f}};
+  Polygon pa = makePolygon(a).value(), pb = makePolygon(b).value();
+  Transform xa = makeTransform({-1.7406290769577026f, 1.0626673698425293f}, -1.1531146764755249f);
+  Transform xb = makeTransform({-4.5043826103210449f, -1.5490975379943848f}, 2.2850844860076904f);
+  DistanceOutput d = computeDistance(makeProxy(pa), xa, makeProxy(pb), xb);
+  // GEOS (and a brute force over every vertex-edge pair in double) say 2.1799663.
+  EXPECT_NEAR(d.distance, 2.1799663f, 2e-6f);
+  EXPECT_NE(d.status, GjkStatus::stalled);
+}
+
+}  // namespace
+}  // namespace quack
