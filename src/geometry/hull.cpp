@@ -48,6 +48,12 @@ Result<Hull> computeHull(std::span<const Vec2> points) {
     upper = maxv(upper, points[i]);
   }
   float tol = hullTolerance(lower, upper);
+  float extent = maxf(upper.x - lower.x, upper.y - lower.y);
+  if (extent > 0.0f && extent < kMinShapeSize) {
+    return fail("the points span " + detail::formatNumber(extent) +
+                " m, less than the smallest size Quack resolves (" +
+                detail::formatNumber(kMinShapeSize) + " m)");
+  }
 
   std::vector<Vec2> sorted(points.begin(), points.end());
   std::sort(sorted.begin(), sorted.end(), lexLess);

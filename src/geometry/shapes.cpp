@@ -64,6 +64,11 @@ Result<Segment> makeSegment(Vec2 p1, Vec2 p2) {
   if (Status s = checkFinite(p1, "segment p1"); !s) return fail(s.message());
   if (Status s = checkFinite(p2, "segment p2"); !s) return fail(s.message());
   if (p1 == p2) return fail("segment p1 and p2 coincide " + formatVec(p1) + " (zero length)");
+  if (distance(p1, p2) < kMinShapeSize) {
+    return fail("segment length " + formatNumber(distance(p1, p2)) +
+                " m is below the smallest size Quack resolves (" + formatNumber(kMinShapeSize) +
+                " m)");
+  }
   return Segment{p1, p2};
 }
 

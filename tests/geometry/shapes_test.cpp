@@ -32,6 +32,11 @@ TEST(Shapes, BadNumbersAreNamed) {
   expectError(makeCapsule({1, 1}, {1, 1}, 0.5f), "use a circle");
   expectError(makeSegment({kNaN, 0}, {1, 0}), "segment p1 is not finite");
   expectError(makeSegment({1, 2}, {1, 2}), "zero length");
+  // Regression (the narrow-phase fuzzer): shapes of 1e-23 m made EPA's squares underflow.
+  expectError(makeSegment({3e-23f, 3e-23f}, {3.2e-23f, 3.8e-23f}),
+              "below the smallest size Quack resolves");
+  const Vec2 speck[] = {{0, 0}, {1e-12f, 0}, {0, 1e-12f}};
+  expectError(makePolygon(speck), "less than the smallest size Quack resolves");
   expectError(makeBox(0, 1), "half-extents must be finite and > 0");
   expectError(makeBox(1, kNaN), "half-extents");
   expectError(makeBox(1, 1, {}, kNaN), "box angle is not finite");

@@ -22,6 +22,11 @@ inline constexpr int kMaxPolygonVertices = 64;
 /// a user draws on purpose.
 inline constexpr float kHullRelativeTolerance = 1e-5f;
 
+/// Smallest extent a shape may have, metres. Below it the squares and cross products the
+/// collision routines form (~1e-18 and less) run into float's underflow, and answers stop
+/// being finite; a nanometre is far below anything a game or a simulation in metres draws.
+inline constexpr float kMinShapeSize = 1e-9f;
+
 /// A convex hull: counter-clockwise, no three vertices collinear (within the tolerance),
 /// no duplicates, starting at the lexicographically smallest vertex (least x, then least y).
 struct Hull {
