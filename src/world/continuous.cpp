@@ -228,6 +228,16 @@ void World::solveContinuous(float dt) {
     } else {
       f.sweep = {b.localCenter, c, c, angle, angle};
     }
+    if (!shapesWithinWorld(
+            f.body, makeTransform(f.sweep.c2 - rotate(Rot::fromAngle(f.sweep.a2), b.localCenter),
+                                  f.sweep.a2))) {
+      // The rest of the sweep would leave the world (kMaxCoordinate): stop here, as the
+      // solver does with a body at the edge (StepEvents::outOfBounds).
+      f.sweep = {b.localCenter, c, c, angle, angle};
+      b.v = {};
+      b.w = 0.0f;
+      events_.outOfBounds.push_back({f.body, b.generation});
+    }
     f.t0 = e.time;
     f.box = sweptBox(f);
     ++f.stamp;

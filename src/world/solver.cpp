@@ -20,6 +20,16 @@ Softness makeSoftness(float hertz, float zeta, float h) {
   return {omega / a1, a2 * a3, a3};
 }
 
+// `v` shortened to kMaxLinearSpeed if it is faster. Components are clamped first, so even
+// an infinite component gives a finite result.
+Vec2 clampSpeed(Vec2 v) {
+  constexpr float kMaxSquared = kMaxLinearSpeed * kMaxLinearSpeed;
+  if (dot(v, v) <= kMaxSquared) return v;
+  v = {clampf(v.x, -kMaxLinearSpeed, kMaxLinearSpeed),
+       clampf(v.y, -kMaxLinearSpeed, kMaxLinearSpeed)};
+  return (kMaxLinearSpeed / length(v)) * v;
+}
+
 Rot integrateRotation(Rot q, float deltaAngle) {
   // First-order update then renormalise: exact to second order per sub-step, and cheaper
   // than cos/sin.
@@ -112,7 +122,9 @@ void World::solve(float dt, int substeps) {
     if (!b.alive) continue;
     SolverBody& s = sb[i];
     s.v = b.v;
-    s.w = b.w;
+    // A dynamic body without rotational inertia (zero density, or segments only) does not
+    // turn, whatever spin it was given.
+    s.w = (b.type == BodyType::dynamicBody && b.invInertia == 0.0f) ? 0.0f : b.w;
     s.invMass = b.invMass;
     s.invInertia = b.invInertia;
   }
@@ -174,6 +186,9 @@ void World::solve(float dt, int substeps) {
       SolverBody& s = sb[i];
       s.v = (1.0f / (1.0f + h * b.linearDamping)) * (s.v + (h * b.gravityScale) * def_.gravity);
       s.w = s.w / (1.0f + h * b.angularDamping);
+      // Speed limits (world.hpp): keep speed * dt and every impulse finite.
+      s.v = clampSpeed(s.v);
+      s.w = clampf(s.w, -kMaxAngularSpeed, kMaxAngularSpeed);
     }
     // Warm start with the accumulated impulses.
     for (const ContactConstraint& k : constraints_) {
@@ -250,8 +265,9 @@ void World::solve(float dt, int substeps) {
     Body& b = bodies_[i];
     if (!b.alive || b.type == BodyType::staticBody) continue;
     const SolverBody& s = sb[i];
-    b.v = s.v;
-    b.w = s.w;
+    // Restitution may have sped a body up after the last clamp.
+    b.v = clampSpeed(s.v);
+    b.w = clampf(s.w, -kMaxAngularSpeed, kMaxAngularSpeed);
     // Continuous collision wants the sweeps of fast bodies (world.hpp, kCcdFastFraction).
     b.fast = b.type == BodyType::dynamicBody && def_.enableContinuous && b.maxExtent > 0.0f &&
              (b.bullet || length(s.dp) + absf(s.da) * b.maxExtent > kCcdFastFraction * b.minExtent);
@@ -260,9 +276,20 @@ void World::solve(float dt, int substeps) {
       b.startAngle = b.xf.q.angle();
       b.endAngle = b.startAngle + s.da;
     }
-    b.center += s.dp;
-    b.xf.q = normalizeRot(mulRot(s.dq, b.xf.q));
-    b.xf.p = b.center - rotate(b.xf.q, b.localCenter);
+    const Vec2 center = b.center + s.dp;
+    const Rot q = normalizeRot(mulRot(s.dq, b.xf.q));
+    const Transform xf{center - rotate(q, b.localCenter), q};
+    if (!shapesWithinWorld(i, xf)) {
+      // The edge of the world (world.hpp, kMaxCoordinate): the body stays where the step
+      // began, stopped, and the game is told (StepEvents::outOfBounds).
+      b.v = {};
+      b.w = 0.0f;
+      b.fast = false;
+      events_.outOfBounds.push_back({i, b.generation});
+      continue;
+    }
+    b.center = center;
+    b.xf = xf;
     updateShapeBoxes(i, s.dp);
   }
 }

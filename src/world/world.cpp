@@ -1,6 +1,7 @@
 #include "quack/world/world.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -62,6 +63,42 @@ bool matches(std::uint64_t categories, std::uint64_t wanted) {
   return (categories & wanted) != 0;
 }
 
+std::string describe(Vec2 v) {
+  return "(" + std::to_string(v.x) + ", " + std::to_string(v.y) + ")";
+}
+
+bool withinWorld(Vec2 p) {
+  return absf(p.x) <= kMaxCoordinate && absf(p.y) <= kMaxCoordinate;
+}
+
+// A body's mass properties from its shapes (body frame). Zero mass means none of them has
+// area and density; the caller decides what that means.
+struct BodyMass {
+  float mass = 0.0f;
+  float inertia = 0.0f;  // about localCenter
+  Vec2 localCenter;
+};
+
+// `each(f)` calls f(geometry, density) for every shape of the body.
+template <class Each>
+BodyMass sumMass(const Each& each) {
+  BodyMass out;
+  Vec2 moment;
+  each([&](const ShapeGeometry& g, float density) {
+    MassProperties m = std::visit([&](const auto& s) { return computeMass(s, density); }, g);
+    out.mass += m.mass;
+    moment += m.mass * m.centroid;
+  });
+  if (out.mass > 0.0f) {
+    out.localCenter = (1.0f / out.mass) * moment;
+    each([&](const ShapeGeometry& g, float density) {
+      MassProperties m = std::visit([&](const auto& s) { return computeMass(s, density); }, g);
+      out.inertia += m.inertia + m.mass * distanceSquared(m.centroid, out.localCenter);
+    });
+  }
+  return out;
+}
+
 }  // namespace
 
 World::World(const WorldDef& def, BroadPhase broadPhase)
@@ -72,8 +109,12 @@ World::~World() = default;
 
 Result<World> World::create(const WorldDef& def) {
   if (!isFinite(def.gravity)) return fail("WorldDef.gravity is not finite");
-  if (!isFinite(def.timeStep) || def.timeStep <= 0.0f)
-    return fail("WorldDef.timeStep must be finite and > 0");
+  if (length(def.gravity) > kMaxGravity)
+    return fail("WorldDef.gravity " + describe(def.gravity) +
+                " is stronger than kMaxGravity (1e4 m/s^2)");
+  if (!isFinite(def.timeStep) || def.timeStep <= 0.0f || def.timeStep > kMaxTimeStep)
+    return fail("WorldDef.timeStep must be finite, > 0 and at most kMaxTimeStep (1 s), got " +
+                std::to_string(def.timeStep));
   if (def.substeps < 1 || def.substeps > 64)
     return fail("WorldDef.substeps must be in 1..64, got " + std::to_string(def.substeps));
   for (auto [value, name] : {std::pair{def.contactHertz, "WorldDef.contactHertz"},
@@ -135,17 +176,30 @@ ShapeId World::shapeId(std::uint32_t shape) const {
 Result<BodyId> World::createBody(const BodyDef& def) {
   if (inStep_ && !inCallbacks_) return fail("createBody: called during step");
   if (!isFinite(def.position)) return fail("createBody: BodyDef.position is not finite");
+  if (!withinWorld(def.position))
+    return fail("createBody: BodyDef.position " + describe(def.position) +
+                " lies beyond kMaxCoordinate (1e9 m) from the origin");
   if (!isFinite(def.angle)) return fail("createBody: BodyDef.angle is not finite");
   if (!isFinite(def.linearVelocity))
     return fail("createBody: BodyDef.linearVelocity is not finite");
   if (!isFinite(def.angularVelocity))
     return fail("createBody: BodyDef.angularVelocity is not finite");
+  if (length(def.linearVelocity) > kMaxLinearSpeed)
+    return fail("createBody: BodyDef.linearVelocity " + describe(def.linearVelocity) +
+                " is faster than kMaxLinearSpeed (1e5 m/s)");
+  if (absf(def.angularVelocity) > kMaxAngularSpeed)
+    return fail("createBody: BodyDef.angularVelocity " + std::to_string(def.angularVelocity) +
+                " is faster than kMaxAngularSpeed (1e5 rad/s)");
   if (Status s = checkFiniteNonNegative(def.linearDamping, "createBody: BodyDef.linearDamping"); !s)
     return fail(s.message());
   if (Status s = checkFiniteNonNegative(def.angularDamping, "createBody: BodyDef.angularDamping");
       !s)
     return fail(s.message());
-  if (!isFinite(def.gravityScale)) return fail("createBody: BodyDef.gravityScale is not finite");
+  if (!isFinite(def.gravityScale) || absf(def.gravityScale) > kMaxGravityScale)
+    return fail(
+        "createBody: BodyDef.gravityScale must be finite and within +-kMaxGravityScale "
+        "(1e3), got " +
+        std::to_string(def.gravityScale));
   if (def.type != BodyType::staticBody && def.type != BodyType::kinematicBody &&
       def.type != BodyType::dynamicBody) {
     return fail("createBody: BodyDef.type is not a body type");
@@ -210,29 +264,16 @@ void World::updateMass(std::uint32_t index) {
   b.mass = b.invMass = b.inertia = b.invInertia = 0.0f;
   b.localCenter = {};
   if (b.type == BodyType::dynamicBody) {
-    float mass = 0.0f;
-    Vec2 moment;
-    for (std::uint32_t s : b.shapes) {
-      MassProperties m =
-          std::visit([&](const auto& g) { return computeMass(g, shapes_[s].def.density); },
-                     shapes_[s].geometry);
-      mass += m.mass;
-      moment += m.mass * m.centroid;
-    }
-    if (mass > 0.0f) {
-      Vec2 c = (1.0f / mass) * moment;
-      float inertia = 0.0f;
-      for (std::uint32_t s : b.shapes) {
-        MassProperties m =
-            std::visit([&](const auto& g) { return computeMass(g, shapes_[s].def.density); },
-                       shapes_[s].geometry);
-        inertia += m.inertia + m.mass * distanceSquared(m.centroid, c);
-      }
-      b.mass = mass;
-      b.invMass = 1.0f / mass;
-      b.localCenter = c;
-      b.inertia = inertia;
-      b.invInertia = inertia > 0.0f ? 1.0f / inertia : 0.0f;
+    const BodyMass m = sumMass([&](const auto& f) {
+      for (std::uint32_t s : b.shapes)
+        f(shapes_[s].geometry, shapes_[s].def.density);
+    });
+    if (m.mass > 0.0f) {
+      b.mass = m.mass;
+      b.invMass = 1.0f / m.mass;
+      b.localCenter = m.localCenter;
+      b.inertia = m.inertia;
+      b.invInertia = m.inertia > 0.0f ? 1.0f / m.inertia : 0.0f;
     } else {
       // A dynamic body with no area (segments only) or zero density still falls: unit mass,
       // no rotation (documented in docs/world.md).
@@ -277,9 +318,29 @@ Result<ShapeId> World::createShape(BodyId bodyId, const ShapeDef& def,
     return fail(s.message());
   if (Status s = checkFiniteNonNegative(def.restitution, "createShape: ShapeDef.restitution"); !s)
     return fail(s.message());
+  if (def.restitution > kMaxRestitution)
+    return fail("createShape: ShapeDef.restitution " + std::to_string(def.restitution) +
+                " is above kMaxRestitution (10)");
   if (Status s = validateGeometry(geometry); !s)
     return fail("createShape: geometry: " + s.message());
   Body& body = bodies_[bodyId.index];
+  if (body.type == BodyType::dynamicBody) {
+    // The body's mass with the new shape must stay a usable float (kMaxBodyMass), and so
+    // must its inverse: refuse here rather than let a mass of infinity into the solver.
+    const BodyMass m = sumMass([&](const auto& f) {
+      for (std::uint32_t s : body.shapes)
+        f(shapes_[s].geometry, shapes_[s].def.density);
+      f(geometry, def.density);
+    });
+    if (!isFinite(m.mass) || m.mass > kMaxBodyMass || !isFinite(m.inertia))
+      return fail("createShape: ShapeDef.density " + std::to_string(def.density) +
+                  " makes the body's mass " + std::to_string(m.mass) +
+                  " kg, beyond kMaxBodyMass (1e20 kg)");
+    if (m.mass > 0.0f &&
+        (!isFinite(1.0f / m.mass) || (m.inertia > 0.0f && !isFinite(1.0f / m.inertia))))
+      return fail("createShape: ShapeDef.density " + std::to_string(def.density) +
+                  " makes the body's mass too small to invert");
+  }
   Aabb box = shapeBox(geometry, body.xf);
   std::uint32_t index;
   if (!freeShapes_.empty()) {
@@ -349,15 +410,13 @@ void World::destroyShapeNow(std::uint32_t index) {
 void World::destroyContact(std::uint32_t index, bool emitEnd) {
   Contact& c = contacts_[index];
   if (emitEnd && c.touching) {
-    if (c.sensor) {
-      if (inStep_) events_.sensorEnd.push_back({shapeId(c.shapeA), shapeId(c.shapeB)});
+    if (inStep_) {
+      pushEnd(c);
     } else {
-      ContactEndEvent e{shapeId(c.shapeA), shapeId(c.shapeB)};
-      if (inStep_) {
-        events_.end.push_back(e);
-      } else {
-        endsSinceStep_.push_back(e);
-      }
+      // Destroyed between steps: reported (events and callbacks) with the next step.
+      endsSinceStep_.push_back({shapeId(c.shapeA), shapeId(c.shapeB),
+                                shapes_[c.shapeA].def.filter.category,
+                                shapes_[c.shapeB].def.filter.category, c.sensor});
     }
   }
   for (std::uint32_t s : {c.shapeA, c.shapeB}) {
@@ -434,8 +493,7 @@ void World::collide() {
       c.touching = testOverlap(proxyOf(sa.geometry), xa, proxyOf(sb.geometry), xb);
       if (c.touching && !wasTouching)
         events_.sensorBegin.push_back({shapeId(c.shapeA), shapeId(c.shapeB)});
-      if (!c.touching && wasTouching)
-        events_.sensorEnd.push_back({shapeId(c.shapeA), shapeId(c.shapeB)});
+      if (!c.touching && wasTouching) pushEnd(c);
       continue;
     }
     Manifold old = c.manifold;
@@ -460,7 +518,7 @@ void World::collide() {
     }
     c.touching = c.manifold.pointCount > 0;
     if (c.touching && !wasTouching) events_.begin.push_back({shapeId(c.shapeA), shapeId(c.shapeB)});
-    if (!c.touching && wasTouching) events_.end.push_back({shapeId(c.shapeA), shapeId(c.shapeB)});
+    if (!c.touching && wasTouching) pushEnd(c);
   }
 }
 
@@ -479,23 +537,41 @@ Status World::step() {
 
 Status World::step(float dt, int substeps) {
   if (inStep_) return fail("step: called during a step or from an event callback");
-  if (!isFinite(dt) || dt <= 0.0f)
-    return fail("step: dt must be finite and > 0, got " + std::to_string(dt));
+  if (!isFinite(dt) || dt <= 0.0f || dt > kMaxTimeStep)
+    return fail("step: dt must be finite, > 0 and at most kMaxTimeStep (1 s), got " +
+                std::to_string(dt));
   if (substeps < 1 || substeps > 64)
     return fail("step: substeps must be in 1..64, got " + std::to_string(substeps));
   inStep_ = true;
   events_.begin.clear();
-  events_.end.assign(endsSinceStep_.begin(), endsSinceStep_.end());
+  events_.end.clear();
+  endCategories_.clear();
+  events_.sensorEnd.clear();
+  sensorEndCategories_.clear();
+  for (const PendingEnd& e : endsSinceStep_) {
+    if (e.sensor) {
+      events_.sensorEnd.push_back({e.shapeA, e.shapeB});
+      sensorEndCategories_.push_back({e.categoryA, e.categoryB});
+    } else {
+      events_.end.push_back({e.shapeA, e.shapeB});
+      endCategories_.push_back({e.categoryA, e.categoryB});
+    }
+  }
   endsSinceStep_.clear();
   events_.hit.clear();
   events_.sensorBegin.clear();
-  events_.sensorEnd.clear();
   events_.toi.clear();
+  events_.outOfBounds.clear();
 
   findNewContacts();
   collide();
   solve(dt, substeps);
   solveContinuous(dt);
+  // The solver and the continuous phase may both have stopped a body at the edge.
+  std::sort(events_.outOfBounds.begin(), events_.outOfBounds.end(),
+            [](BodyId a, BodyId b) { return a.index < b.index; });
+  events_.outOfBounds.erase(std::unique(events_.outOfBounds.begin(), events_.outOfBounds.end()),
+                            events_.outOfBounds.end());
 
   ++stepCount_;
   time_ += static_cast<double>(dt);
@@ -504,11 +580,25 @@ Status World::step(float dt, int substeps) {
   return {};
 }
 
+bool World::shapesWithinWorld(std::uint32_t body, Transform xf) const {
+  for (std::uint32_t s : bodies_[body].shapes) {
+    const Aabb box = shapeBox(shapes_[s].geometry, xf);
+    // Six comparisons, all false for NaN: finite, not inverted, within the broad phase's range.
+    if (!(box.lower.x <= box.upper.x && box.lower.y <= box.upper.y &&
+          box.lower.x >= -kMaxCoordinate && box.lower.y >= -kMaxCoordinate &&
+          box.upper.x <= kMaxCoordinate && box.upper.y <= kMaxCoordinate)) {
+      return false;
+    }
+  }
+  return true;
+}
+
 void World::updateShapeBoxes(std::uint32_t body, Vec2 displacement) {
   const Body& b = bodies_[body];
   for (std::uint32_t s : b.shapes) {
     Aabb box = shapeBox(shapes_[s].geometry, b.xf);
     Result<bool> moved = broadPhase_.moveProxy(shapes_[s].proxy, box, displacement);
+    // Callers keep bodies within the world (shapesWithinWorld), so this cannot fail.
     QUACK_ASSERT(moved.ok());
     (void)moved;
   }
@@ -537,19 +627,33 @@ void World::onSensorEnd(std::uint64_t a, std::uint64_t b, ContactCallback f) {
       .push_back({Callback::Kind::sensorEnd, a, b, std::move(f), {}});
 }
 
+void World::pushEnd(const Contact& c) {
+  const ShapeId a = shapeId(c.shapeA), b = shapeId(c.shapeB);
+  const std::array<std::uint64_t, 2> categories{shapes_[c.shapeA].def.filter.category,
+                                                shapes_[c.shapeB].def.filter.category};
+  if (c.sensor) {
+    events_.sensorEnd.push_back({a, b});
+    sensorEndCategories_.push_back(categories);
+  } else {
+    events_.end.push_back({a, b});
+    endCategories_.push_back(categories);
+  }
+}
+
 void World::dispatchCallbacks() {
   if (callbacks_.empty()) return;
   inCallbacks_ = true;
-  // A shape is live for a callback unless destroyed, or pending destruction, already.
-  auto live = [&](ShapeId s) {
-    return isValid(s) && !shapes_[s.index].pendingDestroy &&
-           !bodies_[shapes_[s.index].body].pendingDestroy;
-  };
+  // Every event in the lists gets its callbacks, so the two always agree. End events may
+  // name shapes destroyed since (stale handles); their categories were kept when they
+  // ended. The other events' shapes are valid (destruction asked for inside a callback
+  // waits until the callbacks are done).
   auto category = [&](ShapeId s) { return shapes_[s.index].def.filter.category; };
-  auto runPairs = [&](Callback::Kind kind, const auto& list, bool ordered) {
+  auto runPairs = [&](Callback::Kind kind, const auto& list,
+                      const std::vector<std::array<std::uint64_t, 2>>* kept, bool ordered) {
     for (const Callback& cb : callbacks_) {
       if (cb.kind != kind) continue;
-      for (const auto& e : list) {
+      for (std::size_t i = 0; i < list.size(); ++i) {
+        const auto& e = list[i];
         ShapeId a{}, b{};
         if constexpr (requires { e.sensor; }) {
           a = e.sensor;
@@ -558,24 +662,23 @@ void World::dispatchCallbacks() {
           a = e.shapeA;
           b = e.shapeB;
         }
-        if (!live(a) || !live(b)) continue;
-        if (matches(category(a), cb.categoriesA) && matches(category(b), cb.categoriesB)) {
+        const std::uint64_t ca = kept ? (*kept)[i][0] : category(a);
+        const std::uint64_t cb2 = kept ? (*kept)[i][1] : category(b);
+        if (matches(ca, cb.categoriesA) && matches(cb2, cb.categoriesB)) {
           cb.contact(*this, a, b);
-        } else if (!ordered && matches(category(b), cb.categoriesA) &&
-                   matches(category(a), cb.categoriesB)) {
+        } else if (!ordered && matches(cb2, cb.categoriesA) && matches(ca, cb.categoriesB)) {
           cb.contact(*this, b, a);
         }
       }
     }
   };
-  runPairs(Callback::Kind::begin, events_.begin, false);
-  runPairs(Callback::Kind::end, events_.end, false);
-  runPairs(Callback::Kind::sensorBegin, events_.sensorBegin, true);
-  runPairs(Callback::Kind::sensorEnd, events_.sensorEnd, true);
+  runPairs(Callback::Kind::begin, events_.begin, nullptr, false);
+  runPairs(Callback::Kind::end, events_.end, &endCategories_, false);
+  runPairs(Callback::Kind::sensorBegin, events_.sensorBegin, nullptr, true);
+  runPairs(Callback::Kind::sensorEnd, events_.sensorEnd, &sensorEndCategories_, true);
   for (const Callback& cb : callbacks_) {
     if (cb.kind != Callback::Kind::hit) continue;
     for (const ContactHitEvent& e : events_.hit) {
-      if (!live(e.shapeA) || !live(e.shapeB)) continue;
       if (matches(category(e.shapeA), cb.categoriesA) &&
           matches(category(e.shapeB), cb.categoriesB)) {
         cb.hit(*this, e, false);
@@ -675,8 +778,12 @@ Status World::setTransform(BodyId id, Vec2 position, float angle) {
   if (inStep_ && !inCallbacks_) return fail("setTransform: called during step");
   if (!isFinite(position) || !isFinite(angle))
     return fail("setTransform: position and angle must be finite");
+  const Transform xf = makeTransform(position, angle);
+  if (!withinWorld(position) || !shapesWithinWorld(id.index, xf))
+    return fail("setTransform: position " + describe(position) +
+                " would put the body beyond kMaxCoordinate (1e9 m) from the origin");
   Body& b = bodies_[id.index];
-  b.xf = makeTransform(position, angle);
+  b.xf = xf;
   b.center = transformPoint(b.xf, b.localCenter);
   if (b.type == BodyType::staticBody) staticEdgesDirty_ = true;
   updateShapeBoxes(id.index, Vec2{});
@@ -685,14 +792,20 @@ Status World::setTransform(BodyId id, Vec2 position, float angle) {
 
 Status World::setLinearVelocity(BodyId id, Vec2 v) {
   if (Status s = checkBody(id, "setLinearVelocity"); !s) return s;
-  if (!isFinite(v)) return fail("setLinearVelocity: velocity is not finite");
+  if (!isFinite(v) || length(v) > kMaxLinearSpeed)
+    return fail("setLinearVelocity: velocity " + describe(v) +
+                " must be finite and no faster than kMaxLinearSpeed (1e5 m/s)");
   if (bodies_[id.index].type != BodyType::staticBody) bodies_[id.index].v = v;
   return {};
 }
 
 Status World::setAngularVelocity(BodyId id, float w) {
   if (Status s = checkBody(id, "setAngularVelocity"); !s) return s;
-  if (!isFinite(w)) return fail("setAngularVelocity: velocity is not finite");
+  if (!isFinite(w) || absf(w) > kMaxAngularSpeed)
+    return fail("setAngularVelocity: velocity " + std::to_string(w) +
+                " must be finite and no faster than kMaxAngularSpeed (1e5 rad/s)");
+  // (A dynamic body without rotational inertia keeps it only until the next step: the
+  // solver does not turn such a body.)
   if (bodies_[id.index].type != BodyType::staticBody) bodies_[id.index].w = w;
   return {};
 }
@@ -701,10 +814,22 @@ Status World::applyLinearImpulse(BodyId id, Vec2 impulse, Vec2 point) {
   if (Status s = checkBody(id, "applyLinearImpulse"); !s) return s;
   if (!isFinite(impulse) || !isFinite(point))
     return fail("applyLinearImpulse: impulse and point must be finite");
+  if (!withinWorld(point))
+    return fail("applyLinearImpulse: point " + describe(point) +
+                " lies beyond kMaxCoordinate (1e9 m) from the origin");
   Body& b = bodies_[id.index];
   if (b.type != BodyType::dynamicBody) return {};
-  b.v += b.invMass * impulse;
-  b.w += b.invInertia * cross(point - b.center, impulse);
+  const Vec2 v = b.v + b.invMass * impulse;
+  const float w = b.w + b.invInertia * cross(point - b.center, impulse);
+  if (!isFinite(v) || length(v) > kMaxLinearSpeed)
+    return fail("applyLinearImpulse: impulse " + describe(impulse) + " would make the velocity " +
+                describe(v) + ", faster than kMaxLinearSpeed (1e5 m/s)");
+  if (!isFinite(w) || absf(w) > kMaxAngularSpeed)
+    return fail("applyLinearImpulse: impulse " + describe(impulse) +
+                " would make the angular velocity " + std::to_string(w) +
+                ", faster than kMaxAngularSpeed (1e5 rad/s)");
+  b.v = v;
+  b.w = w;
   return {};
 }
 

@@ -101,6 +101,10 @@ struct StepEvents {
   std::vector<SensorEvent> sensorEnd;
   /// Time-of-impact events, sorted by time (ties: in the order they were handled).
   std::vector<ToiEvent> toi;
+  /// Bodies whose motion in this step would have taken a shape beyond kMaxCoordinate (the
+  /// edge of the world): each was held at its pose from the start of the step with zero
+  /// velocity, and is listed once per step in which that happened, in index order.
+  std::vector<BodyId> outOfBounds;
 };
 
 }  // namespace quack

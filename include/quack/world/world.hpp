@@ -18,11 +18,13 @@
 /// the argument; a failed call changes nothing. Bodies and shapes may be created and
 /// destroyed at any time outside `step`; from inside an event callback, destruction is
 /// deferred until the callbacks of that step are done (the handle stays valid until then,
-/// and later callbacks involving it are skipped). Calling `step` from a callback fails.
+/// and the step's later events involving it still get their callbacks: the callbacks and
+/// the event lists always agree). Calling `step` from a callback fails.
 ///
 /// Determinism: the same scene built in the same order and stepped with the same inputs
 /// gives bit-identical state (`stateHash`) on the same build.
 
+#include <array>
 #include <functional>
 #include <optional>
 #include <span>
@@ -89,6 +91,32 @@ inline constexpr float kCcdFastFraction = 0.5f;
 /// its last event left it for the rest of the step: a bound so that a pathological scene (a
 /// body wedged between walls) cannot loop. Eight, as Box2D 2.4's b2_maxSubSteps.
 inline constexpr int kMaxToiEventsPerBody = 8;
+
+/// Limits on what a world accepts, so that nothing it computes can overflow a float
+/// (docs/world.md, "Limits"). Inputs beyond them are refused with a message naming the
+/// field; speeds the solver produces are held within them.
+///
+/// Longest step, seconds. The contact softness and the continuous phase are tuned for steps
+/// of milliseconds; a second is already far beyond any frame, and a bound keeps
+/// gravity * dt and speed * dt finite.
+inline constexpr float kMaxTimeStep = 1.0f;
+/// Strongest gravity, m/s^2 (a thousand g). Times kMaxTimeStep and any sensible gravity
+/// scale it stays far from overflow.
+inline constexpr float kMaxGravity = 1.0e4f;
+/// Largest |BodyDef::gravityScale|.
+inline constexpr float kMaxGravityScale = 1.0e3f;
+/// Fastest linear speed, m/s (100 km/s, two hundred times a rifle bullet). Velocities set
+/// through the API beyond it are refused; the solver clamps to it (as Box2D v3 clamps to its
+/// maximum linear speed), so speed * dt stays within a few kMaxCoordinate.
+inline constexpr float kMaxLinearSpeed = 1.0e5f;
+/// Fastest spin, rad/s. The solver also limits the turn per sub-step (maxRotationPerSubstep).
+inline constexpr float kMaxAngularSpeed = 1.0e5f;
+/// Heaviest body, kg. An impulse is mass times speed: 1e20 kg at kMaxLinearSpeed, times a
+/// lever arm of kMaxCoordinate, stays below 1e35, inside float range.
+inline constexpr float kMaxBodyMass = 1.0e20f;
+/// Largest restitution. Above 1 a contact adds energy (a bounce pad); ten is already a
+/// cartoon, and a bound keeps restitution times approach speed finite.
+inline constexpr float kMaxRestitution = 10.0f;
 
 /// A shape a ray met. World frame.
 struct RayHitResult {
@@ -185,10 +213,12 @@ class World {
   // ---- stepping ------------------------------------------------------------------------
   /// Advances by `def().timeStep` with `def().substeps`.
   Status step();
-  /// Advances by dt seconds (> 0, finite) with `substeps` (1..64) solver sub-steps.
+  /// Advances by dt seconds (> 0, finite, at most kMaxTimeStep) with `substeps` (1..64)
+  /// solver sub-steps.
   Status step(float dt, int substeps);
-  /// The events of the last step (valid until the next step). Contacts ended by destroying
-  /// a shape between steps are reported with the next step's end events.
+  /// The events of the last step (valid until the next step). Contacts and sensor overlaps
+  /// ended by destroying a shape between steps are reported, and their callbacks called,
+  /// with the next step's end events; their shape handles are then stale (isValid).
   const StepEvents& events() const noexcept { return events_; }
   /// Steps taken and simulated time.
   std::uint64_t stepCount() const noexcept { return stepCount_; }
@@ -253,7 +283,9 @@ class World {
   Status checkShape(ShapeId id, const char* function) const;
   void updateMass(std::uint32_t body);
   void updateShapeBoxes(std::uint32_t body, Vec2 displacement);
+  bool shapesWithinWorld(std::uint32_t body, Transform worldFromBody) const;
   void destroyContact(std::uint32_t contact, bool emitEnd);
+  void pushEnd(const Contact& c);  // an end (or sensor end) event for a contact
   void destroyShapeNow(std::uint32_t shape);
   void destroyBodyNow(std::uint32_t body);
   void findNewContacts();
@@ -291,7 +323,18 @@ class World {
   std::vector<Callback> callbacks_;
   std::vector<std::uint32_t> pendingBodyDestroy_;
   std::vector<std::uint32_t> pendingShapeDestroy_;
-  std::vector<ContactEndEvent> endsSinceStep_;  // from destruction between steps
+  // Ends (contact and sensor) from destruction between steps, with the categories the
+  // shapes had, for the next step's events and callbacks.
+  struct PendingEnd {
+    ShapeId shapeA, shapeB;
+    std::uint64_t categoryA = 0, categoryB = 0;
+    bool sensor = false;
+  };
+  std::vector<PendingEnd> endsSinceStep_;
+  // The categories of the shapes of events_.end and events_.sensorEnd, index for index:
+  // their shapes may be destroyed before the callbacks run.
+  std::vector<std::array<std::uint64_t, 2>> endCategories_;
+  std::vector<std::array<std::uint64_t, 2>> sensorEndCategories_;
   StepEvents events_;
   std::size_t bodyCount_ = 0;
   std::size_t shapeCount_ = 0;
