@@ -5,10 +5,14 @@
 
 #include <cmath>
 
-#include "quack/world/world.hpp"
-#include "world_internal.hpp"
+#include "solver.hpp"
 
-namespace quack {
+#include "body_store.hpp"
+#include "contact_set.hpp"
+#include "event_dispatcher.hpp"
+#include "quack/world/world.hpp"
+
+namespace quack::detail {
 namespace {
 
 Softness makeSoftness(float hertz, float zeta, float h) {
@@ -105,21 +109,26 @@ void solveContacts(Constraint* constraints, std::size_t count, Body* bodies, flo
 
 }  // namespace
 
-void World::solve(float dt, int substeps) {
+void Solver::solve(const WorldDef& worldDef, BodyStore& store, ContactSet& contactSet,
+                   BroadPhase& broadPhase, EventDispatcher& events, float dt, int substeps) {
+  std::vector<Body>& bodies = store.bodies;
+  const std::vector<Shape>& shapes = store.shapes;
+  const std::vector<Contact>& contacts = contactSet.contacts;
+  const WorldDef& def = worldDef;
   const float h = dt / static_cast<float>(substeps);
   const float invH = 1.0f / h;
   // Contacts stiffer than a quarter of the sub-step rate are not resolved by the sub-step.
-  const float hertz = minf(def_.contactHertz, 0.25f * invH);
-  const Softness soft = makeSoftness(hertz, def_.contactDampingRatio, h);
+  const float hertz = minf(def.contactHertz, 0.25f * invH);
+  const Softness soft = makeSoftness(hertz, def.contactDampingRatio, h);
   // Against static (and kinematic) bodies there is only one body to move: twice as stiff.
-  const Softness staticSoft = makeSoftness(2.0f * hertz, def_.contactDampingRatio, h);
-  const float pushMax = def_.contactPushMaxSpeed;
+  const Softness staticSoft = makeSoftness(2.0f * hertz, def.contactDampingRatio, h);
+  const float pushMax = def.contactPushMaxSpeed;
 
   std::vector<SolverBody>& sb = solverBodies_;
-  sb.assign(bodies_.size(), SolverBody{});
-  for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
-    const Body& b = bodies_[i];
-    if (!b.alive) continue;
+  sb.assign(bodies.size(), SolverBody{});
+  for (std::uint32_t i = 0; i < bodies.size(); ++i) {
+    const Body& b = bodies[i];
+    if (!store.bodyAlive(i)) continue;
     SolverBody& s = sb[i];
     s.v = b.v;
     // A dynamic body without rotational inertia (zero density, or segments only) does not
@@ -131,13 +140,13 @@ void World::solve(float dt, int substeps) {
 
   // Prepare the constraints of touching contacts (a dynamic body in every one).
   constraints_.clear();
-  for (std::uint32_t ci = 0; ci < contacts_.size(); ++ci) {
-    const Contact& c = contacts_[ci];
+  for (std::uint32_t ci = 0; ci < contacts.size(); ++ci) {
+    const Contact& c = contacts[ci];
     if (!c.alive || !c.touching || c.sensor) continue;
     ContactConstraint k;
     k.contact = ci;
-    k.bodyA = shapes_[c.shapeA].body;
-    k.bodyB = shapes_[c.shapeB].body;
+    k.bodyA = shapes[c.shapeA].body;
+    k.bodyB = shapes[c.shapeB].body;
     k.normal = c.manifold.normal;
     k.friction = c.friction;
     k.restitution = c.restitution;
@@ -145,8 +154,8 @@ void World::solve(float dt, int substeps) {
     const SolverBody& B = sb[k.bodyB];
     k.softness = (A.invMass == 0.0f || B.invMass == 0.0f) ? staticSoft : soft;
     k.pointCount = c.manifold.pointCount;
-    const Vec2 cA = bodies_[k.bodyA].center;
-    const Vec2 cB = bodies_[k.bodyB].center;
+    const Vec2 cA = bodies[k.bodyA].center;
+    const Vec2 cB = bodies[k.bodyB].center;
     const Vec2 n = k.normal;
     const Vec2 t = rightPerp(n);
     for (int j = 0; j < k.pointCount; ++j) {
@@ -177,14 +186,14 @@ void World::solve(float dt, int substeps) {
     B.w += B.invInertia * cross(rB, P);
   };
 
-  const float maxRotation = def_.maxRotationPerSubstep;
+  const float maxRotation = def.maxRotationPerSubstep;
   for (int stepIndex = 0; stepIndex < substeps; ++stepIndex) {
     // Integrate velocities: gravity and damping (implicit, so any damping is stable).
-    for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
-      const Body& b = bodies_[i];
-      if (!b.alive || b.type != BodyType::dynamicBody) continue;
+    for (std::uint32_t i = 0; i < bodies.size(); ++i) {
+      const Body& b = bodies[i];
+      if (!store.bodyAlive(i) || b.type != BodyType::dynamicBody) continue;
       SolverBody& s = sb[i];
-      s.v = (1.0f / (1.0f + h * b.linearDamping)) * (s.v + (h * b.gravityScale) * def_.gravity);
+      s.v = (1.0f / (1.0f + h * b.linearDamping)) * (s.v + (h * b.gravityScale) * def.gravity);
       s.w = s.w / (1.0f + h * b.angularDamping);
       // Speed limits (world.hpp): keep speed * dt and every impulse finite.
       s.v = clampSpeed(s.v);
@@ -202,9 +211,9 @@ void World::solve(float dt, int substeps) {
     }
     solveContacts(constraints_.data(), constraints_.size(), sb.data(), invH, pushMax, true);
     // Integrate positions.
-    for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
-      const Body& b = bodies_[i];
-      if (!b.alive || b.type == BodyType::staticBody) continue;
+    for (std::uint32_t i = 0; i < bodies.size(); ++i) {
+      const Body& b = bodies[i];
+      if (!store.bodyAlive(i) || b.type == BodyType::staticBody) continue;
       SolverBody& s = sb[i];
       if (absf(h * s.w) > maxRotation) s.w = (s.w > 0.0f ? maxRotation : -maxRotation) * invH;
       s.dq = integrateRotation(s.dq, h * s.w);
@@ -220,7 +229,7 @@ void World::solve(float dt, int substeps) {
 
   // Restitution: for points that approached faster than the threshold, aim the normal
   // velocity at -e times the approach velocity.
-  const float threshold = def_.restitutionThreshold;
+  const float threshold = def.restitutionThreshold;
   for (ContactConstraint& k : constraints_) {
     if (k.restitution == 0.0f) continue;
     SolverBody& A = sb[k.bodyA];
@@ -241,35 +250,35 @@ void World::solve(float dt, int substeps) {
 
   // Store impulses for warm starting; report hits.
   for (const ContactConstraint& k : constraints_) {
-    Contact& c = contacts_[k.contact];
+    Contact& c = contactSet.contacts[k.contact];
     float strongest = 0.0f;
     int at = -1;
     for (int j = 0; j < k.pointCount; ++j) {
       c.normalImpulse[j] = k.points[j].normalImpulse;
       c.tangentImpulse[j] = k.points[j].tangentImpulse;
       float approach = -k.points[j].relativeVelocity;
-      if (k.points[j].maxNormalImpulse > 0.0f && approach > def_.hitEventThreshold &&
+      if (k.points[j].maxNormalImpulse > 0.0f && approach > def.hitEventThreshold &&
           approach > strongest) {
         strongest = approach;
         at = j;
       }
     }
     if (at >= 0) {
-      events_.hit.push_back(
-          {shapeId(c.shapeA), shapeId(c.shapeB), c.manifold.points[at].point, k.normal, strongest});
+      events.events.hit.push_back({store.shapeId(c.shapeA), store.shapeId(c.shapeB),
+                                   c.manifold.points[at].point, k.normal, strongest});
     }
   }
 
   // Finalise bodies and move their proxies.
-  for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
-    Body& b = bodies_[i];
-    if (!b.alive || b.type == BodyType::staticBody) continue;
+  for (std::uint32_t i = 0; i < bodies.size(); ++i) {
+    Body& b = bodies[i];
+    if (!store.bodyAlive(i) || b.type == BodyType::staticBody) continue;
     const SolverBody& s = sb[i];
     // Restitution may have sped a body up after the last clamp.
     b.v = clampSpeed(s.v);
     b.w = clampf(s.w, -kMaxAngularSpeed, kMaxAngularSpeed);
     // Continuous collision wants the sweeps of fast bodies (world.hpp, kCcdFastFraction).
-    b.fast = b.type == BodyType::dynamicBody && def_.enableContinuous && b.maxExtent > 0.0f &&
+    b.fast = b.type == BodyType::dynamicBody && def.enableContinuous && b.maxExtent > 0.0f &&
              (b.bullet || length(s.dp) + absf(s.da) * b.maxExtent > kCcdFastFraction * b.minExtent);
     if (b.fast) {
       b.startCenter = b.center;
@@ -279,19 +288,19 @@ void World::solve(float dt, int substeps) {
     const Vec2 center = b.center + s.dp;
     const Rot q = normalizeRot(mulRot(s.dq, b.xf.q));
     const Transform xf{center - rotate(q, b.localCenter), q};
-    if (!shapesWithinWorld(i, xf)) {
+    if (!store.shapesWithinWorld(i, xf)) {
       // The edge of the world (world.hpp, kMaxCoordinate): the body stays where the step
       // began, stopped, and the game is told (StepEvents::outOfBounds).
       b.v = {};
       b.w = 0.0f;
       b.fast = false;
-      events_.outOfBounds.push_back({i, b.generation});
+      events.events.outOfBounds.push_back(store.bodyId(i));
       continue;
     }
     b.center = center;
     b.xf = xf;
-    updateShapeBoxes(i, s.dp);
+    store.updateShapeBoxes(broadPhase, i, s.dp);
   }
 }
 
-}  // namespace quack
+}  // namespace quack::detail

@@ -24,18 +24,21 @@
 /// Determinism: the same scene built in the same order and stepped with the same inputs
 /// gives bit-identical state (`stateHash`) on the same build.
 
-#include <array>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include "quack/collision/manifold.hpp"
 #include "quack/world/types.hpp"
 
 namespace quack {
+
+namespace detail {
+struct WorldState;
+}
 
 /// How a world is made. Every default is documented in docs/world.md.
 struct WorldDef {
@@ -154,7 +157,10 @@ class World {
   World& operator=(const World&) = delete;
   ~World();
 
-  const WorldDef& def() const noexcept { return def_; }
+  const WorldDef& def() const noexcept;
+  /// This world's id, carried by every handle it gives out (BodyId::world), so that a
+  /// handle from another world is refused. Unique in the process; never 0.
+  std::uint32_t id() const noexcept;
 
   // ---- bodies and shapes -------------------------------------------------------------
   Result<BodyId> createBody(const BodyDef& def);
@@ -178,10 +184,10 @@ class World {
 
   bool isValid(BodyId body) const noexcept;
   bool isValid(ShapeId shape) const noexcept;
-  std::size_t bodyCount() const noexcept { return bodyCount_; }
-  std::size_t shapeCount() const noexcept { return shapeCount_; }
+  std::size_t bodyCount() const noexcept;
+  std::size_t shapeCount() const noexcept;
   /// Live contacts (fat boxes overlapping) and how many of them touch.
-  std::size_t contactCount() const noexcept { return contactCount_; }
+  std::size_t contactCount() const noexcept;
   std::size_t touchingContactCount() const noexcept;
 
   // ---- body state (preconditions: valid handles, asserted; use isValid) ----------------
@@ -219,10 +225,10 @@ class World {
   /// The events of the last step (valid until the next step). Contacts and sensor overlaps
   /// ended by destroying a shape between steps are reported, and their callbacks called,
   /// with the next step's end events; their shape handles are then stale (isValid).
-  const StepEvents& events() const noexcept { return events_; }
+  const StepEvents& events() const noexcept;
   /// Steps taken and simulated time.
-  std::uint64_t stepCount() const noexcept { return stepCount_; }
-  double time() const noexcept { return time_; }
+  std::uint64_t stepCount() const noexcept;
+  double time() const noexcept;
 
   // ---- callbacks (called at the end of each step, in event order) -----------------------
   // A callback registered from inside a callback takes effect from the next step.
@@ -261,90 +267,28 @@ class World {
   /// A hash of every body's position, angle and velocities (bitwise), in index order.
   std::uint64_t stateHash() const noexcept;
   /// The broad phase, for drawing and statistics.
-  const BroadPhase& broadPhase() const noexcept { return broadPhase_; }
+  const BroadPhase& broadPhase() const noexcept;
   /// Manifolds of touching contacts (for drawing): the two shapes and the manifold.
   struct ContactView {
     ShapeId shapeA, shapeB;
     Manifold manifold;
   };
   std::vector<ContactView> touchingContacts() const;
+  /// Checks every cross-reference: handles and free slots, each shape on its body's list and
+  /// in the broad phase under its own index with its box at the body's pose, each contact's
+  /// shapes live and listing it, the pair map, counts, finite body state. For tests (call it
+  /// after every operation) and for debugging; costs a walk over everything.
+  Status validate() const;
 
  private:
-  struct Body;
-  struct Shape;
-  struct Contact;
-  struct ContactConstraint;
-  struct Callback;
-  struct SolverBody;
-
-  explicit World(const WorldDef& def, BroadPhase broadPhase);
-
+  explicit World(std::unique_ptr<detail::WorldState> state);
   Status checkBody(BodyId id, const char* function) const;
   Status checkShape(ShapeId id, const char* function) const;
-  void updateMass(std::uint32_t body);
-  void updateShapeBoxes(std::uint32_t body, Vec2 displacement);
-  bool shapesWithinWorld(std::uint32_t body, Transform worldFromBody) const;
-  void destroyContact(std::uint32_t contact, bool emitEnd);
-  void pushEnd(const Contact& c);  // an end (or sensor end) event for a contact
   void destroyShapeNow(std::uint32_t shape);
   void destroyBodyNow(std::uint32_t body);
-  void findNewContacts();
-  void collide();
-  void updateStaticEdges();
-  void removeGhostContacts(Contact& c);
-  bool isGhostImpact(std::uint32_t staticShape, Vec2 point, Vec2 normal) const;
-  void solve(float dt, int substeps);
-  struct FastBody;
-  struct ToiCandidate;
-  void solveContinuous(float dt);
-  bool findImpact(std::uint32_t fast, bool continuation, ToiCandidate& best,
-                  std::uint32_t onlyBody = 0xffffffffu);
-  Aabb sweptBox(const FastBody& f) const;
-  void dispatchCallbacks();
-  ShapeId shapeId(std::uint32_t shape) const;
   bool acceptsQuery(std::uint32_t shape, const QueryFilter& filter) const;
 
-  WorldDef def_;
-  BroadPhase broadPhase_;
-  std::vector<Body> bodies_;
-  std::vector<std::uint32_t> freeBodies_;
-  std::vector<Shape> shapes_;
-  std::vector<std::uint32_t> freeShapes_;
-  std::vector<Contact> contacts_;
-  std::vector<std::uint32_t> freeContacts_;
-  std::unordered_map<std::uint64_t, std::uint32_t> contactByPair_;
-  std::vector<ProxyPair> pairScratch_;
-  std::vector<ContactConstraint> constraints_;
-  std::vector<SolverBody> solverBodies_;
-  std::vector<FastBody> fastBodies_;          // continuous phase scratch
-  std::vector<ToiCandidate> toiQueue_;        // a binary heap, earliest on top
-  std::vector<std::uint32_t> toiCandidates_;  // shapes near one sweep
-  std::vector<Callback> pendingCallbacks_;    // registered from inside a callback
-  std::vector<Callback> callbacks_;
-  std::vector<std::uint32_t> pendingBodyDestroy_;
-  std::vector<std::uint32_t> pendingShapeDestroy_;
-  // Ends (contact and sensor) from destruction between steps, with the categories the
-  // shapes had, for the next step's events and callbacks.
-  struct PendingEnd {
-    ShapeId shapeA, shapeB;
-    std::uint64_t categoryA = 0, categoryB = 0;
-    bool sensor = false;
-  };
-  std::vector<PendingEnd> endsSinceStep_;
-  // The categories of the shapes of events_.end and events_.sensorEnd, index for index:
-  // their shapes may be destroyed before the callbacks run.
-  std::vector<std::array<std::uint64_t, 2>> endCategories_;
-  std::vector<std::array<std::uint64_t, 2>> sensorEndCategories_;
-  StepEvents events_;
-  std::size_t bodyCount_ = 0;
-  std::size_t shapeCount_ = 0;
-  std::size_t contactCount_ = 0;
-  std::uint64_t stepCount_ = 0;
-  double time_ = 0.0;
-  bool staticEdgesDirty_ = false;  // static geometry changed: re-find flush edges
-  std::size_t edgeShapes_ = 0;     // static shapes with ghost-collision data
-  bool inStep_ = false;
-  bool inCallbacks_ = false;
+  std::unique_ptr<detail::WorldState> s_;
 };
 
 }  // namespace quack
