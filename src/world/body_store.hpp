@@ -23,6 +23,8 @@ struct Body {
   Vec2 localCenter;  // centre of mass, body frame
   Vec2 v;            // velocity of the centre of mass
   float w = 0.0f;
+  Vec2 force;           // applied through the next step (applyForce), then cleared
+  float torque = 0.0f;  // likewise (applyTorque)
   float mass = 0.0f, invMass = 0.0f, inertia = 0.0f, invInertia = 0.0f;
   float linearDamping = 0.0f, angularDamping = 0.0f, gravityScale = 1.0f;
   bool bullet = false;

@@ -193,8 +193,14 @@ void Solver::solve(const WorldDef& worldDef, BodyStore& store, ContactSet& conta
       const Body& b = bodies[i];
       if (!store.bodyAlive(i) || b.type != BodyType::dynamicBody) continue;
       SolverBody& s = sb[i];
-      s.v = (1.0f / (1.0f + h * b.linearDamping)) * (s.v + (h * b.gravityScale) * def.gravity);
-      s.w = s.w / (1.0f + h * b.angularDamping);
+      Vec2 v = s.v + (h * b.gravityScale) * def.gravity;
+      float w = s.w;
+      // Applied forces (applyForce, applyTorque); a branch, so that a body without them
+      // gives the same bits as before forces existed.
+      if (b.force.x != 0.0f || b.force.y != 0.0f) v += (h * b.invMass) * b.force;
+      if (b.torque != 0.0f) w += h * b.invInertia * b.torque;
+      s.v = (1.0f / (1.0f + h * b.linearDamping)) * v;
+      s.w = w / (1.0f + h * b.angularDamping);
       // Speed limits (world.hpp): keep speed * dt and every impulse finite.
       s.v = clampSpeed(s.v);
       s.w = clampf(s.w, -kMaxAngularSpeed, kMaxAngularSpeed);
@@ -274,6 +280,9 @@ void Solver::solve(const WorldDef& worldDef, BodyStore& store, ContactSet& conta
     Body& b = bodies[i];
     if (!store.bodyAlive(i) || b.type == BodyType::staticBody) continue;
     const SolverBody& s = sb[i];
+    // Forces act through one step.
+    b.force = {};
+    b.torque = 0.0f;
     // Restitution may have sped a body up after the last clamp.
     b.v = clampSpeed(s.v);
     b.w = clampf(s.w, -kMaxAngularSpeed, kMaxAngularSpeed);

@@ -308,11 +308,11 @@ void World::destroyShapeNow(std::uint32_t index) {
 
 // ---- stepping -----------------------------------------------------------------------------
 
-Status World::step() {
+StepStatus World::step() {
   return step(s_->def.timeStep, s_->def.substeps);
 }
 
-Status World::step(float dt, int substeps) {
+StepStatus World::step(float dt, int substeps) {
   detail::WorldState& w = *s_;
   if (w.inStep) return fail("step: called during a step or from an event callback");
   if (!isFinite(dt) || dt <= 0.0f || dt > kMaxTimeStep)
@@ -420,19 +420,41 @@ const ShapeGeometry& World::geometry(ShapeId id) const {
 const ShapeDef& World::shapeDef(ShapeId id) const {
   return isValid(id) ? s_->store.shapes[id.index].def : kNoShapeDef;
 }
-std::vector<ShapeId> World::shapes(BodyId id) const {
-  std::vector<ShapeId> out;
-  if (!isValid(id)) return out;
-  for (std::uint32_t s : s_->store.bodies[id.index].shapes)
-    out.push_back(s_->store.shapeId(s));
-  return out;
+
+// ---- iteration ------------------------------------------------------------------------------
+
+std::uint32_t World::nextBody(std::uint32_t from) const noexcept {
+  const auto n = static_cast<std::uint32_t>(s_->store.bodies.size());
+  while (from < n && !s_->store.bodyAlive(from))
+    ++from;
+  return from;
 }
-std::vector<BodyId> World::bodies() const {
-  std::vector<BodyId> out;
-  for (std::uint32_t i = 0; i < s_->store.bodies.size(); ++i) {
-    if (s_->store.bodyAlive(i)) out.push_back(s_->store.bodyId(i));
-  }
-  return out;
+std::uint32_t World::nextTouchingContact(std::uint32_t from) const noexcept {
+  const std::vector<detail::Contact>& contacts = s_->contacts.contacts;
+  const auto n = static_cast<std::uint32_t>(contacts.size());
+  while (from < n && !(contacts[from].alive && contacts[from].touching && !contacts[from].sensor))
+    ++from;
+  return from;
+}
+BodyId World::bodyAt(std::uint32_t index) const noexcept {
+  return s_->store.bodyId(index);
+}
+ShapeId World::shapeAt(std::uint32_t index) const noexcept {
+  return s_->store.shapeId(index);
+}
+World::ContactView World::contactAt(std::uint32_t index) const noexcept {
+  const detail::Contact& c = s_->contacts.contacts[index];
+  return {s_->store.shapeId(c.shapeA), s_->store.shapeId(c.shapeB), c.manifold};
+}
+World::BodyRange World::bodies() const noexcept {
+  return {this, nextBody(0), static_cast<std::uint32_t>(s_->store.bodies.size())};
+}
+World::ShapeRange World::shapes(BodyId id) const noexcept {
+  if (!isValid(id)) return {this, {}};
+  return {this, s_->store.bodies[id.index].shapes};
+}
+World::ContactRange World::touchingContacts() const noexcept {
+  return {this, nextTouchingContact(0), static_cast<std::uint32_t>(s_->contacts.contacts.size())};
 }
 
 Status World::setTransform(BodyId id, Vec2 position, float angle) {
@@ -494,6 +516,100 @@ Status World::applyLinearImpulse(BodyId id, Vec2 impulse, Vec2 point) {
                 ", faster than kMaxAngularSpeed (1e5 rad/s)");
   b.v = v;
   b.w = w;
+  return {};
+}
+
+Status World::applyAngularImpulse(BodyId id, float impulse) {
+  if (Status s = checkBody(id, "applyAngularImpulse"); !s) return s;
+  if (!isFinite(impulse)) return fail("applyAngularImpulse: impulse must be finite");
+  Body& b = s_->store.bodies[id.index];
+  if (b.type != BodyType::dynamicBody) return {};
+  const float w = b.w + b.invInertia * impulse;
+  if (!isFinite(w) || absf(w) > kMaxAngularSpeed)
+    return fail("applyAngularImpulse: impulse " + std::to_string(impulse) +
+                " would make the angular velocity " + std::to_string(w) +
+                ", faster than kMaxAngularSpeed (1e5 rad/s)");
+  b.w = w;
+  return {};
+}
+
+Status World::applyForce(BodyId id, Vec2 force, Vec2 point) {
+  if (Status s = checkBody(id, "applyForce"); !s) return s;
+  if (!isFinite(force) || !isFinite(point))
+    return fail("applyForce: force and point must be finite");
+  if (!withinWorld(point))
+    return fail("applyForce: point " + describe(point) +
+                " lies beyond kMaxCoordinate (1e9 m) from the origin");
+  Body& b = s_->store.bodies[id.index];
+  if (b.type != BodyType::dynamicBody) return {};
+  const Vec2 f = b.force + force;
+  const float t = b.torque + cross(point - b.center, force);
+  if (!isFinite(f) || !isFinite(t))
+    return fail("applyForce: force " + describe(force) + " makes the body's total force infinite");
+  b.force = f;
+  b.torque = t;
+  return {};
+}
+
+Status World::applyTorque(BodyId id, float torque) {
+  if (Status s = checkBody(id, "applyTorque"); !s) return s;
+  if (!isFinite(torque)) return fail("applyTorque: torque must be finite");
+  Body& b = s_->store.bodies[id.index];
+  if (b.type != BodyType::dynamicBody) return {};
+  if (!isFinite(b.torque + torque))
+    return fail("applyTorque: torque " + std::to_string(torque) +
+                " makes the body's total torque infinite");
+  b.torque += torque;
+  return {};
+}
+
+Status World::setBodyType(BodyId id, BodyType type) {
+  if (Status s = checkBody(id, "setBodyType"); !s) return s;
+  if (s_->inStep && !s_->inCallbacks) return fail("setBodyType: called during step");
+  if (type != BodyType::staticBody && type != BodyType::kinematicBody &&
+      type != BodyType::dynamicBody)
+    return fail("setBodyType: type is not a body type");
+  detail::BodyStore& store = s_->store;
+  Body& b = store.bodies[id.index];
+  if (b.type == type) return {};
+  if (type == BodyType::dynamicBody) {
+    // Its shapes' mass must be usable, as createShape demands.
+    const detail::BodyMass m = detail::sumMass([&](const auto& f) {
+      for (std::uint32_t s : b.shapes)
+        f(store.shapes[s].geometry, store.shapes[s].def.density);
+    });
+    if (!isFinite(m.mass) || m.mass > kMaxBodyMass || !isFinite(m.inertia))
+      return fail("setBodyType: the body's shapes weigh " + std::to_string(m.mass) +
+                  " kg, beyond kMaxBodyMass (1e20 kg)");
+  }
+  if (b.type == BodyType::staticBody || type == BodyType::staticBody) s_->edges.markDirty();
+  // Contacts end now and are found again under the new rules; proxies are made again with
+  // the new kind (a static proxy does not look for pairs with other static ones).
+  for (std::uint32_t s : b.shapes) {
+    std::vector<std::uint32_t> contacts = store.shapes[s].contacts;
+    for (std::uint32_t c : contacts)
+      s_->contacts.destroy(c, store, s_->events, true, s_->inStep);
+  }
+  b.type = type;
+  if (type == BodyType::staticBody) {
+    b.v = {};
+    b.w = 0.0f;
+  }
+  b.force = {};
+  b.torque = 0.0f;
+  const ProxyKind kind = type == BodyType::staticBody ? ProxyKind::kStatic : ProxyKind::kDynamic;
+  for (std::uint32_t s : b.shapes) {
+    Shape& shape = store.shapes[s];
+    Status st = s_->broadPhase.destroyProxy(shape.proxy);
+    QUACK_ASSERT(st.ok());
+    (void)st;
+    Result<ProxyId> proxy = s_->broadPhase.createProxy(detail::shapeBox(shape.geometry, b.xf), s,
+                                                       shape.def.filter, kind);
+    // The box was accepted a moment ago under the old kind.
+    QUACK_ASSERT(proxy.ok());
+    shape.proxy = proxy.valueOr(ProxyId{});
+  }
+  store.updateMass(id.index);
   return {};
 }
 

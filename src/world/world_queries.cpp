@@ -6,6 +6,7 @@
 
 #include "quack/collision/epa.hpp"
 #include "quack/collision/gjk.hpp"
+#include "quack/collision/shape_cast.hpp"
 #include "quack/geometry/raycast.hpp"
 #include "quack/world/world.hpp"
 #include "world_state.hpp"
@@ -46,8 +47,8 @@ bool World::acceptsQuery(std::uint32_t shape, const QueryFilter& filter) const {
 namespace {
 
 // The ray in a shape's frame, clipped to `maxFraction`.
-RayHit castShape(const ShapeGeometry& g, Transform xf, Vec2 origin, Vec2 translation,
-                 float maxFraction) {
+RayHit castRay(const ShapeGeometry& g, Transform xf, Vec2 origin, Vec2 translation,
+               float maxFraction) {
   RayCastInput in{invTransformPoint(xf, origin), invRotate(xf.q, translation), maxFraction};
   return std::visit([&](const auto& s) { return rayCast(s, in); }, g);
 }
@@ -63,7 +64,7 @@ std::optional<RayHitResult> World::rayCastClosest(Vec2 origin, Vec2 translation,
     auto s = static_cast<std::uint32_t>(user);
     if (!acceptsQuery(s, filter)) return -1.0f;
     const Transform xf = s_->store.bodies[s_->store.shapes[s].body].xf;
-    RayHit h = castShape(s_->store.shapes[s].geometry, xf, origin, translation, bestFraction);
+    RayHit h = castRay(s_->store.shapes[s].geometry, xf, origin, translation, bestFraction);
     if (!h.hit) return -1.0f;
     // Equal fractions: the lower shape index wins, whatever order the structure visits.
     if (best && h.fraction == bestFraction && s > best->shape.index) return -1.0f;
@@ -83,7 +84,7 @@ std::vector<RayHitResult> World::rayCastAll(Vec2 origin, Vec2 translation,
     auto s = static_cast<std::uint32_t>(user);
     if (!acceptsQuery(s, filter)) return -1.0f;
     const Transform xf = s_->store.bodies[s_->store.shapes[s].body].xf;
-    RayHit h = castShape(s_->store.shapes[s].geometry, xf, origin, translation, 1.0f);
+    RayHit h = castRay(s_->store.shapes[s].geometry, xf, origin, translation, 1.0f);
     if (h.hit) {
       hits.push_back({s_->store.shapeId(s), s_->store.bodyId(s_->store.shapes[s].body),
                       transformPoint(xf, h.point), rotate(xf.q, h.normal), h.fraction});
@@ -134,6 +135,39 @@ Result<std::vector<ShapeOverlap>> World::overlapShape(const ShapeGeometry& geome
   return out;
 }
 
+Result<std::optional<ShapeCastResult>> World::castShape(const ShapeGeometry& geometry, Transform xf,
+                                                        Vec2 translation,
+                                                        QueryFilter filter) const {
+  if (!isFinite(xf.p) || !isFinite(xf.q.c) || !isFinite(xf.q.s))
+    return fail("castShape: transform is not finite");
+  if (!isFinite(translation)) return fail("castShape: translation is not finite");
+  if (Status s = validateQueryGeometry(geometry); !s)
+    return fail("castShape: geometry: " + s.message());
+  const ShapeProxy cast = detail::proxyOf(geometry);
+  // Everything the swept box of the cast meets is a candidate.
+  const Aabb start = detail::shapeBox(geometry, xf);
+  const Aabb swept{minv(start.lower, start.lower + translation),
+                   maxv(start.upper, start.upper + translation)};
+  std::optional<ShapeCastResult> best;
+  s_->broadPhase.queryAabb(swept, [&](ProxyId, std::uint64_t user) {
+    auto s = static_cast<std::uint32_t>(user);
+    if (!acceptsQuery(s, filter)) return true;
+    const detail::Shape& shape = s_->store.shapes[s];
+    const Transform sx = s_->store.bodies[shape.body].xf;
+    // The shape met is A, the cast shape is B moving along the translation.
+    const ShapeCastOutput out =
+        quack::castShape(detail::proxyOf(shape.geometry), sx, cast, xf, translation);
+    if (!out.hit) return true;
+    if (best && (out.fraction > best->fraction ||
+                 (out.fraction == best->fraction && s > best->shape.index)))
+      return true;
+    best = ShapeCastResult{s_->store.shapeId(s), s_->store.bodyId(shape.body), out.point,
+                           out.normal, out.fraction};
+    return true;
+  });
+  return best;
+}
+
 // ---- inspection ------------------------------------------------------------------------------
 
 std::uint64_t World::stateHash() const noexcept {
@@ -159,15 +193,6 @@ std::uint64_t World::stateHash() const noexcept {
     mix(b.w);
   }
   return h;
-}
-
-std::vector<World::ContactView> World::touchingContacts() const {
-  std::vector<ContactView> out;
-  for (const detail::Contact& c : s_->contacts.contacts) {
-    if (c.alive && c.touching && !c.sensor)
-      out.push_back({s_->store.shapeId(c.shapeA), s_->store.shapeId(c.shapeB), c.manifold});
-  }
-  return out;
 }
 
 }  // namespace quack

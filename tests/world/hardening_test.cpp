@@ -41,7 +41,7 @@ TEST(WorldHardening, ImpulseThatWouldOverflowTheVelocityIsRefused) {
   EXPECT_FALSE(world.setAngularVelocity(ball, 1e6f).ok());
   EXPECT_FALSE(world.createBody({.linearVelocity = {0, 1e30f}}).ok());
   for (int i = 0; i < 10; ++i)
-    ASSERT_TRUE(world.step().ok());
+    ASSERT_TRUE(testing::stepAndValidate(world));
   EXPECT_TRUE(finiteState(world, ball));
 }
 
@@ -83,7 +83,7 @@ TEST(WorldHardening, BodyLeavingTheWorldStopsAtTheEdge) {
       world.createBody({.position = {start, 0}, .linearVelocity = {kMaxLinearSpeed, 0}}).value();
   ASSERT_TRUE(world.createShape(runaway, {}, makeCircle({}, 0.5f).value()).ok());
   BodyId stay = addBall(world, {0, 0}, 0.5f);
-  ASSERT_TRUE(world.step().ok());
+  ASSERT_TRUE(testing::stepAndValidate(world));
   ASSERT_EQ(world.events().outOfBounds.size(), 1u);
   EXPECT_EQ(world.events().outOfBounds[0], runaway);
   EXPECT_EQ(world.position(runaway).x, start);  // held where the step began
@@ -94,7 +94,7 @@ TEST(WorldHardening, BodyLeavingTheWorldStopsAtTheEdge) {
   ASSERT_EQ(found.size(), 1u);
   EXPECT_EQ(world.body(found[0]), runaway);
   // Next step: nothing pushes it, so it is no longer reported.
-  ASSERT_TRUE(world.step().ok());
+  ASSERT_TRUE(testing::stepAndValidate(world));
   EXPECT_TRUE(world.events().outOfBounds.empty());
   (void)stay;
 }
@@ -104,7 +104,7 @@ TEST(WorldHardening, FallingPastTheEdgeUnderGravityIsHeldEveryStep) {
   BodyId b = addBox(world, {0, -kMaxCoordinate + 2000.0f}, {0.5f, 0.5f});
   int held = 0;
   for (int i = 0; i < 600; ++i) {
-    ASSERT_TRUE(world.step().ok());
+    ASSERT_TRUE(testing::stepAndValidate(world));
     ASSERT_TRUE(finiteState(world, b));
     ASSERT_LE(length(world.linearVelocity(b)), kMaxLinearSpeed);
     held += world.events().outOfBounds.empty() ? 0 : 1;
@@ -135,7 +135,7 @@ TEST(WorldHardening, ZeroDensityBodyDoesNotSpin) {
   BodyId b = world.createBody({.position = {0, 3}, .angularVelocity = 5.0f}).value();
   ASSERT_TRUE(world.createShape(b, {.density = 0.0f}, makeBox(0.5f, 0.5f).value()).ok());
   for (int i = 0; i < 120; ++i)
-    ASSERT_TRUE(world.step().ok());
+    ASSERT_TRUE(testing::stepAndValidate(world));
   EXPECT_EQ(world.angle(b), 0.0f);
   EXPECT_EQ(world.angularVelocity(b), 0.0f);
   EXPECT_NEAR(world.position(b).y, 0.5f, 0.05f);  // it still fell and landed
@@ -153,11 +153,11 @@ TEST(WorldHardening, EndEventOfABodyDestroyedBetweenStepsGetsItsCallback) {
     endedB = b;
   });
   for (int i = 0; i < 10; ++i)
-    ASSERT_TRUE(world.step().ok());
+    ASSERT_TRUE(testing::stepAndValidate(world));
   ASSERT_EQ(world.touchingContactCount(), 1u);
   const ShapeId ballShape = world.shapes(ball)[0];
   ASSERT_TRUE(world.destroyBody(ball).ok());
-  ASSERT_TRUE(world.step().ok());
+  ASSERT_TRUE(testing::stepAndValidate(world));
   ASSERT_EQ(world.events().end.size(), 1u);
   EXPECT_EQ(ends, 1);
   EXPECT_EQ(endedA, ballShape);  // in the asked order (category 2 first), though stale
@@ -178,11 +178,11 @@ TEST(WorldHardening, DestroyingABodyInsideASensorEndsTheOverlap) {
     EXPECT_EQ(s, sensor);
     ++ends;
   });
-  ASSERT_TRUE(world.step().ok());
+  ASSERT_TRUE(testing::stepAndValidate(world));
   ASSERT_EQ(world.events().sensorBegin.size(), 1u);
   EXPECT_EQ(begins, 1);
   ASSERT_TRUE(world.destroyBody(visitor).ok());
-  ASSERT_TRUE(world.step().ok());
+  ASSERT_TRUE(testing::stepAndValidate(world));
   ASSERT_EQ(world.events().sensorEnd.size(), 1u);
   EXPECT_EQ(world.events().sensorEnd[0].sensor, sensor);
   EXPECT_EQ(ends, 1);
@@ -235,7 +235,7 @@ TEST(WorldHardening, CallbacksAgreeWithEventListsUnderRandomCreateDestroy) {
     }
     if (u(rng) < 0.05f) destroyInCallback = 1;
     const std::size_t b0 = begins, e0 = ends, h0 = hits, sb0 = sensorBegins, se0 = sensorEnds;
-    ASSERT_TRUE(world.step().ok());
+    ASSERT_TRUE(testing::stepAndValidate(world));
     const StepEvents& ev = world.events();
     ASSERT_EQ(begins - b0, ev.begin.size()) << "step " << step;
     ASSERT_EQ(ends - e0, ev.end.size()) << "step " << step;
