@@ -71,10 +71,9 @@ std::string_view nameOf(BroadPhaseKind kind) noexcept;
 /// The kind with that short name, or an error listing the valid names.
 Result<BroadPhaseKind> parseBroadPhaseKind(std::string_view name);
 
-/// Boxes must lie within +-kMaxCoordinate metres of the origin: beyond it a float cannot
-/// tell centimetres apart anyway (its spacing is 64 m at 1e9), and cell indices of the
-/// quadtree and hash stay well inside their integers.
-inline constexpr float kMaxCoordinate = 1.0e9f;
+/// Boxes must lie within +-kMaxCoordinate metres of the origin (1e9 m, defined in
+/// quack/math/aabb.hpp so the geometry layer shares it). Queries take any finite box, ray
+/// or translation and answer in time bounded by the proxy count (docs/broad-phase.md).
 
 /// How a `BroadPhase` is made. Every field has a default that suits boxes of about 1 m.
 struct BroadPhaseConfig {
