@@ -75,6 +75,11 @@ Result<BroadPhaseKind> parseBroadPhaseKind(std::string_view name);
 /// quack/math/aabb.hpp so the geometry layer shares it). Queries take any finite box, ray
 /// or translation and answer in time bounded by the proxy count (docs/broad-phase.md).
 
+/// Smallest `BroadPhaseConfig::cellSize`, metres. The quadtree's integer cell grid covers
+/// +-cellSize * 2^61 / 3 metres, which must hold the coordinate range with room to spare;
+/// a micrometre covers 7.7e11 m.
+inline constexpr float kMinCellSize = 1e-6f;
+
 /// How a `BroadPhase` is made. Every field has a default that suits boxes of about 1 m.
 struct BroadPhaseConfig {
   BroadPhaseKind kind = BroadPhaseKind::kTree;
@@ -86,8 +91,8 @@ struct BroadPhaseConfig {
   float displacementScale = 1.0f;
   /// Report a pair only when the tight boxes overlap as well as the fat boxes.
   bool checkTightBoxes = false;
-  /// Cell side of the hash and smallest cell side of the quadtree, metres (> 0): about the
-  /// typical fat box size.
+  /// Cell side of the hash and smallest cell side of the quadtree, metres, in
+  /// [kMinCellSize, kMaxCoordinate]: about the typical fat box size.
   float cellSize = 1.0f;
 };
 
