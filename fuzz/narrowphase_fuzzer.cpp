@@ -1,15 +1,24 @@
-// libFuzzer target over the narrow-phase queries: the input bytes become two shapes (any
-// kind, through the checked make* functions, so only valid shapes reach the queries) and
-// two poses; every query must return finite numbers and a status. A failure aborts.
+// libFuzzer target over the narrow-phase queries, in two modes chosen by the first byte:
+// - '{': the input is one `quack query` line (JSON), answered by answerQuery. The answer
+//   must be one line of JSON, an object with an "id"; a refused line carries a string
+//   "error", an accepted one no non-finite number. The seed corpus (fuzz/narrowphase_seeds)
+//   holds the lines of tests/query/cases.jsonl and the hardening regressions.
+// - anything else: the bytes become two shapes (any kind, through the checked make*
+//   functions, so only valid shapes reach the queries) and two poses; every query must
+//   return finite numbers and a status.
+// A failure aborts.
 
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <nlohmann/json.hpp>
+#include <string>
 
 #include "quack/collision/epa.hpp"
 #include "quack/collision/gjk.hpp"
 #include "quack/collision/sat.hpp"
+#include "query.hpp"
 
 namespace {
 
@@ -95,9 +104,26 @@ void check(bool ok) {
   if (!ok) std::abort();
 }
 
+void checkQueryLine(const std::uint8_t* data, std::size_t size) {
+  const std::string line(reinterpret_cast<const char*>(data), size);
+  const quack::app::QueryAnswer a = quack::app::answerQuery(line);
+  check(a.answer.find('\n') == std::string::npos);
+  const nlohmann::json j = nlohmann::json::parse(a.answer, nullptr, false);
+  check(j.is_object() && j.contains("id"));
+  if (a.ok) {
+    check(!j.contains("error") && quack::app::firstNonFiniteField(j).empty());
+  } else {
+    check(j.contains("error") && j.at("error").is_string());
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  if (size > 0 && data[0] == '{') {
+    checkQueryLine(data, size);
+    return 0;
+  }
   Reader r{data, size};
   Shape a, b;
   if (!readShape(r, a) || !readShape(r, b)) return 0;

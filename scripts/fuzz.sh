@@ -11,8 +11,10 @@ cmake --build build/fuzz -j 2 --target narrowphase_fuzzer scene_fuzzer
 for fuzzer in narrowphase_fuzzer scene_fuzzer; do
   corpus="build/fuzz/corpus/$fuzzer"
   mkdir -p "$corpus"
-  # The scene parser starts from the sample scenes (fuzz/scene_seeds).
+  # Each starts from its committed seeds: the scene parser from the sample scenes
+  # (fuzz/scene_seeds), the narrow phase from query lines (fuzz/narrowphase_seeds).
   [ "$fuzzer" = scene_fuzzer ] && cp fuzz/scene_seeds/*.json "$corpus"/
+  [ "$fuzzer" = narrowphase_fuzzer ] && cp fuzz/narrowphase_seeds/* "$corpus"/
   echo "fuzz: $fuzzer for ${seconds}s"
   "build/fuzz/fuzz/$fuzzer" -max_total_time="$seconds" -print_final_stats=1 "$corpus"
 done

@@ -2,7 +2,6 @@
 // here and a source file): `query` and `run`.
 
 #include <CLI/CLI.hpp>
-#include <fstream>
 #include <iostream>
 
 #include "query.hpp"
@@ -17,22 +16,7 @@ void addQuery(CLI::App& app, int& status) {
   cmd->add_option("FILE", *file, "input file of JSON Lines, or - for standard input")
       ->capture_default_str();
   cmd->callback([file, &status] {
-    int failures = 0;
-    if (*file == "-") {
-      failures = quack::app::runQueries(std::cin, std::cout);
-    } else {
-      std::ifstream in(*file);
-      if (!in) {
-        std::cerr << "quack query: cannot open " << *file << '\n';
-        status = 2;
-        return;
-      }
-      failures = quack::app::runQueries(in, std::cout);
-    }
-    if (failures > 0) {
-      std::cerr << "quack query: " << failures << " line(s) failed\n";
-      status = 1;
-    }
+    status = quack::app::runQueryCommand(*file, std::cin, std::cout, std::cerr);
   });
 }
 

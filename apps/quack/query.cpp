@@ -1,6 +1,11 @@
 #include "query.hpp"
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -20,16 +25,196 @@ json toJson(Vec2 v) {
   return json::array({v.x, v.y});
 }
 
+// One line of JSON. Strings the program echoes (ids, keys, the parser's "last read" bytes)
+// may hold invalid UTF-8; it is replaced by U+FFFD rather than thrown about.
+std::string dumpLine(const json& j) {
+  return j.dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
 QueryAnswer rejected(const json& id, const std::string& message) {
   json out = {{"id", id}, {"error", message}};
-  return {out.dump(), false};
+  return {dumpLine(out), false};
+}
+
+// True when the line nests [ and { (outside strings) deeper than `limit`. A linear scan
+// with no recursion, run before the parser sees the line.
+bool nestsDeeperThan(const std::string& line, int limit) {
+  int depth = 0;
+  bool inString = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (inString) {
+      if (c == '\\') {
+        ++i;  // the escaped character cannot end the string
+      } else if (c == '"') {
+        inString = false;
+      }
+    } else if (c == '"') {
+      inString = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > limit) return true;
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return false;
+}
+
+// Re-reads a line the parser refused, to say where and why: the byte, the field being read
+// ("pb.pos[0]") and the parser's reason. Iterative (nlohmann's SAX parser keeps its own
+// stack) and run only on lines within the nesting limit.
+class ParseDiagnosis {
+ public:
+  using number_integer_t = json::number_integer_t;
+  using number_unsigned_t = json::number_unsigned_t;
+  using number_float_t = json::number_float_t;
+  using string_t = json::string_t;
+  using binary_t = json::binary_t;
+
+  bool null() { return value(); }
+  bool boolean(bool) { return value(); }
+  bool number_integer(number_integer_t) { return value(); }
+  bool number_unsigned(number_unsigned_t) { return value(); }
+  bool number_float(number_float_t, const string_t&) { return value(); }
+  bool string(string_t&) { return value(); }
+  bool binary(binary_t&) { return value(); }
+  bool start_object(std::size_t) {
+    frames_.push_back({false, {}, 0});
+    return true;
+  }
+  bool key(string_t& k) {
+    frames_.back().key = k;
+    return true;
+  }
+  bool end_object() { return close(); }
+  bool start_array(std::size_t) {
+    frames_.push_back({true, {}, 0});
+    return true;
+  }
+  bool end_array() { return close(); }
+  bool parse_error(std::size_t position, const std::string& lastToken,
+                   const nlohmann::detail::exception& ex) {
+    position_ = position;
+    lastToken_ = lastToken;
+    outOfRange_ = ex.id == 406;
+    reason_ = ex.what();
+    // "[json.exception.parse_error.101] parse error at line 1, column 9: syntax error ..."
+    // keeps the part after the column; the byte is given separately.
+    const std::size_t column = reason_.find("column ");
+    const std::size_t colon = column == std::string::npos ? column : reason_.find(": ", column);
+    if (colon != std::string::npos) {
+      reason_ = reason_.substr(colon + 2);
+    } else if (const std::size_t bracket = reason_.find("] "); bracket != std::string::npos) {
+      reason_ = reason_.substr(bracket + 2);
+    }
+    return false;
+  }
+
+  /// The message for a refused line.
+  std::string message() const {
+    std::string path;
+    for (const Frame& f : frames_) {
+      if (f.array) {
+        path += "[" + std::to_string(f.index) + "]";
+      } else if (!f.key.empty()) {
+        path += (path.empty() ? "" : ".") + f.key;
+      }
+    }
+    // nlohmann gives the count of bytes read, up to the end of the offending token; report
+    // where that token starts, counting bytes from 1.
+    const std::size_t byte =
+        position_ >= lastToken_.size() ? position_ - lastToken_.size() + 1 : position_;
+    const std::string at = "byte " + std::to_string(byte);
+    if (outOfRange_) {
+      return (path.empty() ? std::string("number") : path + ": number") + " " + lastToken_ +
+             " is out of range (beyond a double) at " + at;
+    }
+    return "line is not valid JSON at " + at + (path.empty() ? "" : " (near " + path + ")") + ": " +
+           reason_;
+  }
+
+ private:
+  struct Frame {
+    bool array;
+    std::string key;
+    std::size_t index;
+  };
+  bool value() {
+    if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
+    return true;
+  }
+  bool close() {
+    frames_.pop_back();
+    return value();
+  }
+
+  std::vector<Frame> frames_;
+  std::size_t position_ = 0;
+  std::string lastToken_;
+  std::string reason_ = "not valid JSON";
+  bool outOfRange_ = false;
+};
+
+// A distance or length option: finite, >= 0 and within the coordinate limit.
+bool isLengthOption(const json& v) {
+  return v.is_number() && std::isfinite(v.get<double>()) && v.get<double>() >= 0.0 &&
+         v.get<double>() <= static_cast<double>(kMaxCoordinate);
+}
+
+QueryAnswer answerParsed(const json& q);
+
+std::string firstNonFinitePath(const json& j, const std::string& path) {
+  if (j.is_number_float()) return std::isfinite(j.get<double>()) ? "" : path;
+  if (j.is_array()) {
+    for (std::size_t i = 0; i < j.size(); ++i) {
+      std::string bad = firstNonFinitePath(j[i], path + "[" + std::to_string(i) + "]");
+      if (!bad.empty()) return bad;
+    }
+  } else if (j.is_object()) {
+    for (const auto& item : j.items()) {
+      std::string bad =
+          firstNonFinitePath(item.value(), path.empty() ? item.key() : path + "." + item.key());
+      if (!bad.empty()) return bad;
+    }
+  }
+  return "";
 }
 
 }  // namespace
 
+std::string firstNonFiniteField(const nlohmann::json& answer) {
+  return firstNonFinitePath(answer, "");
+}
+
 QueryAnswer answerQuery(const std::string& line) {
+  if (nestsDeeperThan(line, kMaxQueryNesting)) {
+    return rejected(nullptr, "line nests [ and { deeper than the limit of " +
+                                 std::to_string(kMaxQueryNesting) + " levels");
+  }
   json q = json::parse(line, nullptr, false);
-  if (q.is_discarded()) return rejected(nullptr, "line is not valid JSON");
+  if (q.is_discarded()) {
+    ParseDiagnosis diagnosis;
+    json::sax_parse(line, &diagnosis);
+    return rejected(nullptr, diagnosis.message());
+  }
+  return answerParsed(q);
+}
+
+namespace {
+
+// The answer line, or an error when some number in it is not finite: never a null (or a
+// NaN) where the user expects a number.
+QueryAnswer finished(const json& id, const json& out) {
+  const std::string bad = firstNonFiniteField(out);
+  if (!bad.empty()) {
+    return rejected(id, bad +
+                            ": the answer is not finite (the inputs are beyond what float "
+                            "arithmetic resolves); refused rather than printed as null");
+  }
+  return {dumpLine(out), true};
+}
+
+QueryAnswer answerParsed(const json& q) {
   if (!q.is_object()) return rejected(nullptr, "line must be a JSON object");
   json id = q.contains("id") ? q.at("id") : json(nullptr);
   for (const auto& item : q.items()) {
@@ -66,9 +251,8 @@ QueryAnswer answerQuery(const std::string& line) {
   if (q.contains("speculative")) {
     if (op != "manifold") return rejected(id, "speculative: only for op manifold");
     const json& v = q.at("speculative");
-    if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0.0 ||
-        v.get<double>() > 1e30) {
-      return rejected(id, "speculative: must be a finite number >= 0");
+    if (!isLengthOption(v)) {
+      return rejected(id, "speculative: must be a number >= 0 within the coordinate limit 1e9 m");
     }
     speculative = v.get<float>();
   }
@@ -102,7 +286,7 @@ QueryAnswer answerQuery(const std::string& line) {
         for (const ShapeProxy& y : piecesB)
           any = any || testOverlap(x, *pa, y, *pb);
       out["overlap"] = any;
-      return {out.dump(), true};
+      return finished(id, out);
     }
     // The closest pair of pieces (first in order on ties); for penetration, the deepest
     // overlapping pair, else the closest.
@@ -127,7 +311,7 @@ QueryAnswer answerQuery(const std::string& line) {
       out["normal"] = toJson(closest.normal);
       out["iterations"] = closest.iterations;
       out["status"] = toString(closest.status);
-      return {out.dump(), true};
+      return finished(id, out);
     }
     PenetrationOutput best = computePenetration(piecesA[bestA], *pa, piecesB[bestB], *pb);
     for (const ShapeProxy& x : piecesA) {
@@ -143,13 +327,13 @@ QueryAnswer answerQuery(const std::string& line) {
     out["pointB"] = toJson(best.pointB);
     out["iterations"] = best.iterations;
     out["status"] = toString(best.status);
-    return {out.dump(), true};
+    return finished(id, out);
   }
   ShapeProxy proxyA = a->proxy();
   ShapeProxy proxyB = b->proxy();
   if (op == "shapecast") {
     if (!q.contains("translation")) return rejected(id, "translation: missing");
-    Result<Vec2> translation = parseVec2(q.at("translation"), "translation");
+    Result<Vec2> translation = parsePosition(q.at("translation"), "translation");
     if (!translation) return rejected(id, translation.error().message);
     ShapeCastOutput c = castShape(proxyA, *pa, proxyB, *pb, *translation);
     out["hit"] = c.hit;
@@ -158,7 +342,7 @@ QueryAnswer answerQuery(const std::string& line) {
     out["normal"] = toJson(c.normal);
     out["depth"] = c.depth;
     out["status"] = toString(c.status);
-    return {out.dump(), true};
+    return finished(id, out);
   }
   if (op == "toi") {
     // A sweep is {"from": POSE, "to": POSE}; the shape turns about its centre (the centre
@@ -186,16 +370,15 @@ QueryAnswer answerQuery(const std::string& line) {
     float target = kToiTargetSeparation;
     if (q.contains("target")) {
       const json& v = q.at("target");
-      if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0.0 ||
-          v.get<double>() > 1e30) {
-        return rejected(id, "target: must be a finite number >= 0");
+      if (!isLengthOption(v)) {
+        return rejected(id, "target: must be a number >= 0 within the coordinate limit 1e9 m");
       }
       target = v.get<float>();
     }
     ToiOutput t = computeToi(proxyA, *sweepA, proxyB, *sweepB, 1.0f, target);
     out["status"] = toString(t.status);
     out["t"] = t.t;
-    return {out.dump(), true};
+    return finished(id, out);
   }
   if (op == "overlap") {
     out["overlap"] = testOverlap(proxyA, *pa, proxyB, *pb);
@@ -227,19 +410,66 @@ QueryAnswer answerQuery(const std::string& line) {
     out["iterations"] = p.iterations;
     out["status"] = toString(p.status);
   }
-  return {out.dump(), true};
+  return finished(id, out);
 }
+
+}  // namespace
 
 int runQueries(std::istream& in, std::ostream& out) {
   int failures = 0;
   std::string line;
-  while (std::getline(in, line)) {
-    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-    QueryAnswer a = answerQuery(line);
+  long long number = 0;
+  while (out && std::getline(in, line)) {
+    ++number;
+    QueryAnswer a = line.find_first_not_of(" \t\r") == std::string::npos
+                        ? rejected(nullptr, "line " + std::to_string(number) + " is blank")
+                        : answerQuery(line);
     if (!a.ok) ++failures;
     out << a.answer << '\n';
   }
   return failures;
+}
+
+int runQueryCommand(const std::string& file, std::istream& standardInput, std::ostream& out,
+                    std::ostream& err) {
+  const bool fromStdin = file == "-";
+  const std::string inName = fromStdin ? "standard input" : file;
+  std::ifstream opened;
+  if (!fromStdin) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(file, ec)) {
+      err << "quack query: cannot read " << file << ": " << std::strerror(EISDIR) << '\n';
+      return 2;
+    }
+    errno = 0;
+    opened.open(file);
+    if (!opened) {
+      err << "quack query: cannot open " << file << ": "
+          << (errno != 0 ? std::strerror(errno) : "open failed") << '\n';
+      return 2;
+    }
+  }
+  std::istream& in = fromStdin ? standardInput : opened;
+  errno = 0;
+  const int failures = runQueries(in, out);
+  const int readErrno = errno;
+  out.flush();
+  if (!out) {
+    const int writeErrno = errno;
+    err << "quack query: cannot write the answers to standard output: "
+        << (writeErrno != 0 ? std::strerror(writeErrno) : "write failed") << '\n';
+    return 2;
+  }
+  if (in.bad()) {
+    err << "quack query: cannot read " << inName << ": "
+        << (readErrno != 0 ? std::strerror(readErrno) : "read failed") << '\n';
+    return 2;
+  }
+  if (failures > 0) {
+    err << "quack query: " << failures << " line(s) failed\n";
+    return 1;
+  }
+  return 0;
 }
 
 }  // namespace quack::app

@@ -62,6 +62,11 @@ Result<BroadPhase> BroadPhase::create(BroadPhaseConfig config) {
   if (!isFinite(config.cellSize) || config.cellSize <= 0.0f) {
     return fail("BroadPhaseConfig.cellSize must be finite and > 0");
   }
+  if (config.cellSize < kMinCellSize || config.cellSize > kMaxCoordinate) {
+    return fail(
+        "BroadPhaseConfig.cellSize must be in [1e-6, 1e9] m (kMinCellSize to "
+        "kMaxCoordinate)");
+  }
   switch (config.kind) {
     case BroadPhaseKind::kTree:
     case BroadPhaseKind::kQuadtree:

@@ -169,6 +169,10 @@ Result<ConvexDecomposition> decomposePolygon(std::span<const Vec2> outline,
         return fail("decomposePolygon: " + ringName(static_cast<int>(r)) + "[" + std::to_string(i) +
                     "] is not finite");
       }
+      if (!withinCoordinateLimit(pts[i])) {
+        return fail("decomposePolygon: " + ringName(static_cast<int>(r)) + "[" + std::to_string(i) +
+                    "] is beyond the coordinate limit 1e9 m");
+      }
       lower = minv(lower, pts[i]);
       upper = maxv(upper, pts[i]);
       rings[r].p.push_back({static_cast<double>(pts[i].x), static_cast<double>(pts[i].y)});

@@ -15,11 +15,38 @@ Status checkFinite(Vec2 v, const char* name) {
   return {};
 }
 
+std::string limitText() {
+  static_assert(kMaxCoordinate == 1e9f, "the messages say 1e9");
+  return "the coordinate limit 1e9 m";
+}
+
+// Finite and within +-kMaxCoordinate (checked before any arithmetic on the point, so that
+// a huge shape is refused for its size rather than for what rounding made of it).
+Status checkPoint(Vec2 v, const std::string& name) {
+  if (Status s = checkFinite(v, name.c_str()); !s) return s;
+  if (!withinCoordinateLimit(v))
+    return fail(name + " " + formatVec(v) + " is beyond " + limitText());
+  return {};
+}
+
 Status checkRadius(float radius, const char* shape, bool allowZero) {
   if (!isFinite(radius)) return fail(std::string(shape) + " radius is not finite");
   if (radius < 0.0f || (!allowZero && radius == 0.0f)) {
     return fail(std::string(shape) + " radius must be " + (allowZero ? ">= 0" : "> 0") + ", got " +
                 formatNumber(radius));
+  }
+  if (radius > kMaxCoordinate) {
+    return fail(std::string(shape) + " radius " + formatNumber(radius) + " m is beyond " +
+                limitText());
+  }
+  return {};
+}
+
+Status checkSize(float size, const char* what) {
+  if (size < kMinShapeSize) {
+    return fail(std::string(what) + " " + formatNumber(size) +
+                " m is below the smallest size Quack resolves (" + formatNumber(kMinShapeSize) +
+                " m)");
   }
   return {};
 }
@@ -43,26 +70,29 @@ Vec2 polygonCentroid(const Vec2* v, int count) {
 }  // namespace
 
 Result<Circle> makeCircle(Vec2 center, float radius) {
-  if (Status s = checkFinite(center, "circle center"); !s) return fail(s.message());
+  if (Status s = checkPoint(center, "circle center"); !s) return fail(s.message());
   if (Status s = checkRadius(radius, "circle", false); !s) return fail(s.message());
+  if (Status s = checkSize(2.0f * radius, "circle diameter"); !s) return fail(s.message());
   return Circle{center, radius};
 }
 
 Result<Capsule> makeCapsule(Vec2 p1, Vec2 p2, float radius) {
-  if (Status s = checkFinite(p1, "capsule p1"); !s) return fail(s.message());
-  if (Status s = checkFinite(p2, "capsule p2"); !s) return fail(s.message());
+  if (Status s = checkPoint(p1, "capsule p1"); !s) return fail(s.message());
+  if (Status s = checkPoint(p2, "capsule p2"); !s) return fail(s.message());
   if (Status s = checkRadius(radius, "capsule", false); !s) {
     return fail(s.message() + (radius == 0.0f ? " (a capsule of radius 0 is a segment)" : ""));
   }
   if (distance(p1, p2) <= kHullRelativeTolerance * radius) {
     return fail("capsule p1 and p2 coincide " + formatVec(p1) + "; use a circle");
   }
+  if (Status s = checkSize(maxf(distance(p1, p2), 2.0f * radius), "capsule size"); !s)
+    return fail(s.message());
   return Capsule{p1, p2, radius};
 }
 
 Result<Segment> makeSegment(Vec2 p1, Vec2 p2) {
-  if (Status s = checkFinite(p1, "segment p1"); !s) return fail(s.message());
-  if (Status s = checkFinite(p2, "segment p2"); !s) return fail(s.message());
+  if (Status s = checkPoint(p1, "segment p1"); !s) return fail(s.message());
+  if (Status s = checkPoint(p2, "segment p2"); !s) return fail(s.message());
   if (p1 == p2) return fail("segment p1 and p2 coincide " + formatVec(p1) + " (zero length)");
   if (distance(p1, p2) < kMinShapeSize) {
     return fail("segment length " + formatNumber(distance(p1, p2)) +
@@ -73,6 +103,10 @@ Result<Segment> makeSegment(Vec2 p1, Vec2 p2) {
 }
 
 Result<Polygon> makePolygon(const Hull& hull, float radius) {
+  for (int i = 0; i < hull.count && i < kMaxPolygonVertices; ++i) {
+    if (Status s = checkPoint(hull.points[i], "hull point " + std::to_string(i)); !s)
+      return fail(s.message());
+  }
   if (Status s = validateHull(hull); !s) return fail("invalid hull: " + s.message());
   if (Status s = checkRadius(radius, "polygon", true); !s) return fail(s.message());
   Polygon polygon;
@@ -88,6 +122,11 @@ Result<Polygon> makePolygon(const Hull& hull, float radius) {
 }
 
 Result<Polygon> makePolygon(std::span<const Vec2> points, float radius) {
+  for (std::size_t j = 0; j < points.size(); ++j) {
+    if (Status s = checkPoint(points[j], "polygon points[" + std::to_string(j) + "]"); !s)
+      return fail(s.message());
+  }
+  if (Status s = checkRadius(radius, "polygon", true); !s) return fail(s.message());
   Result<Hull> hull = computeHull(points);
   if (!hull) return fail("polygon points: " + hull.error().message);
   // Every given point must lie on the hull's boundary; one strictly inside means the
@@ -121,7 +160,13 @@ Result<Polygon> makeBox(float halfWidth, float halfHeight, Vec2 center, float an
     return fail("box half-extents must be finite and > 0, got " +
                 formatVec({halfWidth, halfHeight}));
   }
-  if (Status s = checkFinite(center, "box center"); !s) return fail(s.message());
+  if (halfWidth > kMaxCoordinate || halfHeight > kMaxCoordinate) {
+    return fail("box half-extents " + formatVec({halfWidth, halfHeight}) + " m are beyond " +
+                limitText());
+  }
+  if (Status s = checkSize(2.0f * minf(halfWidth, halfHeight), "box side"); !s)
+    return fail(s.message());
+  if (Status s = checkPoint(center, "box center"); !s) return fail(s.message());
   if (!isFinite(angle)) return fail("box angle is not finite");
   if (Status s = checkRadius(radius, "box", true); !s) return fail(s.message());
   Transform xf = makeTransform(center, angle);

@@ -1,6 +1,7 @@
 #include "quack/io/shape_json.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <initializer_list>
 #include <vector>
 
@@ -24,6 +25,14 @@ Status checkKeys(const json& j, const std::string& path, std::initializer_list<c
   return {};
 }
 
+// "2e+19 m is beyond the coordinate limit 1e9 m", with the number as given in the JSON.
+std::string beyondLimit(const json& j) {
+  static_assert(kMaxCoordinate == 1e9f, "the messages say 1e9");
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.9g m is beyond the coordinate limit 1e9 m", j.get<double>());
+  return buf;
+}
+
 Result<float> parseNumber(const json& j, const std::string& path) {
   if (!j.is_number()) return fail(path + ": must be a number");
   double d = j.get<double>();
@@ -32,24 +41,37 @@ Result<float> parseNumber(const json& j, const std::string& path) {
   return f;
 }
 
+// A length (radius, half-extent) within the coordinate limit.
+Result<float> parseLength(const json& j, const std::string& path) {
+  Result<float> f = parseNumber(j, path);
+  if (!f) return f;
+  if (absf(*f) > kMaxCoordinate) return fail(path + ": " + beyondLimit(j));
+  return f;
+}
+
 Result<float> numberOr(const json& j, const char* key, const std::string& path, float fallback) {
   if (!j.contains(key)) return fallback;
   return parseNumber(j.at(key), path + "." + key);
 }
 
-Result<Vec2> vecOr(const json& j, const char* key, const std::string& path, Vec2 fallback) {
+Result<float> lengthOr(const json& j, const char* key, const std::string& path, float fallback) {
   if (!j.contains(key)) return fallback;
-  return parseVec2(j.at(key), path + "." + key);
+  return parseLength(j.at(key), path + "." + key);
 }
 
-Result<Vec2> requiredVec(const json& j, const char* key, const std::string& path) {
+Result<float> requiredLength(const json& j, const char* key, const std::string& path) {
   if (!j.contains(key)) return fail(path + "." + key + ": missing");
-  return parseVec2(j.at(key), path + "." + key);
+  return parseLength(j.at(key), path + "." + key);
 }
 
-Result<float> requiredNumber(const json& j, const char* key, const std::string& path) {
+Result<Vec2> positionOr(const json& j, const char* key, const std::string& path, Vec2 fallback) {
+  if (!j.contains(key)) return fallback;
+  return parsePosition(j.at(key), path + "." + key);
+}
+
+Result<Vec2> requiredPosition(const json& j, const char* key, const std::string& path) {
   if (!j.contains(key)) return fail(path + "." + key + ": missing");
-  return parseNumber(j.at(key), path + "." + key);
+  return parsePosition(j.at(key), path + "." + key);
 }
 
 // An array of at least 3 and at most 4,096 points [x, y].
@@ -59,7 +81,7 @@ Result<std::vector<Vec2>> parsePointArray(const json& pts, const std::string& pa
   if (pts.size() > 4096) return fail(path + ": too many points");
   std::vector<Vec2> points;
   for (std::size_t i = 0; i < pts.size(); ++i) {
-    Result<Vec2> p = parseVec2(pts[i], path + "[" + std::to_string(i) + "]");
+    Result<Vec2> p = parsePosition(pts[i], path + "[" + std::to_string(i) + "]");
     if (!p) return p.error();
     points.push_back(*p);
   }
@@ -142,10 +164,18 @@ Result<Vec2> parseVec2(const json& j, const std::string& path) {
   return Vec2{*x, *y};
 }
 
+Result<Vec2> parsePosition(const json& j, const std::string& path) {
+  Result<Vec2> v = parseVec2(j, path);
+  if (!v) return v;
+  if (absf(v->x) > kMaxCoordinate) return fail(path + "[0]: " + beyondLimit(j[0]));
+  if (absf(v->y) > kMaxCoordinate) return fail(path + "[1]: " + beyondLimit(j[1]));
+  return v;
+}
+
 Result<Transform> parsePose(const json& j, const std::string& path) {
   if (!j.is_object()) return fail(path + ": must be an object {\"pos\", \"angle\"}");
   if (Status s = checkKeys(j, path, {"pos", "angle"}); !s) return fail(s.message());
-  Result<Vec2> pos = vecOr(j, "pos", path, {});
+  Result<Vec2> pos = positionOr(j, "pos", path, {});
   if (!pos) return pos.error();
   Result<float> angle = numberOr(j, "angle", path, 0.0f);
   if (!angle) return angle.error();
@@ -162,9 +192,9 @@ Result<ParsedShape> parseShape(const json& j, const std::string& path,
   if (type == "circle") {
     if (Status s = checkKeys(j, path, {"type", "center", "radius"}, extraKeys); !s)
       return fail(s.message());
-    Result<Vec2> c = vecOr(j, "center", path, {});
+    Result<Vec2> c = positionOr(j, "center", path, {});
     if (!c) return c.error();
-    Result<float> r = requiredNumber(j, "radius", path);
+    Result<float> r = requiredLength(j, "radius", path);
     if (!r) return r.error();
     if (*r <= 0.0f) return fail(path + ".radius: must be > 0");
     out.type = ShapeType::circle;
@@ -178,9 +208,9 @@ Result<ParsedShape> parseShape(const json& j, const std::string& path,
     Status keys = capsule ? checkKeys(j, path, {"type", "p1", "p2", "radius"}, extraKeys)
                           : checkKeys(j, path, {"type", "p1", "p2"}, extraKeys);
     if (!keys) return fail(keys.message());
-    Result<Vec2> p1 = requiredVec(j, "p1", path);
+    Result<Vec2> p1 = requiredPosition(j, "p1", path);
     if (!p1) return p1.error();
-    Result<Vec2> p2 = requiredVec(j, "p2", path);
+    Result<Vec2> p2 = requiredPosition(j, "p2", path);
     if (!p2) return p2.error();
     if (!capsule) {
       Result<Segment> s = makeSegment(*p1, *p2);
@@ -189,7 +219,7 @@ Result<ParsedShape> parseShape(const json& j, const std::string& path,
       out.segment = *s;
       return out;
     }
-    Result<float> r = requiredNumber(j, "radius", path);
+    Result<float> r = requiredLength(j, "radius", path);
     if (!r) return r.error();
     if (*r <= 0.0f) return fail(path + ".radius: must be > 0");
     Result<Capsule> s = makeCapsule(*p1, *p2, *r);
@@ -203,14 +233,14 @@ Result<ParsedShape> parseShape(const json& j, const std::string& path,
         !s) {
       return fail(s.message());
     }
-    Result<Vec2> half = requiredVec(j, "half", path);
+    Result<Vec2> half = requiredPosition(j, "half", path);
     if (!half) return half.error();
     if (half->x <= 0.0f || half->y <= 0.0f) return fail(path + ".half: must be > 0");
-    Result<Vec2> c = vecOr(j, "center", path, {});
+    Result<Vec2> c = positionOr(j, "center", path, {});
     if (!c) return c.error();
     Result<float> angle = numberOr(j, "angle", path, 0.0f);
     if (!angle) return angle.error();
-    Result<float> r = numberOr(j, "radius", path, 0.0f);
+    Result<float> r = lengthOr(j, "radius", path, 0.0f);
     if (!r) return r.error();
     if (*r < 0.0f) return fail(path + ".radius: must be >= 0");
     Result<Polygon> s = makeBox(half->x, half->y, *c, *angle, *r);
@@ -224,7 +254,7 @@ Result<ParsedShape> parseShape(const json& j, const std::string& path,
       return fail(s.message());
     Result<std::vector<Vec2>> points = parsePoints(j, "points", path);
     if (!points) return points.error();
-    Result<float> r = numberOr(j, "radius", path, 0.0f);
+    Result<float> r = lengthOr(j, "radius", path, 0.0f);
     if (!r) return r.error();
     if (*r < 0.0f) return fail(path + ".radius: must be >= 0");
     Result<Polygon> s = makePolygon(*points, *r);

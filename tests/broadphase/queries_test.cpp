@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
+#include <optional>
 #include <string>
 
 #include "broadphase/oracle.hpp"
@@ -180,6 +182,135 @@ TEST_P(Queries, CallbackReturningZeroStopsTheCast) {
   });
   EXPECT_EQ(calls, 1);
 }
+
+// ---- Hardening: any finite query (box, point, ray, box cast), however huge, is answered in
+// bounded time and exactly. The spatial hash looped over a cell-count product that
+// overflowed (a box of +-2e9 m, a ray of 1e19 m, a shape of half-size 1e10 hung it) and
+// cast huge floats to integers (undefined behaviour).
+
+class BroadPhaseHardening : public ::testing::TestWithParam<BroadPhaseKind> {};
+
+// The scene of makeScene plus proxies at the corners and edges of the coordinate range.
+BroadPhase makeWideScene(BroadPhaseKind kind, std::vector<Live>& live, float cellSize = 1.0f) {
+  BroadPhaseConfig config;
+  config.kind = kind;
+  config.cellSize = cellSize;
+  BroadPhase bp = BroadPhase::create(config).value();
+  std::mt19937 rng(59);
+  for (int i = 0; i < 200; ++i) {
+    const Aabb b = test::randomBox(rng, 20.0f, 0.05f, 0.6f);
+    live.push_back({bp.createProxy(b, static_cast<std::uint64_t>(i)).value(), b});
+  }
+  const float m = kMaxCoordinate;
+  const Aabb far[] = {{{m - 1, m - 1}, {m, m}},
+                      {{-m, -m}, {-m + 1, -m + 1}},
+                      {{-m, m - 5}, {-m + 3, m}},
+                      {{m - 2, -m}, {m, -m + 2}},
+                      {{-m, -0.5f}, {m, 0.5f}},  // a band across the whole range
+                      {{1e8f, -3e8f}, {1e8f + 1, -3e8f + 1}}};
+  for (const Aabb& b : far)
+    live.push_back({bp.createProxy(b, 7).value(), b});
+  return bp;
+}
+
+std::vector<std::uint32_t> boxHits(const BroadPhase& bp, Aabb q) {
+  std::vector<std::uint32_t> got;
+  bp.queryAabb(q, [&](ProxyId id, std::uint64_t) {
+    got.push_back(id.index);
+    return true;
+  });
+  std::sort(got.begin(), got.end());
+  return got;
+}
+
+std::vector<std::uint32_t> bruteBoxHits(const std::vector<Live>& live, Aabb q) {
+  std::vector<std::uint32_t> expected;
+  for (const Live& l : live) {
+    if (overlaps(l.box, q)) expected.push_back(l.id.index);
+  }
+  std::sort(expected.begin(), expected.end());
+  return expected;
+}
+
+void expectHugeQueriesMatchBruteForce(const BroadPhase& bp, const std::vector<Live>& live) {
+  const float big = std::numeric_limits<float>::max();
+  const Aabb boxes[] = {{{-2e9f, -2e9f}, {2e9f, 2e9f}},
+                        {{-big, -big}, {big, big}},
+                        {{-1e10f + 3, -1e10f - 2}, {1e10f + 3, 1e10f - 2}},
+                        {{-1e19f, 0.1f}, {1e19f, 0.2f}},
+                        {{5e8f, -big}, {big, 2e9f}},
+                        {{2e9f, 2e9f}, {3e9f, 3e9f}},  // beyond every proxy
+                        {{-big, -big}, {-big, -big}},  // a point at the far corner
+                        {{1e8f, -3e8f}, {1e8f, -3e8f}}};
+  for (const Aabb& q : boxes) {
+    EXPECT_EQ(boxHits(bp, q), bruteBoxHits(live, q))
+        << "box " << q.lower.x << " " << q.lower.y << " " << q.upper.x << " " << q.upper.y;
+  }
+  struct Ray {
+    Vec2 origin, translation;
+  };
+  const Ray rays[] = {{{0, 0}, {1e19f, 1e19f}},       {{-1e19f, 0.25f}, {2e19f, 0}},
+                      {{0.5f, -1e19f}, {0, 2e19f}},   {{3e38f, 0.3f}, {-3.4e38f, 0}},
+                      {{-2e9f, -2e9f}, {4e9f, 4e9f}}, {{1e8f + 0.5f, 1e19f}, {0, -2e19f}}};
+  for (const Ray& r : rays) {
+    std::vector<std::pair<float, std::uint32_t>> expected;
+    for (const Live& l : live) {
+      const AabbRayHit h = rayCast(l.box, r.origin, r.translation, 1.0f);
+      if (h.hit) expected.emplace_back(h.fraction, l.id.index);
+    }
+    std::sort(expected.begin(), expected.end());
+    const std::vector<BroadPhaseHit> all = bp.rayCastAll(r.origin, r.translation);
+    ASSERT_EQ(all.size(), expected.size()) << "ray from " << r.origin.x << " " << r.origin.y;
+    for (std::size_t k = 0; k < all.size(); ++k) {
+      EXPECT_EQ(all[k].proxy.index, expected[k].second);
+      EXPECT_EQ(all[k].fraction, expected[k].first);
+    }
+  }
+  // A box of half-size 1e10 cast 1e19 m.
+  const Aabb shape{{-1e10f, -1e10f}, {1e10f, 1e10f}};
+  const Vec2 h = extents(shape);
+  for (const Vec2 t : {Vec2{1e19f, 0}, Vec2{-1e19f, 1e19f}, Vec2{0, 0}}) {
+    std::optional<float> expected;
+    for (const Live& l : live) {
+      const AabbRayHit r = rayCast({l.box.lower - h, l.box.upper + h}, center(shape), t, 1.0f);
+      if (r.hit && (!expected || r.fraction < *expected)) expected = r.fraction;
+    }
+    const std::optional<BroadPhaseHit> got = bp.boxCastClosest(shape, t);
+    ASSERT_EQ(got.has_value(), expected.has_value());
+    if (got) {
+      EXPECT_EQ(got->fraction, *expected);
+    }
+  }
+}
+
+TEST_P(BroadPhaseHardening, HugeFiniteQueriesAnswerInBoundedTimeAndMatchBruteForce) {
+  std::vector<Live> live;
+  const BroadPhase bp = makeWideScene(GetParam(), live);
+  ASSERT_TRUE(bp.validate().ok());
+  expectHugeQueriesMatchBruteForce(bp, live);
+}
+
+TEST_P(BroadPhaseHardening, ExtremeCellSizesAreRefusedOrAnswerExactly) {
+  // Cell sizes at either end of what BroadPhase::create accepts still give exact answers.
+  for (float cell : {kMinCellSize, 1e-3f, 1e6f, kMaxCoordinate}) {
+    SCOPED_TRACE("cellSize=" + std::to_string(cell));
+    std::vector<Live> live;
+    const BroadPhase bp = makeWideScene(GetParam(), live, cell);
+    ASSERT_TRUE(bp.validate().ok()) << bp.validate().message();
+    expectHugeQueriesMatchBruteForce(bp, live);
+  }
+  BroadPhaseConfig config;
+  config.kind = GetParam();
+  config.cellSize = 1e-30f;
+  EXPECT_FALSE(BroadPhase::create(config).ok());
+  config.cellSize = 1e30f;
+  EXPECT_FALSE(BroadPhase::create(config).ok());
+}
+
+INSTANTIATE_TEST_SUITE_P(BroadPhase, BroadPhaseHardening, ::testing::ValuesIn(kAllBroadPhaseKinds),
+                         [](const ::testing::TestParamInfo<BroadPhaseKind>& param) {
+                           return std::string(nameOf(param.param));
+                         });
 
 INSTANTIATE_TEST_SUITE_P(BroadPhase, Queries, ::testing::ValuesIn(kAllBroadPhaseKinds),
                          [](const ::testing::TestParamInfo<BroadPhaseKind>& param) {

@@ -21,6 +21,45 @@ void expectError(const Result<T>& r, const std::string& fragment) {
   EXPECT_NE(r.error().message.find(fragment), std::string::npos) << r.error().message;
 }
 
+// Hardening: shapes beyond the coordinate limit (1e9 m) are refused for their size, naming
+// the argument, before any arithmetic (a box of half-size 1e19 used to be reported as "hull
+// is not strictly convex" further down the line, and 3e38 gave NaN answers).
+TEST(ShapesHardening, ShapesBeyondTheCoordinateLimitAreRefused) {
+  expectError(makeBox(1e19f, 1e19f),
+              "box half-extents (1e+19, 1e+19) m are beyond the coordinate "
+              "limit 1e9 m");
+  expectError(makeBox(1, 3e38f), "beyond the coordinate limit 1e9 m");
+  expectError(makeBox(1, 1, {2e9f, 0}), "box center (2e+09, 0) is beyond the coordinate limit");
+  expectError(makeBox(1, 1, {}, 0, 2e9f), "box radius 2e+09 m is beyond the coordinate limit");
+  expectError(makeCircle({0, -3e38f}, 1), "circle center (0, -3e+38) is beyond");
+  expectError(makeCircle({}, 1e10f), "circle radius 1e+10 m is beyond the coordinate limit");
+  expectError(makeCapsule({0, 0}, {1e19f, 0}, 1), "capsule p2 (1e+19, 0) is beyond");
+  expectError(makeCapsule({0, 0}, {1, 0}, 1e19f), "capsule radius 1e+19 m is beyond");
+  expectError(makeSegment({-2e19f, 0}, {0, 0}), "segment p1 (-2e+19, 0) is beyond");
+  const Vec2 huge[] = {{0, 0}, {1e19f, 0}, {0, 1e19f}};
+  expectError(makePolygon(huge), "polygon points[1] (1e+19, 0) is beyond the coordinate limit");
+  const Vec2 tri[] = {{0, 0}, {1, 0}, {0, 1}};
+  expectError(makePolygon(tri, 5e9f), "polygon radius 5e+09 m is beyond");
+  Hull h = computeHull(tri).value();
+  h.points[2] = {0, 4e9f};
+  expectError(makePolygon(h), "hull point 2 (0, 4e+09) is beyond");
+  // At the limit is fine.
+  EXPECT_TRUE(makeBox(kMaxCoordinate, kMaxCoordinate).ok());
+  EXPECT_TRUE(makeCircle({kMaxCoordinate, -kMaxCoordinate}, kMaxCoordinate).ok());
+}
+
+// Hardening: the nanometre floor (kMinShapeSize) now covers boxes, circles and capsules
+// too; a box of half-size 1e-25 used to be accepted and answered queries.
+TEST(ShapesHardening, BoxesCirclesAndCapsulesBelowANanometreAreRefused) {
+  expectError(makeBox(1e-25f, 1e-25f), "box side 2e-25 m is below the smallest size");
+  expectError(makeBox(1, 1e-12f), "box side");
+  expectError(makeCircle({}, 1e-25f), "circle diameter 2e-25 m is below the smallest size");
+  expectError(makeCapsule({0, 0}, {1e-20f, 0}, 1e-20f), "capsule size");
+  EXPECT_TRUE(makeBox(1e-9f, 1e-9f).ok());
+  EXPECT_TRUE(makeCircle({}, 1e-9f).ok());
+  EXPECT_TRUE(makeCapsule({0, 0}, {1, 0}, 1e-12f).ok());  // thin but a metre long
+}
+
 TEST(Shapes, BadNumbersAreNamed) {
   expectError(makeCircle({kNaN, 0}, 1), "circle center is not finite");
   expectError(makeCircle({}, -1), "circle radius must be > 0, got -1");

@@ -71,10 +71,14 @@ std::string_view nameOf(BroadPhaseKind kind) noexcept;
 /// The kind with that short name, or an error listing the valid names.
 Result<BroadPhaseKind> parseBroadPhaseKind(std::string_view name);
 
-/// Boxes must lie within +-kMaxCoordinate metres of the origin: beyond it a float cannot
-/// tell centimetres apart anyway (its spacing is 64 m at 1e9), and cell indices of the
-/// quadtree and hash stay well inside their integers.
-inline constexpr float kMaxCoordinate = 1.0e9f;
+/// Boxes must lie within +-kMaxCoordinate metres of the origin (1e9 m, defined in
+/// quack/math/aabb.hpp so the geometry layer shares it). Queries take any finite box, ray
+/// or translation and answer in time bounded by the proxy count (docs/broad-phase.md).
+
+/// Smallest `BroadPhaseConfig::cellSize`, metres. The quadtree's integer cell grid covers
+/// +-cellSize * 2^61 / 3 metres, which must hold the coordinate range with room to spare;
+/// a micrometre covers 7.7e11 m.
+inline constexpr float kMinCellSize = 1e-6f;
 
 /// How a `BroadPhase` is made. Every field has a default that suits boxes of about 1 m.
 struct BroadPhaseConfig {
@@ -87,8 +91,8 @@ struct BroadPhaseConfig {
   float displacementScale = 1.0f;
   /// Report a pair only when the tight boxes overlap as well as the fat boxes.
   bool checkTightBoxes = false;
-  /// Cell side of the hash and smallest cell side of the quadtree, metres (> 0): about the
-  /// typical fat box size.
+  /// Cell side of the hash and smallest cell side of the quadtree, metres, in
+  /// [kMinCellSize, kMaxCoordinate]: about the typical fat box size.
   float cellSize = 1.0f;
 };
 

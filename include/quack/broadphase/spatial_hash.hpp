@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "quack/broadphase/proxy.hpp"
@@ -84,12 +85,27 @@ class SpatialHash {
   Status validate() const;
 
  private:
+  // Cell indices are clamped to +-2^60: a query may be any finite box (a float can reach
+  // 3.4e38, and x / cellSize more), and a float-to-integer cast out of range is undefined.
+  // Clamping is monotonic, so boxes that overlap still share a cell.
+  static constexpr float kCellLimit = 1152921504606846976.0f;  // 2^60
   struct Range {
     std::int64_t x0, y0, x1, y1;
-    std::int64_t cells() const noexcept { return (x1 - x0 + 1) * (y1 - y0 + 1); }
+    // The number of cells, saturating: each side is at most 2^61 + 1 cells, and the product
+    // of two such would overflow.
+    std::int64_t cells() const noexcept {
+      const std::int64_t w = x1 - x0 + 1;
+      const std::int64_t h = y1 - y0 + 1;
+      return w > std::numeric_limits<std::int64_t>::max() / h
+                 ? std::numeric_limits<std::int64_t>::max()
+                 : w * h;
+    }
   };
   std::int64_t cellOf(float x) const noexcept {
-    return static_cast<std::int64_t>(std::floor(x * inverse_));
+    const float c = std::floor(x * inverse_);
+    if (c >= kCellLimit) return static_cast<std::int64_t>(kCellLimit);
+    if (c <= -kCellLimit) return -static_cast<std::int64_t>(kCellLimit);
+    return c == c ? static_cast<std::int64_t>(c) : 0;  // NaN (never from a valid box): 0
   }
   Range rangeOf(Aabb b) const noexcept {
     return {cellOf(b.lower.x), cellOf(b.lower.y), cellOf(b.upper.x), cellOf(b.upper.y)};
@@ -120,7 +136,8 @@ void SpatialHash::query(Aabb q, Visit&& visit) const {
   }
   if (buckets_.empty()) return;
   const Range r = rangeOf(q);
-  // A query larger than the table would visit buckets many times over: scan instead.
+  // A query larger than the table would visit buckets many times over: scan instead. This
+  // also bounds a huge query (+-1e19 m, a long ray's box) by the proxy count.
   if (r.cells() > static_cast<std::int64_t>(buckets_.size())) {
     for (std::uint32_t p : list_) {
       if (overlaps(boxes_[p], q) && rangeOf(boxes_[p]).cells() <= kMaxCellsPerProxy && !visit(p)) {

@@ -10,6 +10,7 @@
 
 #include "quack/core/result.hpp"
 #include "quack/geometry/hull.hpp"
+#include "quack/math/aabb.hpp"
 #include "quack/math/transform.hpp"
 
 namespace quack {

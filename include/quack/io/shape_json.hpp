@@ -14,6 +14,8 @@
 /// Pose:  {"pos": [x, y] (default [0, 0]), "angle": radians (default 0)}; a missing pose
 ///        is the identity.
 /// Unknown keys are errors; every error names the field, e.g. "a.radius: must be > 0".
+/// Positions, points, half-extents and radii must lie within the coordinate limit
+/// (kMaxCoordinate, 1e9 m), e.g. "a.half[0]: 1e+19 m is beyond the coordinate limit 1e9 m".
 
 #include <initializer_list>
 #include <nlohmann/json.hpp>
@@ -60,5 +62,8 @@ Result<ParsedShape> parseShape(const nlohmann::json& j, const std::string& path,
 Result<Transform> parsePose(const nlohmann::json& j, const std::string& path);
 /// [x, y] with finite numbers.
 Result<Vec2> parseVec2(const nlohmann::json& j, const std::string& path);
+/// [x, y] within +-kMaxCoordinate (1e9 m): a position, offset or translation. Beyond it:
+/// "path[0]: 2e+19 m is beyond the coordinate limit 1e9 m".
+Result<Vec2> parsePosition(const nlohmann::json& j, const std::string& path);
 
 }  // namespace quack

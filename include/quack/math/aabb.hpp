@@ -5,6 +5,18 @@
 
 namespace quack {
 
+/// The coordinate limit, metres: shapes (geometry), broad-phase boxes and `quack query`
+/// inputs must lie within +-kMaxCoordinate of the origin. Beyond it a float cannot tell
+/// centimetres apart anyway (its spacing is 64 m at 1e9), the squares the collision
+/// routines form stay far from overflow (1e18 << 3.4e38), and cell indices of the quadtree
+/// and hash stay well inside their integers.
+inline constexpr float kMaxCoordinate = 1.0e9f;
+/// True when both coordinates of p lie within +-kMaxCoordinate (false for NaN).
+constexpr bool withinCoordinateLimit(Vec2 p) noexcept {
+  return p.x >= -kMaxCoordinate && p.x <= kMaxCoordinate && p.y >= -kMaxCoordinate &&
+         p.y <= kMaxCoordinate;
+}
+
 /// Axis-aligned box [lower, upper]. A valid box has lower <= upper on both axes; the
 /// default box is the degenerate box at the origin.
 struct Aabb {
