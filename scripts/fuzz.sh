@@ -20,5 +20,7 @@ for fuzzer in $targets; do
   [ "$fuzzer" = scene_fuzzer ] && seeds=fuzz/scene_seeds
   echo "fuzz: $fuzzer for ${seconds}s"
   # shellcheck disable=SC2086
-  "build/fuzz/fuzz/$fuzzer" -max_total_time="$seconds" -print_final_stats=1 "$corpus" $seeds
+  # Crashes and out-of-memory inputs go to build/fuzz/, not the source tree.
+  "build/fuzz/fuzz/$fuzzer" -max_total_time="$seconds" -print_final_stats=1 \
+    -artifact_prefix=build/fuzz/ "$corpus" $seeds
 done
