@@ -350,6 +350,9 @@ int runScene(const RunOptions& options, std::ostream& out, std::ostream& err) {
   progress.end([&] { return "done in " + formatSeconds(progress.elapsed()); });
   const double buildMs = msSince(t0);
   SceneWorld& sw = built.value();
+  // The world has its own copy of everything now: free the parsed bodies (about 1 GB for a
+  // million generated bodies) before simulating.
+  std::vector<SceneBody>().swap(scene->bodies);
 
   ReplayOptions replayOptions;
   replayOptions.broadPhaseBoxes = options.htmlBoxes;
