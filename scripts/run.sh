@@ -2,7 +2,7 @@
 # The main job, from a fresh Debian machine: installs what is missing (as root, or names
 # the packages), builds the release preset's quack program, and simulates a 20-row pyramid
 # of boxes for 10 seconds with `quack run`. It prints a summary and writes, in out/:
-#   pyramid.state.json  where every body ended, event counts, timing
+#   pyramid.state.json  where every body ended and event counts (timing: the summary)
 #   pyramid.svg         a picture of the last state
 #   pyramid.html        a self-contained replay (open it in a browser: play, pause, scrub, zoom)
 # Another scene:  scripts/run.sh scenes/rain.json 900

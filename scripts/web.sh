@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
 # The web demo (docs/web-demo.md): builds Quack to WebAssembly with Debian's emscripten,
 # stages the pages in build/web-site, and optionally serves or tests them.
-#   scripts/web.sh                 # build into build/web-site
-#   scripts/web.sh --serve [PORT]  # build, then serve on http://localhost:PORT (default 8000)
-#   scripts/web.sh --test          # install what is missing, build, run the browser tests
+#   scripts/web.sh                 # install what is missing, build into build/web-site
+#   scripts/web.sh --serve [PORT]  # install, build, then serve on http://localhost:PORT (8000)
+#   scripts/web.sh --test          # install, build, run the browser tests
+# Every mode installs the Debian packages it needs first (scripts/setup.sh build web: as
+# root it installs them, otherwise it names the command to run), so each works on a fresh
+# machine.
 # Build folders: build/wasm (emscripten), build/web-native (the native `quack` program the
 # tests compare against), build/web-site (what is served).
 set -euo pipefail
@@ -20,10 +23,13 @@ esac
 jobs=${QUACK_WEB_JOBS:-2}
 say() { printf 'web.sh: %s\n' "$*" >&2; }
 
-if [ "$mode" = test ]; then
-  scripts/setup.sh build web
-fi
-command -v emcmake >/dev/null || { say "emscripten missing: run scripts/setup.sh web"; exit 1; }
+case "$port" in
+  '' | *[!0-9]*) say "--serve: $port is not a port number"; exit 2 ;;
+esac
+# Every mode needs emscripten (and --serve python3, --test chromium and node): install
+# what is missing, as --test always did; setup.sh names the command when not root.
+scripts/setup.sh build web
+command -v emcmake >/dev/null || { say "emscripten missing after scripts/setup.sh build web"; exit 1; }
 
 # Debian's emscripten runs its JavaScript optimiser (above -O1) with node and needs acorn,
 # which Debian keeps in /usr/share/nodejs.

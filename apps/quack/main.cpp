@@ -2,7 +2,10 @@
 // here and a source file): `query` and `run`.
 
 #include <CLI/CLI.hpp>
+#include <cstdint>
+#include <fstream>
 #include <iostream>
+#include <string>
 
 #include "query.hpp"
 #include "run.hpp"
@@ -20,18 +23,38 @@ void addQuery(CLI::App& app, int& status) {
   });
 }
 
+// --steps: a whole number of steps, 0..100,000,000, with a message that says so (CLI11's
+// own range check would say "Value abc not in range 0 to 100000000").
+constexpr std::uint64_t kMaxSteps = 100000000;
+
+CLI::Validator stepsValidator() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        bool digits = !text.empty() && text.size() <= 18;
+        for (char c : text)
+          digits = digits && c >= '0' && c <= '9';
+        if (!digits) return text + " is not a whole number";
+        if (std::stoull(text) > kMaxSteps)
+          return text + " is more than " + std::to_string(kMaxSteps) + " steps";
+        return {};
+      },
+      "0.." + std::to_string(kMaxSteps));
+}
+
 void addRun(CLI::App& app, int& status) {
   auto* cmd = app.add_subcommand(
       "run", "Simulate a scene headless; write its state, an SVG and an HTML replay");
   auto options = std::make_shared<quack::app::RunOptions>();
   cmd->add_option("SCENE", options->scene, "scene file (JSON; see README, \"Scene files\")")
       ->required();
-  cmd->add_option("--steps", options->steps, "steps to simulate")
+  cmd->add_option("--steps", options->steps, "steps to simulate (0..100000000)")
       ->capture_default_str()
-      ->check(CLI::Range(0, 100000000));
+      ->check(stepsValidator());
   cmd->add_option("--out", options->out, "state file to write (JSON)")->required();
   cmd->add_option("--svg", options->svg, "SVG picture of the last state");
   cmd->add_option("--html", options->html, "self-contained HTML replay of the run");
+  cmd->add_option("--timing", options->timing,
+                  "how long each phase took (JSON; the state file has no timing)");
   cmd->add_flag("--html-boxes", options->htmlBoxes, "record the broad-phase boxes in the replay");
   cmd->add_flag("--quiet", options->quiet, "no progress on stderr");
   cmd->callback(
@@ -46,6 +69,12 @@ int main(int argc, char** argv) {
   int status = 0;
   addQuery(app, status);
   addRun(app, status);
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // Usage errors ("--steps: abc is not a whole number") exit 2, as bad input does;
+    // --help and --version exit 0.
+    return app.exit(e) == 0 ? 0 : 2;
+  }
   return status;
 }

@@ -1,11 +1,20 @@
 #include "run.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
+
+#include <cerrno>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
-#include <fstream>
+#include <iostream>
+#include <optional>
 #include <ostream>
+#include <string_view>
+#include <vector>
 
 #include "quack/io/render.hpp"
 #include "quack/io/scene.hpp"
@@ -14,74 +23,336 @@
 namespace quack::app {
 namespace {
 
+namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-// Outputs are written to a temporary file beside the target and renamed at the end, so a
-// failed run never leaves a half-written file or destroys the previous one.
-struct Output {
-  std::string path;
-  std::string temp;
+// ---- signals -----------------------------------------------------------------------------
+
+// Set by the handler, read between steps and between chunks of output: the handler does
+// nothing else, so it is async-signal-safe; the run cleans up and returns 128 + signal.
+volatile std::sig_atomic_t gSignal = 0;
+
+extern "C" void onSignal(int sig) {
+  gSignal = sig;
+}
+
+// Catches SIGINT and SIGTERM while a run is under way and puts the old handlers back after.
+class SignalGuard {
+ public:
+  SignalGuard() {
+    gSignal = 0;
+    struct sigaction action {};
+    action.sa_handler = onSignal;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = 0;  // no SA_RESTART: a blocking write returns EINTR and we look
+    sigaction(SIGINT, &action, &oldInt_);
+    sigaction(SIGTERM, &action, &oldTerm_);
+  }
+  ~SignalGuard() {
+    sigaction(SIGINT, &oldInt_, nullptr);
+    sigaction(SIGTERM, &oldTerm_, nullptr);
+  }
+  SignalGuard(const SignalGuard&) = delete;
+  SignalGuard& operator=(const SignalGuard&) = delete;
+
+ private:
+  struct sigaction oldInt_ {};
+  struct sigaction oldTerm_ {};
 };
 
-bool prepare(Output& o, std::ostream& err) {
-  o.temp = o.path + ".part";
-  std::ofstream probe(o.temp, std::ios::binary | std::ios::trunc);
-  if (!probe) {
-    err << "quack run: cannot write " << o.path << '\n';
-    return false;
-  }
-  return true;
+int interruptedStatus() {
+  return gSignal == SIGTERM ? kRunTerminated : kRunInterrupted;
 }
 
-bool finish(const Output& o, const std::string& text, std::ostream& err) {
-  {
-    std::ofstream f(o.temp, std::ios::binary | std::ios::trunc);
-    f << text;
-    if (!f) {
-      err << "quack run: writing " << o.path << " failed\n";
-      return false;
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(o.temp, o.path, ec);
-  if (ec) {
-    err << "quack run: cannot move " << o.temp << " to " << o.path << ": " << ec.message() << '\n';
-    return false;
-  }
-  return true;
-}
+// ---- progress ----------------------------------------------------------------------------
 
 std::string formatSeconds(double s) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, s < 60 ? "%.1f s" : "%.0f s", s);
+  char buf[48];
+  if (s < 60.0) {
+    std::snprintf(buf, sizeof buf, "%.1f s", s);
+  } else if (s < 3600.0) {
+    std::snprintf(buf, sizeof buf, "%d min %02d s", static_cast<int>(s / 60.0),
+                  static_cast<int>(s) % 60);
+  } else {
+    std::snprintf(buf, sizeof buf, "%d h %02d min", static_cast<int>(s / 3600.0),
+                  static_cast<int>(s / 60.0) % 60);
+  }
   return buf;
+}
+
+// Steps per second readable at any speed: "240 steps/s", "2.5 steps/s", "3.2 s/step".
+std::string formatRate(double stepsPerSecond) {
+  char buf[48];
+  if (!(stepsPerSecond > 0.0)) return "no step yet";
+  if (stepsPerSecond >= 10.0) {
+    std::snprintf(buf, sizeof buf, "%.0f steps/s", stepsPerSecond);
+  } else if (stepsPerSecond >= 1.0) {
+    std::snprintf(buf, sizeof buf, "%.1f steps/s", stepsPerSecond);
+  } else {
+    std::snprintf(buf, sizeof buf, "%.1f s/step", 1.0 / stepsPerSecond);
+  }
+  return buf;
+}
+
+std::string formatBytes(std::size_t bytes) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.1f MB", static_cast<double>(bytes) / 1e6);
+  return buf;
+}
+
+// Progress on stderr once a run has taken a second: from then on every phase says when
+// it begins, then reports about once a second, and says how long it took. A line is
+// rewritten in place on a terminal, whole lines otherwise. Short runs print nothing.
+class Progress {
+ public:
+  Progress(std::ostream& err, bool enabled, double after)
+      : err_(err),
+        enabled_(enabled),
+        after_(std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(after))),
+        tty_(&err == &std::cerr && isatty(STDERR_FILENO) != 0),
+        runStart_(Clock::now()),
+        last_(runStart_) {}
+
+  // A new phase; `text` is shown at once if the run is already long.
+  void begin(std::string phase, const std::string& text) {
+    phase_ = std::move(phase);
+    start_ = Clock::now();
+    shown_ = false;
+    if (enabled_ && start_ - runStart_ >= after_) {
+      last_ = start_;
+      show(text);
+    }
+  }
+  double elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
+
+  // `text()` is called only when a line is due.
+  template <class Text>
+  void update(Text&& text) {
+    if (!enabled_) return;
+    auto now = Clock::now();
+    if (now - last_ < after_) return;
+    last_ = now;
+    show(text());
+  }
+  // Ends the phase with `text` if anything of it was shown.
+  template <class Text>
+  void end(Text&& text) {
+    if (!enabled_ || !shown_) return;
+    show(text());
+    if (tty_) err_ << '\n' << std::flush;
+  }
+
+ private:
+  void show(const std::string& text) {
+    shown_ = true;
+    std::string line = "quack run: " + phase_ + ": " + text;
+    if (tty_) line += "\x1b[K";  // clear what a longer line left
+    err_ << line << (tty_ ? "\r" : "\n") << std::flush;
+  }
+
+  std::ostream& err_;
+  bool enabled_;
+  Clock::duration after_;
+  bool tty_;
+  Clock::time_point runStart_, start_, last_;
+  std::string phase_;
+  bool shown_ = false;
+};
+
+// ---- outputs -----------------------------------------------------------------------------
+
+// One output: where it goes (symbolic links followed), and its temporary file beside it.
+struct Output {
+  std::string option;  // "--out", for messages
+  std::string path;    // as given
+  fs::path target;     // resolved: the file to replace
+  std::string temp;    // the temporary file, once created
+  std::string text;
+};
+
+std::string errnoText(int e) {
+  return std::strerror(e);
+}
+
+// The file a path ends at: absolute, `.` and `..` resolved, and symbolic links followed,
+// dangling ones too (writing through a link to a file not yet made creates that file).
+fs::path resolve(const std::string& path, std::error_code& ec) {
+  fs::path p = fs::weakly_canonical(fs::absolute(path, ec), ec);
+  std::error_code missing;  // a path that does not exist yet is no link
+  for (int hops = 0; !ec && hops < 40 && fs::is_symlink(fs::symlink_status(p, missing)); ++hops) {
+    fs::path link = fs::read_symlink(p, ec);
+    if (ec) break;
+    p = fs::weakly_canonical(link.is_absolute() ? link : p.parent_path() / link, ec);
+  }
+  return p;
+}
+
+// Checks every output before anything is loaded: a path, distinct from every other output
+// and from the scene after resolving `.`, `..` and symbolic links, not a directory or other
+// non-file, in an existing folder this process may write in.
+bool checkOutputs(std::vector<Output>& outputs, const std::string& scene, std::ostream& err) {
+  std::error_code ec;
+  fs::path scenePath = resolve(scene, ec);
+  if (ec) scenePath.clear();
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    Output& o = outputs[i];
+    auto bad = [&](const std::string& what) {
+      err << "quack run: " << o.option << ' ' << o.path << ": " << what << '\n';
+      return false;
+    };
+    if (o.path.empty()) return bad("is empty");
+    ec.clear();
+    o.target = resolve(o.path, ec);
+    if (ec) return bad("cannot resolve the path: " + ec.message());
+    if (o.target.filename().empty()) return bad("names a directory, not a file");
+    fs::file_status st = fs::status(o.target, ec);
+    if (fs::is_directory(st)) return bad("is a directory; name a file to write");
+    if (fs::exists(st) && !fs::is_regular_file(st))
+      return bad("exists and is not a regular file (a device, pipe or socket)");
+    fs::path parent = o.target.parent_path();
+    ec.clear();
+    if (!fs::is_directory(parent, ec))
+      return bad("cannot write: the folder " + parent.string() + " does not exist");
+    if (access(parent.c_str(), W_OK | X_OK) != 0)
+      return bad("cannot write in " + parent.string() + ": " + errnoText(errno));
+    if (!scenePath.empty() && o.target == scenePath)
+      return bad("is the scene file; writing it would destroy the scene");
+    for (std::size_t k = 0; k < i; ++k) {
+      bool same = outputs[k].target == o.target;
+      if (!same && fs::exists(o.target, ec) && fs::exists(outputs[k].target, ec))
+        same = fs::equivalent(o.target, outputs[k].target, ec);
+      if (same) return bad("is the same file as " + outputs[k].option + ' ' + outputs[k].path);
+    }
+  }
+  return true;
+}
+
+void removeTemps(std::vector<Output>& outputs) {
+  for (Output& o : outputs) {
+    if (!o.temp.empty()) unlink(o.temp.c_str());
+    o.temp.clear();
+  }
+}
+
+// Writes `o.text` to a new temporary file beside the target, in chunks, stopping at a
+// signal; the file is flushed to disk (fsync) so that a full disk shows here, not later.
+bool writeTemp(Output& o, Progress& progress, std::size_t& written, std::size_t total,
+               std::ostream& err) {
+  int fd = -1;
+  for (int attempt = 0; attempt < 100 && fd < 0; ++attempt) {
+    o.temp =
+        o.target.string() + ".part-" + std::to_string(getpid()) + "-" + std::to_string(attempt);
+    fd = open(o.temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd < 0 && errno != EEXIST) break;
+  }
+  if (fd < 0) {
+    err << "quack run: cannot write " << o.path << ": " << errnoText(errno) << '\n';
+    o.temp.clear();
+    return false;
+  }
+  constexpr std::size_t kChunk = std::size_t{1} << 20;
+  const char* data = o.text.data();
+  std::size_t left = o.text.size();
+  while (left > 0) {
+    if (gSignal != 0) {
+      close(fd);
+      return false;
+    }
+    ssize_t n = write(fd, data, std::min(left, kChunk));
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      int e = n < 0 ? errno : ENOSPC;
+      close(fd);
+      err << "quack run: writing " << o.path << " failed: " << errnoText(e) << '\n';
+      return false;
+    }
+    data += n;
+    left -= static_cast<std::size_t>(n);
+    written += static_cast<std::size_t>(n);
+    progress.update(
+        [&] { return formatBytes(written) + " of " + formatBytes(total) + " (" + o.path + ")"; });
+  }
+  if (fsync(fd) != 0 && errno != EINVAL) {
+    int e = errno;
+    close(fd);
+    err << "quack run: writing " << o.path << " failed: " << errnoText(e) << '\n';
+    return false;
+  }
+  if (close(fd) != 0) {
+    err << "quack run: writing " << o.path << " failed: " << errnoText(errno) << '\n';
+    return false;
+  }
+  return true;
+}
+
+std::string timingJson(std::uint64_t steps, double loadMs, double buildMs, double simulateMs,
+                       double renderMs, double writeMs) {
+  char buf[512];
+  double msPerStep = steps > 0 ? simulateMs / static_cast<double>(steps) : 0.0;
+  std::snprintf(buf, sizeof buf,
+                "{\n \"steps\": %llu,\n \"ms_per_step\": %.6g,\n \"steps_per_s\": %.6g,\n"
+                " \"load_ms\": %.6g,\n \"build_ms\": %.6g,\n \"simulate_ms\": %.6g,\n"
+                " \"render_ms\": %.6g,\n \"write_ms\": %.6g\n}\n",
+                static_cast<unsigned long long>(steps), msPerStep,
+                msPerStep > 0.0 ? 1000.0 / msPerStep : 0.0, loadMs, buildMs, simulateMs, renderMs,
+                writeMs);
+  return buf;
+}
+
+double msSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
 }  // namespace
 
 int runScene(const RunOptions& options, std::ostream& out, std::ostream& err) {
-  Result<Scene> scene = loadScene(options.scene);
+  SignalGuard signals;
+  auto phase = [&](const char* name) {
+    if (options.onPhase) options.onPhase(name);
+  };
+  std::vector<Output> outputs;
+  outputs.push_back({"--out", options.out, {}, {}, {}});
+  if (!options.svg.empty()) outputs.push_back({"--svg", options.svg, {}, {}, {}});
+  if (!options.html.empty()) outputs.push_back({"--html", options.html, {}, {}, {}});
+  if (!options.timing.empty()) outputs.push_back({"--timing", options.timing, {}, {}, {}});
+  if (!checkOutputs(outputs, options.scene, err)) return kRunFailed;
+
+  Progress progress(err, !options.quiet, options.progressAfter);
+  // A long loop asks this whether to go on: it shows progress and stops at a signal.
+  auto bodiesProgress = [&](std::size_t done, std::size_t total) {
+    progress.update([&] {
+      return std::to_string(done) + (total ? " of " + std::to_string(total) : "") + " bodies";
+    });
+    return gSignal == 0;
+  };
+
+  phase("load");
+  auto t0 = Clock::now();
+  progress.begin("loading", options.scene);
+  Result<Scene> scene = loadScene(options.scene, bodiesProgress);
+  if (gSignal != 0) return interruptedStatus();
   if (!scene) {
     err << "quack run: " << scene.error().message << '\n';
-    return 2;
+    return kRunFailed;
   }
-  Result<SceneWorld> built = buildWorld(scene.value());
+  progress.end([&] { return std::to_string(scene->bodies.size()) + " bodies"; });
+  const double loadMs = msSince(t0);
+
+  phase("build");
+  t0 = Clock::now();
+  progress.begin("building the world", std::to_string(scene->bodies.size()) + " bodies");
+  Result<SceneWorld> built = buildWorld(scene.value(), bodiesProgress);
+  if (gSignal != 0) return interruptedStatus();
   if (!built) {
     err << "quack run: " << built.error().message << '\n';
-    return 2;
+    return kRunFailed;
   }
+  progress.end([&] { return "done in " + formatSeconds(progress.elapsed()); });
+  const double buildMs = msSince(t0);
   SceneWorld& sw = built.value();
-  std::vector<Output> outputs;
-  outputs.push_back({options.out, ""});
-  if (!options.svg.empty()) outputs.push_back({options.svg, ""});
-  if (!options.html.empty()) outputs.push_back({options.html, ""});
-  for (Output& o : outputs) {
-    if (!prepare(o, err)) {
-      for (const Output& p : outputs)
-        std::remove(p.temp.c_str());
-      return 2;
-    }
-  }
+  // The world has its own copy of everything now: free the parsed bodies (about 1 GB for a
+  // million generated bodies) before simulating.
+  std::vector<SceneBody>().swap(scene->bodies);
 
   ReplayOptions replayOptions;
   replayOptions.broadPhaseBoxes = options.htmlBoxes;
@@ -91,19 +362,16 @@ int runScene(const RunOptions& options, std::ostream& out, std::ostream& err) {
     replay->record(sw);
   }
 
+  phase("simulate");
   EventTotals totals;
-  const bool showProgress = !options.quiet;
-  const bool tty = isatty(fileno(stderr)) != 0;
-  auto start = Clock::now();
-  auto lastReport = start;
-  double stepMs = 0.0;
+  t0 = Clock::now();
+  progress.begin("simulating", std::to_string(options.steps) + " steps");
   for (std::uint64_t i = 0; i < options.steps; ++i) {
-    auto t0 = Clock::now();
+    if (gSignal != 0) return interruptedStatus();
     Status s = sw.world.step();
-    stepMs += std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
     if (!s) {
       err << "quack run: step " << i << ": " << s.message() << '\n';
-      return 2;
+      return kRunFailed;
     }
     const StepEvents& e = sw.world.events();
     totals.begin += e.begin.size();
@@ -111,37 +379,86 @@ int runScene(const RunOptions& options, std::ostream& out, std::ostream& err) {
     totals.hit += e.hit.size();
     totals.sensor += e.sensorBegin.size();
     if (replay) replay->record(sw);
-    auto now = Clock::now();
-    // Progress about once a second, only for runs that take that long.
-    if (showProgress && now - lastReport > std::chrono::seconds(1)) {
-      lastReport = now;
-      double elapsed = std::chrono::duration<double>(now - start).count();
+    progress.update([&] {
+      double elapsed = progress.elapsed();
       double rate = static_cast<double>(i + 1) / elapsed;
       double left = static_cast<double>(options.steps - i - 1) / rate;
       char line[160];
-      std::snprintf(line, sizeof line, "quack run: step %llu/%llu (%.0f%%), %.0f steps/s, %s left",
+      std::snprintf(line, sizeof line, "step %llu/%llu (%.0f%%), %s, %s left",
                     static_cast<unsigned long long>(i + 1),
                     static_cast<unsigned long long>(options.steps),
-                    100.0 * static_cast<double>(i + 1) / static_cast<double>(options.steps), rate,
-                    formatSeconds(left).c_str());
-      err << line << (tty ? "\r" : "\n") << std::flush;
+                    100.0 * static_cast<double>(i + 1) / static_cast<double>(options.steps),
+                    formatRate(rate).c_str(), formatSeconds(left).c_str());
+      return std::string(line);
+    });
+  }
+  const double simulateMs = msSince(t0);
+  progress.end([&] {
+    return std::to_string(options.steps) + " steps in " + formatSeconds(simulateMs / 1000.0);
+  });
+  if (gSignal != 0) return interruptedStatus();
+
+  phase("render");
+  t0 = Clock::now();
+  progress.begin("rendering", "the state file");
+  outputs[0].text = writeState(captureState(sw, totals));
+  std::size_t next = 1;
+  if (!options.svg.empty()) {
+    if (gSignal != 0) return interruptedStatus();
+    progress.update([] { return std::string("the SVG"); });
+    outputs[next++].text = renderSvg(sw, options.scene);
+  }
+  if (!options.html.empty()) {
+    if (gSignal != 0) return interruptedStatus();
+    progress.update([] { return std::string("the replay"); });
+    outputs[next++].text = replay->html(options.scene);
+  }
+  const double renderMs = msSince(t0);
+  progress.end([&] { return "done in " + formatSeconds(renderMs / 1000.0); });
+
+  // Every output to its temporary file; the timing file last, so it can say how long the
+  // others took.
+  phase("write");
+  t0 = Clock::now();
+  std::size_t total = 0, written = 0;
+  for (const Output& o : outputs)
+    total += o.text.size();
+  progress.begin("writing", formatBytes(total));
+  bool ok = true;
+  for (Output& o : outputs) {
+    if (&o == &outputs.back() && !options.timing.empty()) {
+      o.text = timingJson(options.steps, loadMs, buildMs, simulateMs, renderMs, msSince(t0));
+    }
+    if (!writeTemp(o, progress, written, total, err)) {
+      ok = false;
+      break;
     }
   }
-  double totalMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-  if (showProgress && tty && lastReport != start) err << '\n';
-  RunTiming timing{options.steps > 0 ? stepMs / static_cast<double>(options.steps) : 0.0, totalMs};
-
-  StateFile state = captureState(sw, totals, timing);
-  bool ok = finish(outputs[0], writeState(state), err);
-  std::size_t next = 1;
-  if (!options.svg.empty()) ok = finish(outputs[next++], renderSvg(sw, options.scene), err) && ok;
-  if (!options.html.empty()) ok = finish(outputs[next++], replay->html(options.scene), err) && ok;
-  if (!ok) return 2;
+  const double writeMs = msSince(t0);
+  if (ok && gSignal == 0) phase("commit");
+  if (!ok || gSignal != 0) {
+    removeTemps(outputs);
+    return gSignal != 0 ? interruptedStatus() : kRunFailed;
+  }
+  // All complete: rename each over its target.
+  for (Output& o : outputs) {
+    std::error_code ec;
+    fs::rename(o.temp, o.target, ec);
+    if (ec) {
+      err << "quack run: cannot move " << o.temp << " to " << o.path << ": " << ec.message()
+          << '\n';
+      removeTemps(outputs);
+      return kRunFailed;
+    }
+    o.temp.clear();
+  }
+  progress.end([&] { return formatBytes(total) + " in " + formatSeconds(writeMs / 1000.0); });
 
   std::size_t dynamicBodies = 0;
   for (BodyId b : sw.bodies) {
     if (sw.world.isValid(b) && sw.world.bodyType(b) == BodyType::dynamicBody) ++dynamicBodies;
   }
+  const double msPerStep = options.steps > 0 ? simulateMs / static_cast<double>(options.steps) : 0;
   char line[256];
   out << "scene     " << options.scene << '\n';
   std::snprintf(line, sizeof line, "bodies    %zu (%zu dynamic), %zu shapes\n",
@@ -162,16 +479,24 @@ int runScene(const RunOptions& options, std::ostream& out, std::ostream& err) {
       static_cast<unsigned long long>(totals.begin), static_cast<unsigned long long>(totals.end),
       static_cast<unsigned long long>(totals.hit), static_cast<unsigned long long>(totals.sensor));
   out << line;
-  std::snprintf(line, sizeof line, "speed     %.3f ms/step (%.0f steps/s), %.1f ms in all\n",
-                timing.msPerStep, timing.msPerStep > 0 ? 1000.0 / timing.msPerStep : 0.0, totalMs);
+  std::snprintf(line, sizeof line, "speed     %.3f ms/step (%s)\n", msPerStep,
+                formatRate(msPerStep > 0 ? 1000.0 / msPerStep : 0.0).c_str());
+  out << line;
+  std::snprintf(line, sizeof line,
+                "time      load %.1f ms, build %.1f ms, simulate %.1f ms, render %.1f ms, "
+                "write %.1f ms\n",
+                loadMs, buildMs, simulateMs, renderMs, writeMs);
   out << line;
   out << "state     " << options.out << '\n';
   if (!options.svg.empty()) out << "svg       " << options.svg << '\n';
   if (!options.html.empty()) {
-    out << "replay    " << options.html << " (" << replay->frameCount()
-        << " frames; open it in a browser)\n";
+    out << "replay    " << options.html << " (" << replay->frameCount() << " frames";
+    if (replay->shapesDrawn() < replay->shapesTotal())
+      out << ", " << replay->shapesDrawn() << " of " << replay->shapesTotal() << " shapes drawn";
+    out << "; open it in a browser)\n";
   }
-  return 0;
+  if (!options.timing.empty()) out << "timing    " << options.timing << '\n';
+  return kRunOk;
 }
 
 }  // namespace quack::app

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 #include "quack/geometry/bounds.hpp"
 #include "replay_page.hpp"
@@ -145,6 +146,20 @@ Aabb worldBounds(const SceneWorld& scene) {
   return b;
 }
 
+// Shapes on the world's valid bodies, and the stride that keeps at most `most` of them.
+std::size_t shapeCount(const SceneWorld& scene) {
+  std::size_t n = 0;
+  for (BodyId body : scene.bodies) {
+    if (scene.world.isValid(body)) n += scene.world.shapes(body).size();
+  }
+  return n;
+}
+
+std::size_t strideFor(std::size_t total, std::size_t most) {
+  most = std::max<std::size_t>(most, 1);
+  return std::max<std::size_t>(1, (total + most - 1) / most);
+}
+
 }  // namespace
 
 Outline outlineOf(const ShapeGeometry& geometry, float maxArcStep) {
@@ -169,7 +184,8 @@ Outline outlineOf(const ShapeGeometry& geometry, float maxArcStep) {
   return std::visit(Visitor{maxArcStep}, geometry);
 }
 
-std::string renderSvg(const SceneWorld& scene, const std::string& title) {
+std::string renderSvg(const SceneWorld& scene, const std::string& title,
+                      const SvgOptions& options) {
   Aabb b = inflate(worldBounds(scene), 0.5f);
   float w = b.upper.x - b.lower.x, h = b.upper.y - b.lower.y;
   // About 1000 pixels across the longer side; strokes stay a fixed share of the view.
@@ -190,12 +206,19 @@ std::string renderSvg(const SceneWorld& scene, const std::string& title) {
          "\" fill=\"#fbfaf7\"/>\n";
   out += "<g transform=\"scale(1,-1)\" stroke-width=\"" + std::to_string(stroke) +
          "\" stroke-linejoin=\"round\">\n";
+  // The size budget: every k-th shape, and nothing more once the shapes' text would leave
+  // too little room for the contacts and the note (a quarter of the budget).
+  const std::size_t total = shapeCount(scene);
+  const std::size_t stride = strideFor(total, options.maxShapes);
+  const std::size_t shapeBytes = options.maxBytes - options.maxBytes / 4;
+  std::size_t index = 0, drawn = 0;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     BodyId body = scene.bodies[i];
     if (!scene.world.isValid(body)) continue;
     Transform xf = scene.world.transform(body);
     BodyType type = scene.world.bodyType(body);
     for (ShapeId s : scene.world.shapes(body)) {
+      if (index++ % stride != 0 || out.size() >= shapeBytes) continue;
       Outline o = outlineOf(scene.world.geometry(s));
       bool sensor = scene.world.shapeDef(s).sensor;
       const char* fill = sensor                            ? "#7fb8ff33"
@@ -208,13 +231,20 @@ std::string renderSvg(const SceneWorld& scene, const std::string& title) {
         appendVec(d, transformPoint(xf, o.points[k]));
       }
       if (o.closed) d += 'Z';
-      out += "<path d=\"" + d + "\" fill=\"" + (o.closed ? fill : "none") + "\" stroke=\"" +
-             (sensor ? "#3b82f6" : "#4a4536") + "\"" +
-             (sensor ? " stroke-dasharray=\"0.1 0.1\"" : "") + "/>\n";
+      std::string path = "<path d=\"" + d + "\" fill=\"" + (o.closed ? fill : "none") +
+                         "\" stroke=\"" + (sensor ? "#3b82f6" : "#4a4536") + "\"" +
+                         (sensor ? " stroke-dasharray=\"0.1 0.1\"" : "") + "/>\n";
+      if (out.size() + path.size() > shapeBytes) continue;
+      out += path;
+      ++drawn;
     }
   }
+  std::size_t contacts = 0, contactsTotal = 0;
   for (const World::ContactView& c : scene.world.touchingContacts()) {
     for (int k = 0; k < c.manifold.pointCount; ++k) {
+      ++contactsTotal;
+      if (contacts >= options.maxContacts) continue;
+      ++contacts;
       Vec2 p = c.manifold.points[k].point;
       Vec2 q = p + 0.3f * c.manifold.normal;
       std::string line = "<line x1=\"";
@@ -233,56 +263,98 @@ std::string renderSvg(const SceneWorld& scene, const std::string& title) {
       out += line;
     }
   }
-  out += "</g>\n</svg>\n";
+  out += "</g>\n";
+  if (drawn < total || contacts < contactsTotal) {
+    // Said in the picture, top left, so a thinned picture is never mistaken for the scene.
+    std::string note = "drew " + std::to_string(drawn) + " of " + std::to_string(total) +
+                       " shapes and " + std::to_string(contacts) + " of " +
+                       std::to_string(contactsTotal) + " contact points (the SVG size budget)";
+    std::snprintf(buf, sizeof buf, "<text x=\"%g\" y=\"%g\" font-size=\"%g\" fill=\"#222\">",
+                  static_cast<double>(b.lower.x + 0.01f * w),
+                  static_cast<double>(-b.upper.y + 0.03f * h),
+                  static_cast<double>(0.02f * maxf(w, h)));
+    out += buf + xmlEscape(note) + "</text>\n";
+  }
+  out += "</svg>\n";
   return out;
 }
 
 ReplayRecorder::ReplayRecorder(const SceneWorld& scene, std::uint64_t totalSteps,
                                ReplayOptions options)
-    : options_(options) {
+    : options_(options), totalCalls_(totalSteps) {
+  shapesTotal_ = shapeCount(scene);
+  const std::size_t stride = strideFor(shapesTotal_, options_.maxShapes);
+  const std::size_t shapeBytes = options_.maxBytes / 4;
   std::string shapes = "[";
-  bool first = true;
+  std::size_t index = 0;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     BodyId body = scene.bodies[i];
     if (!scene.world.isValid(body)) continue;
     BodyType type = scene.world.bodyType(body);
     int moving = -1;
-    if (type != BodyType::staticBody) {
-      moving = static_cast<int>(moving_.size());
-      moving_.push_back(static_cast<std::uint32_t>(i));
-    }
     Transform xf = scene.world.transform(body);
     for (ShapeId s : scene.world.shapes(body)) {
+      if (index++ % stride != 0 || shapes.size() >= shapeBytes) continue;
       Outline o = outlineOf(scene.world.geometry(s));
-      if (!first) shapes += ',';
-      first = false;
-      shapes += "{\"b\":" + std::to_string(moving) + ",\"k\":\"" + kindName(type) +
-                "\",\"s\":" + (scene.world.shapeDef(s).sensor ? "1" : "0") +
-                ",\"c\":" + (o.closed ? "1" : "0") + ",\"n\":" + jsonString(scene.names[i]) +
-                ",\"x\":[";
-      appendVec(shapes, xf.p);
-      shapes += ',';
-      appendNumber(shapes, static_cast<double>(xf.q.angle()));
-      shapes += "],\"o\":[";
-      for (std::size_t k = 0; k < o.points.size(); ++k) {
-        if (k) shapes += ',';
-        appendVec(shapes, o.points[k]);
+      float reach = 0.0f;
+      for (Vec2 p : o.points)
+        reach = maxf(reach, length(p));
+      if (type != BodyType::staticBody && moving < 0) {
+        moving = static_cast<int>(moving_.size());
+        moving_.push_back(static_cast<std::uint32_t>(i));
+        reach_.push_back(0.0f);
       }
-      shapes += "]}";
+      if (moving >= 0)
+        reach_[static_cast<std::size_t>(moving)] =
+            maxf(reach_[static_cast<std::size_t>(moving)], reach);
+      std::string entry = shapesDrawn_ > 0 ? "," : "";
+      entry += "{\"b\":" + std::to_string(moving) + ",\"k\":\"" + kindName(type) +
+               "\",\"s\":" + (scene.world.shapeDef(s).sensor ? "1" : "0") +
+               ",\"c\":" + (o.closed ? "1" : "0") + ",\"n\":" + jsonString(scene.names[i]) +
+               ",\"x\":[";
+      appendVec(entry, xf.p);
+      entry += ',';
+      appendNumber(entry, static_cast<double>(xf.q.angle()));
+      entry += "],\"o\":[";
+      for (std::size_t k = 0; k < o.points.size(); ++k) {
+        if (k) entry += ',';
+        appendVec(entry, o.points[k]);
+      }
+      entry += "]}";
+      if (shapes.size() + entry.size() > shapeBytes) continue;
+      shapes += entry;
+      ++shapesDrawn_;
+      if (type == BodyType::staticBody)
+        bounds_ = merge(bounds_, std::visit([&](const auto& g) { return computeAabb(g, xf); },
+                                            scene.world.geometry(s)));
     }
   }
   shapes_ = shapes + "]";
-  // Space the frames: at most maxFrames, and at most maxNumbers numbers of poses.
-  std::size_t perFrame = 3 * moving_.size() + 8;
-  std::uint64_t byNumbers = options_.maxNumbers / std::max<std::size_t>(perFrame, 1);
-  std::uint64_t cap = std::max<std::uint64_t>(
-      2, std::min<std::uint64_t>(static_cast<std::uint64_t>(options_.maxFrames), byNumbers));
+  // Frames: at most maxFrames to begin with (a call every `every_`); thin() halves them
+  // whenever their text outgrows the budget.
+  std::uint64_t cap = std::max<std::uint64_t>(2, static_cast<std::uint64_t>(options_.maxFrames));
   every_ = std::max<std::uint64_t>(1, (totalSteps + cap - 1) / cap);
+}
+
+void ReplayRecorder::thin() {
+  std::uint64_t every = 2 * every_;
+  std::vector<std::pair<std::uint64_t, std::string>> kept;
+  std::size_t bytes = 0;
+  for (auto& f : frames_) {
+    if (f.first % every == 0 || f.first + 1 == totalCalls_) {
+      bytes += f.second.size() + 2;
+      kept.push_back(std::move(f));
+    }
+  }
+  frames_ = std::move(kept);
+  frameBytes_ = bytes;
+  every_ = every;
 }
 
 void ReplayRecorder::record(const SceneWorld& scene) {
   std::uint64_t call = calls_++;
-  if (call % every_ != 0) return;
+  // Every `every_`-th call, and the last one: the replay always ends where the run did.
+  if (call % every_ != 0 && call + 1 != totalCalls_) return;
   std::string f = "{\"t\":";
   appendNumber(f, scene.world.time());
   f += ",\"p\":[";
@@ -297,27 +369,36 @@ void ReplayRecorder::record(const SceneWorld& scene) {
     appendVec(f, xf.p);
     f += ',';
     appendNumber(f, static_cast<double>(xf.q.angle()));
+    bounds_ =
+        merge(bounds_, Aabb{xf.p - Vec2{reach_[k], reach_[k]}, xf.p + Vec2{reach_[k], reach_[k]}});
   }
   f += "],\"c\":[";
-  bool first = true;
+  std::size_t contacts = 0;
   for (const World::ContactView& c : scene.world.touchingContacts()) {
     for (int k = 0; k < c.manifold.pointCount; ++k) {
-      if (!first) f += ',';
-      first = false;
+      if (contacts == options_.maxContactsPerFrame) {
+        contactsCapped_ = true;
+        break;
+      }
+      if (contacts++) f += ',';
       appendVec(f, c.manifold.points[k].point);
       f += ',';
       appendVec(f, c.manifold.normal);
     }
+    if (contacts == options_.maxContactsPerFrame) break;
   }
   f += ']';
   if (options_.broadPhaseBoxes) {
     f += ",\"a\":[";
-    bool firstBox = true;
+    std::size_t boxes = 0;
     scene.world.broadPhase().queryAabb(Aabb{{-1e9f, -1e9f}, {1e9f, 1e9f}},
                                        [&](ProxyId id, std::uint64_t) {
+                                         if (boxes == options_.maxBoxesPerFrame) {
+                                           contactsCapped_ = true;
+                                           return false;
+                                         }
                                          Aabb fat = scene.world.broadPhase().fatBox(id);
-                                         if (!firstBox) f += ',';
-                                         firstBox = false;
+                                         if (boxes++) f += ',';
                                          appendVec(f, fat.lower);
                                          f += ',';
                                          appendVec(f, fat.upper);
@@ -326,19 +407,32 @@ void ReplayRecorder::record(const SceneWorld& scene) {
     f += ']';
   }
   f += '}';
-  if (!frameData_.empty()) frameData_ += ",\n";
-  frameData_ += f;
-  ++frames_;
-  bounds_ = merge(bounds_, worldBounds(scene));
+  frameBytes_ += f.size() + 2;
+  frames_.emplace_back(call, std::move(f));
+  // The frames' share of the budget: what the shapes and the page leave.
+  const std::size_t fixed = shapes_.size() + std::strlen(kReplayPage) + 4096;
+  const std::size_t budget = options_.maxBytes > fixed ? options_.maxBytes - fixed : 0;
+  while (frameBytes_ > budget && frames_.size() > 2)
+    thin();
 }
 
 std::string ReplayRecorder::html(const std::string& title) const {
   std::string data = "{\"title\":" + jsonString(title) + ",\"bounds\":[";
-  appendVec(data, bounds_.lower);
+  Aabb bounds = bounds_.lower.x <= bounds_.upper.x ? bounds_ : Aabb{{-1, -1}, {1, 1}};
+  appendVec(data, bounds.lower);
   data += ',';
-  appendVec(data, bounds_.upper);
+  appendVec(data, bounds.upper);
   data += "],\"boxes\":" + std::string(options_.broadPhaseBoxes ? "true" : "false") +
-          ",\"shapes\":" + shapes_ + ",\"frames\":[\n" + frameData_ + "]}";
+          ",\"drawn\":" + std::to_string(shapesDrawn_) +
+          ",\"total\":" + std::to_string(shapesTotal_) +
+          ",\"capped\":" + (contactsCapped_ ? "true" : "false") + ",\"shapes\":" + shapes_ +
+          ",\"frames\":[\n";
+  data.reserve(data.size() + frameBytes_ + 8);
+  for (std::size_t k = 0; k < frames_.size(); ++k) {
+    if (k) data += ",\n";
+    data += frames_[k].second;
+  }
+  data += "]}";
   std::string page = kReplayPage;
   const std::string titleMark = "@TITLE@", dataMark = "@DATA@";
   page.replace(page.find(titleMark), titleMark.size(), xmlEscape(title));

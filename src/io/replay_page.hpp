@@ -29,6 +29,7 @@ inline constexpr const char* kReplayPage = R"QUACKPAGE(<!doctype html>
   <button id="zoomIn" title="zoom in (+, wheel)">+</button>
   <button id="zoomOut" title="zoom out (-, wheel)">&minus;</button>
   <button id="fit" title="fit (f)">fit</button>
+  <span id="note"></span>
 </div>
 <canvas id="view"></canvas>
 <script type="application/json" id="quack-data">@DATA@</script>
@@ -44,6 +45,11 @@ inline constexpr const char* kReplayPage = R"QUACKPAGE(<!doctype html>
   const state = { frame: 0, playing: true, position: 0, cx: 0, cy: 0, scale: 1, last: null };
   ui.scrub.max = String(Math.max(0, frames.length - 1));
   if (!data.boxes) ui.boxes.disabled = true;
+  // What the size budget left out (docs/scenes.md, "Size budgets").
+  const notes = [];
+  if (data.drawn < data.total) notes.push("showing " + data.drawn + " of " + data.total + " shapes");
+  if (data.capped) notes.push("contacts and boxes capped per frame");
+  if (notes.length) document.getElementById("note").textContent = notes.join("; ") + " (size budget)";
 
   const colors = { static: "#b9b4a8", kinematic: "#9cc3e6", dynamic: "#f2b45a" };
 

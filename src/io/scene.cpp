@@ -1,12 +1,18 @@
 #include "quack/io/scene.hpp"
 
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <random>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
+#include "quack/geometry/bounds.hpp"
+#include "quack/geometry/mass.hpp"
 #include "quack/io/shape_json.hpp"
 
 namespace quack {
@@ -14,10 +20,17 @@ namespace {
 
 using nlohmann::json;
 
+// How often a long loop reports progress (and looks whether it should stop), in bodies.
+constexpr std::size_t kProgressEvery = 4096;
+
 // The scene being parsed: its file name and categories, for messages and filters.
 struct Parser {
   std::string file;
   std::vector<std::string> categories;
+  const SceneProgress* progress = nullptr;
+
+  // False when the caller asked to stop.
+  bool tick(std::size_t done) const { return !progress || !*progress || (*progress)(done, 0); }
 
   Error error(const std::string& path, const std::string& what) const {
     return fail(file + ": " + (path.empty() ? "" : path + ": ") + what);
@@ -37,6 +50,37 @@ Status checkKeys(const json& j, const std::string& path, std::initializer_list<c
 
 std::string join(const std::string& path, const char* key) {
   return path.empty() ? key : path + "." + key;
+}
+
+// A number for a message: "1e+30", "0.5".
+std::string show(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", x);
+  return buf;
+}
+
+std::string show(Vec2 v) {
+  return "[" + show(static_cast<double>(v.x)) + ", " + show(static_cast<double>(v.y)) + "]";
+}
+
+// Coordinates beyond the broad phase's limit cannot be stored (broad_phase.hpp).
+bool withinCoordinateLimit(Vec2 v) {
+  return std::fabs(v.x) <= kMaxCoordinate && std::fabs(v.y) <= kMaxCoordinate;
+}
+
+const std::string& coordinateLimitText() {
+  static const std::string text =
+      "the coordinate limit (+-" + show(static_cast<double>(kMaxCoordinate)) + " m)";
+  return text;
+}
+
+// The float `f` (already checked finite) at most `hi`; `unit` ends the message.
+Status atMost(float f, float hi, const std::string& path, const char* unit) {
+  if (f > hi) {
+    return fail(path + ": must be at most " + show(static_cast<double>(hi)) + unit + ", got " +
+                show(static_cast<double>(f)));
+  }
+  return {};
 }
 
 Result<float> number(const json& j, const char* key, const std::string& path, float fallback) {
@@ -124,10 +168,19 @@ Result<ShapeDef> parseMaterial(const Parser& p, const json& j, const std::string
   ShapeDef def;
   Result<float> density = nonNegative(j, "density", path, def.density);
   if (!density) return density.error();
+  if (Status s = atMost(*density, kSceneMaxDensity, join(path, "density"), " kg/m^2"); !s)
+    return fail(s.message());
   Result<float> friction = nonNegative(j, "friction", path, def.friction);
   if (!friction) return friction.error();
+  if (Status s = atMost(*friction, kSceneMaxFriction, join(path, "friction"), ""); !s)
+    return fail(s.message());
   Result<float> restitution = nonNegative(j, "restitution", path, def.restitution);
   if (!restitution) return restitution.error();
+  if (Status s = atMost(*restitution, kSceneMaxRestitution, join(path, "restitution"),
+                        " (1 is a perfectly elastic bounce)");
+      !s) {
+    return fail(s.message());
+  }
   Result<bool> sensor = boolean(j, "sensor", path, false);
   if (!sensor) return sensor.error();
   def.density = *density;
@@ -153,7 +206,7 @@ Result<std::vector<SceneShape>> parseSceneShape(const Parser& p, const json& j,
   if (!def) return def.error();
   std::vector<SceneShape> out;
   for (ShapeGeometry& g : shape->geometries())
-    out.push_back({std::move(g), *def});
+    out.push_back({std::move(g), *def, path});
   return out;
 }
 
@@ -167,6 +220,7 @@ Result<SceneChain> parseChain(const Parser& p, const json& j, const std::string&
     return fail(s.message());
   }
   SceneChain chain;
+  chain.path = path;
   if (!j.contains("points")) return fail(path + ".points: missing");
   const json& pts = j.at("points");
   if (!pts.is_array()) return fail(path + ".points: must be an array of [x, y]");
@@ -205,6 +259,58 @@ Result<BodyType> parseBodyType(const json& j, const std::string& path, BodyType 
   return fail(join(path, "type") + ": must be \"static\", \"kinematic\" or \"dynamic\"");
 }
 
+// Where a shape of a body is, for messages: its JSON path, and for a generated body the
+// body's name too ("generate[0]: body \"rain0_7\"").
+std::string shapeWhere(const SceneBody& b, const std::string& shapePath) {
+  if (b.path.rfind("generate", 0) == 0) return shapePath + ": body \"" + b.name + "\"";
+  return shapePath;
+}
+
+// What the world would refuse or overflow on, named in the scene's terms: every shape and
+// chain point inside the coordinate limit at the body's pose, and every mass and rotational
+// inertia (about the body origin, in double) at most kSceneMaxMass, so that a body's mass
+// stays finite as a float whatever it is made of.
+Status checkBodyShapes(const SceneBody& b) {
+  const Transform xf = makeTransform(b.def.position, b.def.angle);
+  double mass = 0.0, inertia = 0.0;
+  for (const SceneShape& shape : b.shapes) {
+    Aabb box = std::visit([&](const auto& g) { return computeAabb(g, xf); }, shape.geometry);
+    if (!withinCoordinateLimit(box.lower) || !withinCoordinateLimit(box.upper)) {
+      return fail(shapeWhere(b, shape.path) + ": reaches " + show(box.lower) + ".." +
+                  show(box.upper) + ", beyond " + coordinateLimitText());
+    }
+    MassProperties m = std::visit([&](const auto& g) { return computeMass(g, shape.def.density); },
+                                  shape.geometry);
+    double c2 = static_cast<double>(m.centroid.x) * static_cast<double>(m.centroid.x) +
+                static_cast<double>(m.centroid.y) * static_cast<double>(m.centroid.y);
+    double shapeInertia = static_cast<double>(m.inertia) + static_cast<double>(m.mass) * c2;
+    if (!std::isfinite(m.mass) || !std::isfinite(m.inertia) ||
+        static_cast<double>(m.mass) > kSceneMaxMass || shapeInertia > kSceneMaxMass) {
+      return fail(shapeWhere(b, shape.path + ".density") + ": the shape's mass (" +
+                  show(static_cast<double>(m.mass)) + " kg) or rotational inertia (" +
+                  show(shapeInertia) + " kg m^2) is above " + show(kSceneMaxMass) +
+                  "; use a lower density or a smaller shape");
+    }
+    mass += static_cast<double>(m.mass);
+    inertia += shapeInertia;
+  }
+  if (mass > kSceneMaxMass || inertia > kSceneMaxMass) {
+    return fail(b.path + ".shapes: the body's mass (" + show(mass) +
+                " kg) or rotational inertia (" + show(inertia) + " kg m^2) is above " +
+                show(kSceneMaxMass));
+  }
+  for (const SceneChain& chain : b.chains) {
+    for (std::size_t k = 0; k < chain.points.size(); ++k) {
+      Vec2 w = transformPoint(xf, chain.points[k]);
+      if (!withinCoordinateLimit(w)) {
+        return fail(chain.path + ".points[" + std::to_string(k) + "]: at " + show(w) +
+                    " in the world, beyond " + coordinateLimitText());
+      }
+    }
+  }
+  return {};
+}
+
 Result<SceneBody> parseBody(const Parser& p, const json& j, const std::string& path,
                             std::size_t index) {
   if (!j.is_object()) return fail(path + ": must be an object");
@@ -214,6 +320,7 @@ Result<SceneBody> parseBody(const Parser& p, const json& j, const std::string& p
     return fail(s.message());
   }
   SceneBody body;
+  body.path = path;
   body.name = "body" + std::to_string(index);
   if (j.contains("name")) {
     if (!j.at("name").is_string()) return fail(path + ".name: must be a string");
@@ -223,12 +330,27 @@ Result<SceneBody> parseBody(const Parser& p, const json& j, const std::string& p
   if (!type) return type.error();
   Result<Vec2> pos = vec(j, "pos", path, {});
   if (!pos) return pos.error();
+  if (!withinCoordinateLimit(*pos))
+    return fail(path + ".pos: " + show(*pos) + " is beyond " + coordinateLimitText());
   Result<float> angle = number(j, "angle", path, 0.0f);
   if (!angle) return angle.error();
+  if (Status s = atMost(std::fabs(*angle), kSceneMaxAngle, path + ".angle", " rad in size"); !s)
+    return fail(s.message());
   Result<Vec2> vel = vec(j, "vel", path, {});
   if (!vel) return vel.error();
+  if (Status s = atMost(
+          static_cast<float>(std::hypot(static_cast<double>(vel->x), static_cast<double>(vel->y))),
+          kSceneMaxSpeed, path + ".vel", " m/s in speed");
+      !s) {
+    return fail(s.message());
+  }
   Result<float> angvel = number(j, "angvel", path, 0.0f);
   if (!angvel) return angvel.error();
+  if (Status s =
+          atMost(std::fabs(*angvel), kSceneMaxAngularSpeed, path + ".angvel", " rad/s in size");
+      !s) {
+    return fail(s.message());
+  }
   Result<bool> bullet = boolean(j, "bullet", path, false);
   if (!bullet) return bullet.error();
   body.def.type = *type;
@@ -256,33 +378,70 @@ Result<SceneBody> parseBody(const Parser& p, const json& j, const std::string& p
       body.shapes.insert(body.shapes.end(), s->begin(), s->end());
     }
   }
+  if (Status s = checkBodyShapes(body); !s) return fail(s.message());
   return body;
 }
 
 // ---- generators ------------------------------------------------------------------------
 
-constexpr int kMaxGenerated = 1000000;
-
-SceneBody makeBody(std::string name, BodyType type, Vec2 pos, float angle, ShapeGeometry g,
-                   const ShapeDef& def) {
+SceneBody makeBody(std::string name, const std::string& path, BodyType type, Vec2 pos, float angle,
+                   ShapeGeometry g, const ShapeDef& def) {
   SceneBody b;
   b.name = std::move(name);
+  b.path = path;
   b.def.type = type;
   b.def.position = pos;
   b.def.angle = angle;
-  b.shapes.push_back({std::move(g), def});
+  b.shapes.push_back({std::move(g), def, path});
   return b;
 }
 
-// One random shape of size about `size` for rain and fields.
-ShapeGeometry randomShape(std::mt19937& rng, const std::vector<std::string>& kinds, float lo,
-                          float hi) {
+// A generator's size key: a number in kSceneMinGeneratedSize..kSceneMaxGeneratedSize
+// metres, checked before anything is made so that every shape the generator makes is one
+// the geometry accepts.
+Result<float> generatedSize(const json& g, const char* key, const std::string& path,
+                            float fallback) {
+  Result<float> f = number(g, key, path, fallback);
+  if (!f) return f;
+  if (!(*f >= kSceneMinGeneratedSize && *f <= kSceneMaxGeneratedSize)) {
+    return fail(join(path, key) + ": must be in " +
+                show(static_cast<double>(kSceneMinGeneratedSize)) + ".." +
+                show(static_cast<double>(kSceneMaxGeneratedSize)) + " m, got " +
+                show(static_cast<double>(*f)));
+  }
+  return f;
+}
+
+// The farthest a generator reaches from the origin along either axis, in double, checked
+// against the coordinate limit; `field` is the key to blame.
+Status checkReach(double reach, const std::string& field, const std::string& what) {
+  if (!(reach <= static_cast<double>(kMaxCoordinate))) {
+    return fail(field + ": " + what + " reaches " + show(reach) + " m from the origin, beyond " +
+                coordinateLimitText());
+  }
+  return {};
+}
+
+double absd(float x) {
+  return std::fabs(static_cast<double>(x));
+}
+
+// One random shape of size about `s` for rain and fields. A shape the geometry refuses is
+// an error (sizes are checked up front, so this is a second line of defence).
+Result<ShapeGeometry> randomShape(std::mt19937& rng, const std::vector<std::string>& kinds,
+                                  float lo, float hi) {
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   const std::string& kind = kinds[static_cast<std::size_t>(rng() % kinds.size())];
   float s = lo + (hi - lo) * u(rng);
-  if (kind == "circle") return makeCircle({}, s).value();
-  if (kind == "box") return makeBox(s, s * (0.5f + 0.5f * u(rng))).value();
-  if (kind == "capsule") return makeCapsule({-s, 0}, {s, 0}, 0.5f * s).value();
+  auto wrap = [&](auto made) -> Result<ShapeGeometry> {
+    if (!made)
+      return fail("cannot make a " + kind + " of size " + show(static_cast<double>(s)) +
+                  " m: " + made.error().message);
+    return ShapeGeometry{*made};
+  };
+  if (kind == "circle") return wrap(makeCircle({}, s));
+  if (kind == "box") return wrap(makeBox(s, s * (0.5f + 0.5f * u(rng))));
+  if (kind == "capsule") return wrap(makeCapsule({-s, 0}, {s, 0}, 0.5f * s));
   // A random convex polygon: 3 to 8 points on a circle.
   int n = 3 + static_cast<int>(rng() % 6);
   std::vector<Vec2> pts;
@@ -290,7 +449,20 @@ ShapeGeometry randomShape(std::mt19937& rng, const std::vector<std::string>& kin
     float a = 2.0f * kPi * (static_cast<float>(i) + 0.6f * u(rng)) / static_cast<float>(n);
     pts.push_back(s * Vec2{std::cos(a), std::sin(a)});
   }
-  return makePolygon(pts).value();
+  return wrap(makePolygon(pts));
+}
+
+// Appends a generated body after checking it as a listed body is checked; reports
+// progress and stops when asked.
+Status addGenerated(const Parser& p, SceneBody body, std::vector<SceneBody>& out) {
+  if (out.size() >= kSceneMaxBodies) {
+    return fail(body.path + ": more than " + std::to_string(kSceneMaxBodies) +
+                " bodies in the scene");
+  }
+  if (Status s = checkBodyShapes(body); !s) return s;
+  out.push_back(std::move(body));
+  if (out.size() % kProgressEvery == 0 && !p.tick(out.size())) return fail("interrupted");
+  return {};
 }
 
 Status generate(const Parser& p, const json& g, const std::string& path, std::size_t index,
@@ -301,6 +473,7 @@ Status generate(const Parser& p, const json& g, const std::string& path, std::si
   const std::string kind = g.at("kind").get<std::string>();
   const std::string prefix = kind + std::to_string(index) + "_";
   auto material = [&]() { return parseMaterial(p, g, path); };
+  // Every key is checked before the first body is made.
   if (kind == "pyramid") {
     if (Status s = checkKeys(
             g, path,
@@ -310,22 +483,33 @@ Status generate(const Parser& p, const json& g, const std::string& path, std::si
     }
     Result<int> rows = integer(g, "rows", path, 10, 1, 1000);
     if (!rows) return rows.error();
-    Result<float> half = number(g, "half", path, 0.5f);
+    Result<float> half = generatedSize(g, "half", path, 0.5f);
     if (!half) return half.error();
-    if (*half <= 0.0f) return fail(path + ".half: must be > 0");
     Result<Vec2> pos = vec(g, "pos", path, {0.0f, *half});
     if (!pos) return pos.error();
     Result<ShapeDef> def = material();
     if (!def) return def.error();
-    Polygon box = makeBox(*half, *half).value();
+    const double h = static_cast<double>(*half), r = static_cast<double>(*rows);
+    if (Status s = checkReach(std::max(absd(pos->x) + r * h, absd(pos->y) + 2.0 * r * h),
+                              path + ".pos", "the pyramid");
+        !s) {
+      return s;
+    }
+    Result<Polygon> box = makeBox(*half, *half);
+    if (!box) return fail(path + ".half: " + box.error().message);
     int n = 0;
     for (int row = 0; row < *rows; ++row) {
       for (int i = 0; i < *rows - row; ++i) {
         float x = pos->x + (static_cast<float>(i) - 0.5f * static_cast<float>(*rows - row - 1)) *
                                2.0f * *half;
         float y = pos->y + static_cast<float>(row) * 2.0f * *half;
-        out.push_back(
-            makeBody(prefix + std::to_string(n++), BodyType::dynamicBody, {x, y}, 0.0f, box, *def));
+        if (Status s = addGenerated(p,
+                                    makeBody(prefix + std::to_string(n++), path,
+                                             BodyType::dynamicBody, {x, y}, 0.0f, *box, *def),
+                                    out);
+            !s) {
+          return s;
+        }
       }
     }
     return {};
@@ -338,7 +522,7 @@ Status generate(const Parser& p, const json& g, const std::string& path, std::si
         !s) {
       return fail(s.message());
     }
-    Result<int> count = integer(g, "count", path, 100, 1, kMaxGenerated);
+    Result<int> count = integer(g, "count", path, 100, 1, static_cast<int>(kSceneMaxBodies));
     if (!count) return count.error();
     Result<Vec2> pos = vec(g, "pos", path, rain ? Vec2{0, 15} : Vec2{0, 0});
     if (!pos) return pos.error();
@@ -347,11 +531,22 @@ Status generate(const Parser& p, const json& g, const std::string& path, std::si
     if (size->x < 0.0f || size->y < 0.0f) return fail(path + ".size: must be >= 0");
     Result<int> seed = integer(g, "seed", path, 1, 0, 2147483647);
     if (!seed) return seed.error();
-    Result<float> lo = number(g, "min", path, 0.25f);
+    Result<float> lo = generatedSize(g, "min", path, 0.25f);
     if (!lo) return lo.error();
-    Result<float> hi = number(g, "max", path, 0.5f);
+    Result<float> hi = generatedSize(g, "max", path, std::max(0.5f, *lo));
     if (!hi) return hi.error();
-    if (*lo <= 0.0f || *hi < *lo) return fail(path + ".min: shape sizes need 0 < min <= max");
+    if (*hi < *lo) {
+      return fail(path + ".max: must be >= min (" + show(static_cast<double>(*lo)) + "), got " +
+                  show(static_cast<double>(*hi)));
+    }
+    // A shape of size s reaches at most 1.5 s from its centre (a capsule).
+    const double margin = 1.5 * static_cast<double>(*hi);
+    if (Status s = checkReach(
+            std::max(absd(pos->x) + absd(size->x), absd(pos->y) + absd(size->y)) + margin,
+            path + ".size", "the " + kind);
+        !s) {
+      return s;
+    }
     std::vector<std::string> kinds = {"circle", "box", "capsule", "polygon"};
     if (g.contains("shapes")) {
       const json& k = g.at("shapes");
@@ -376,8 +571,13 @@ Status generate(const Parser& p, const json& g, const std::string& path, std::si
     for (int i = 0; i < *count; ++i) {
       Vec2 at{pos->x + size->x * u(rng), pos->y + size->y * u(rng)};
       float angle = kPi * u(rng);
-      out.push_back(makeBody(prefix + std::to_string(i), *type, at, angle,
-                             randomShape(rng, kinds, *lo, *hi), *def));
+      Result<ShapeGeometry> shape = randomShape(rng, kinds, *lo, *hi);
+      if (!shape) return fail(path + ".min: " + shape.error().message);
+      if (Status s = addGenerated(
+              p, makeBody(prefix + std::to_string(i), path, *type, at, angle, *shape, *def), out);
+          !s) {
+        return s;
+      }
     }
     return {};
   }
@@ -388,23 +588,42 @@ Status generate(const Parser& p, const json& g, const std::string& path, std::si
         !s) {
       return fail(s.message());
     }
-    Result<int> count = integer(g, "count", path, 20, 1, kMaxGenerated);
+    Result<int> count = integer(g, "count", path, 20, 1, static_cast<int>(kSceneMaxBodies));
     if (!count) return count.error();
     Result<Vec2> half = vec(g, "half", path, {0.5f, 0.5f});
     if (!half) return half.error();
-    if (half->x <= 0.0f || half->y <= 0.0f) return fail(path + ".half: must be > 0");
+    for (float h : {half->x, half->y}) {
+      if (!(h >= kSceneMinGeneratedSize && h <= kSceneMaxGeneratedSize)) {
+        return fail(path + ".half: both must be in " +
+                    show(static_cast<double>(kSceneMinGeneratedSize)) + ".." +
+                    show(static_cast<double>(kSceneMaxGeneratedSize)) + " m, got " + show(*half));
+      }
+    }
     Result<Vec2> pos = vec(g, "pos", path, {0.0f, -half->y});
     if (!pos) return pos.error();
     Result<ShapeDef> def = material();
     if (!def) return def.error();
+    if (Status s = checkReach(
+            std::max(absd(pos->x) + static_cast<double>(*count) * static_cast<double>(half->x),
+                     absd(pos->y) + static_cast<double>(half->y)),
+            path + ".count", "the floor of tiles");
+        !s) {
+      return s;
+    }
     // Separate static bodies laid flush: the floor a box slides over in the ghost-collision
     // tests.
-    Polygon tile = makeBox(half->x, half->y).value();
+    Result<Polygon> tile = makeBox(half->x, half->y);
+    if (!tile) return fail(path + ".half: " + tile.error().message);
     for (int i = 0; i < *count; ++i) {
       Vec2 at{pos->x + (2.0f * static_cast<float>(i) - static_cast<float>(*count - 1)) * half->x,
               pos->y};
-      out.push_back(
-          makeBody(prefix + std::to_string(i), BodyType::staticBody, at, 0.0f, tile, *def));
+      if (Status s = addGenerated(p,
+                                  makeBody(prefix + std::to_string(i), path, BodyType::staticBody,
+                                           at, 0.0f, *tile, *def),
+                                  out);
+          !s) {
+        return s;
+      }
     }
     return {};
   }
@@ -422,7 +641,13 @@ Result<WorldDef> parseWorld(const json& j, const std::string& path) {
   Result<float> dt = number(j, "dt", path, def.timeStep);
   if (!dt) return dt.error();
   if (*dt <= 0.0f) return fail(path + ".dt: must be > 0");
-  Result<int> substeps = integer(j, "substeps", path, def.substeps, 1, 64);
+  if (Status s = atMost(*dt, kSceneMaxTimeStep, path + ".dt", " s"); !s) return fail(s.message());
+  if (double g = std::hypot(static_cast<double>(gravity->x), static_cast<double>(gravity->y));
+      g > static_cast<double>(kSceneMaxGravity)) {
+    return fail(path + ".gravity: must be at most " + show(static_cast<double>(kSceneMaxGravity)) +
+                " m/s^2 in size, got " + show(g));
+  }
+  Result<int> substeps = integer(j, "substeps", path, def.substeps, 1, kSceneMaxSubsteps);
   if (!substeps) return substeps.error();
   def.gravity = *gravity;
   def.timeStep = *dt;
@@ -438,8 +663,9 @@ Result<WorldDef> parseWorld(const json& j, const std::string& path) {
 
 }  // namespace
 
-Result<Scene> parseScene(std::string_view text, const std::string& fileName) {
-  Parser p{fileName, {}};
+Result<Scene> parseScene(std::string_view text, const std::string& fileName,
+                         const SceneProgress& progress) {
+  Parser p{fileName, {}, &progress};
   json root;
   try {
     root = json::parse(text);
@@ -478,10 +704,15 @@ Result<Scene> parseScene(std::string_view text, const std::string& fileName) {
   if (root.contains("bodies")) {
     const json& bodies = root.at("bodies");
     if (!bodies.is_array()) return p.error("bodies", "must be an array");
+    if (bodies.size() > kSceneMaxBodies) {
+      return p.error("bodies",
+                     "more than " + std::to_string(kSceneMaxBodies) + " bodies in the scene");
+    }
     for (std::size_t i = 0; i < bodies.size(); ++i) {
       Result<SceneBody> b = parseBody(p, bodies[i], "bodies[" + std::to_string(i) + "]", i);
       if (!b) return p.relabel(b.error());
       scene.bodies.push_back(std::move(b).value());
+      if ((i + 1) % kProgressEvery == 0 && !p.tick(i + 1)) return p.error("", "interrupted");
     }
   }
   if (root.contains("generate")) {
@@ -492,51 +723,65 @@ Result<Scene> parseScene(std::string_view text, const std::string& fileName) {
           !s) {
         return p.relabel(fail(s.message()));
       }
-      if (scene.bodies.size() > static_cast<std::size_t>(kMaxGenerated)) {
-        return p.error("generate[" + std::to_string(i) + "]",
-                       "more than 1000000 bodies in the scene");
-      }
     }
   }
   return scene;
 }
 
-Result<Scene> loadScene(const std::string& path) {
+Result<Scene> loadScene(const std::string& path, const SceneProgress& progress) {
+  // A directory opens as a stream on Linux and reads as nothing ("unexpected end of
+  // input"); say what it is instead.
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    return fail(path + ": is a directory, not a scene file");
   std::ifstream in(path, std::ios::binary);
-  if (!in) return fail(path + ": cannot open the file");
+  if (!in) return fail(path + ": cannot open the file (" + std::strerror(errno) + ")");
   std::ostringstream text;
   text << in.rdbuf();
-  if (in.bad()) return fail(path + ": cannot read the file");
-  return parseScene(text.str(), path);
+  if (in.bad()) return fail(path + ": cannot read the file (" + std::strerror(errno) + ")");
+  return parseScene(text.str(), path, progress);
 }
 
-Result<SceneWorld> buildWorld(const Scene& scene) {
+Result<SceneWorld> buildWorld(const Scene& scene, const SceneProgress& progress) {
   Result<World> made = World::create(scene.world);
   if (!made) return fail(scene.file + ": world: " + made.error().message);
   SceneWorld out{std::move(made).value(), {}, {}};
+  out.bodies.reserve(scene.bodies.size());
+  out.names.reserve(scene.bodies.size());
+  // Messages name the scene field the world refused: "bodies[3].shapes[0]", or for a
+  // generated body "generate[0]: body \"rain0_7\"".
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const SceneBody& b = scene.bodies[i];
+    const std::string bodyPath = b.path.empty() ? "bodies[" + std::to_string(i) + "]" : b.path;
+    auto where = [&](const std::string& path) {
+      if (bodyPath.rfind("generate", 0) == 0) return path + ": body \"" + b.name + "\"";
+      return path;
+    };
     Result<BodyId> body = out.world.createBody(b.def);
-    if (!body)
-      return fail(scene.file + ": body " + std::to_string(i) + " \"" + b.name +
-                  "\": " + body.error().message);
+    if (!body) return fail(scene.file + ": " + where(bodyPath) + ": " + body.error().message);
     for (std::size_t k = 0; k < b.shapes.size(); ++k) {
       Result<ShapeId> s = out.world.createShape(*body, b.shapes[k].def, b.shapes[k].geometry);
       if (!s) {
-        return fail(scene.file + ": body " + std::to_string(i) + " \"" + b.name + "\" shape " +
-                    std::to_string(k) + ": " + s.error().message);
+        const std::string shapePath = b.shapes[k].path.empty()
+                                          ? bodyPath + ".shapes[" + std::to_string(k) + "]"
+                                          : b.shapes[k].path;
+        return fail(scene.file + ": " + where(shapePath) + ": " + s.error().message);
       }
     }
     for (std::size_t k = 0; k < b.chains.size(); ++k) {
       Result<std::vector<ShapeId>> c =
           out.world.createChain(*body, b.chains[k].def, b.chains[k].points, b.chains[k].loop);
       if (!c) {
-        return fail(scene.file + ": body " + std::to_string(i) + " \"" + b.name + "\" chain " +
-                    std::to_string(k) + ": " + c.error().message);
+        const std::string chainPath = b.chains[k].path.empty()
+                                          ? bodyPath + ".chains[" + std::to_string(k) + "]"
+                                          : b.chains[k].path;
+        return fail(scene.file + ": " + where(chainPath) + ": " + c.error().message);
       }
     }
     out.bodies.push_back(*body);
     out.names.push_back(b.name);
+    if ((i + 1) % kProgressEvery == 0 && progress && !progress(i + 1, scene.bodies.size()))
+      return fail(scene.file + ": interrupted");
   }
   return out;
 }

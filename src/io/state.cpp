@@ -1,6 +1,9 @@
 #include "quack/io/state.hpp"
 
+#include <charconv>
 #include <cmath>
+#include <string_view>
+#include <system_error>
 
 #include <nlohmann/json.hpp>
 
@@ -11,15 +14,11 @@ namespace {
 
 using nlohmann::json;
 
-// Floats go out as doubles: every float is exactly a double, and nlohmann prints the
-// shortest text that reads back as the same double, so the float comes back bit for bit.
-json vec(Vec2 v) {
-  return json::array({static_cast<double>(v.x), static_cast<double>(v.y)});
-}
-
 Result<float> readFloat(const json& j, const std::string& path) {
   if (!j.is_number()) return fail(path + ": must be a number");
-  return static_cast<float>(j.get<double>());
+  auto f = static_cast<float>(j.get<double>());
+  if (!std::isfinite(f)) return fail(path + ": must be finite (as a float)");
+  return f;
 }
 
 Result<Vec2> readVec(const json& j, const std::string& path) {
@@ -43,10 +42,31 @@ Result<double> readDouble(const json& j, const char* key, const std::string& pat
   return j.at(key).get<double>();
 }
 
+// A double as the shortest text that reads back as the same double (so a float, widened,
+// comes back bit for bit); integers get a ".0" as nlohmann writes them.
+void appendDouble(std::string& out, double x) {
+  char buf[64];
+  auto [end, ec] = std::to_chars(buf, buf + sizeof buf, x);
+  if (ec != std::errc{}) {
+    out += "0.0";  // unreachable: 64 characters hold any double
+    return;
+  }
+  std::string_view text(buf, static_cast<std::size_t>(end - buf));
+  out += text;
+  if (text.find_first_of(".eEni") == std::string_view::npos) out += ".0";
+}
+
+void appendVec(std::string& out, Vec2 v) {
+  out += '[';
+  appendDouble(out, static_cast<double>(v.x));
+  out += ", ";
+  appendDouble(out, static_cast<double>(v.y));
+  out += ']';
+}
+
 }  // namespace
 
-StateFile captureState(const SceneWorld& scene, const EventTotals& events,
-                       const RunTiming& timing) {
+StateFile captureState(const SceneWorld& scene, const EventTotals& events) {
   StateFile s;
   s.time = scene.world.time();
   s.steps = scene.world.stepCount();
@@ -57,30 +77,34 @@ StateFile captureState(const SceneWorld& scene, const EventTotals& events,
                         scene.world.linearVelocity(b), scene.world.angularVelocity(b)});
   }
   s.events = events;
-  s.timing = timing;
   return s;
 }
 
+// One body per line: a state file of a million bodies is about 100 MB, written in one pass.
 std::string writeState(const StateFile& state) {
-  json bodies = json::array();
-  for (const BodyState& b : state.bodies) {
-    bodies.push_back({{"name", b.name},
-                      {"pos", vec(b.pos)},
-                      {"angle", static_cast<double>(b.angle)},
-                      {"vel", vec(b.vel)},
-                      {"angvel", static_cast<double>(b.angvel)}});
+  std::string out = "{\"time\": ";
+  appendDouble(out, state.time);
+  out += ",\n \"steps\": " + std::to_string(state.steps) + ",\n \"bodies\": [";
+  out.reserve(out.size() + 110 * state.bodies.size() + 128);
+  for (std::size_t i = 0; i < state.bodies.size(); ++i) {
+    const BodyState& b = state.bodies[i];
+    out += i == 0 ? "\n  " : ",\n  ";
+    out += "{\"name\": " + json(b.name).dump() + ", \"pos\": ";
+    appendVec(out, b.pos);
+    out += ", \"angle\": ";
+    appendDouble(out, static_cast<double>(b.angle));
+    out += ", \"vel\": ";
+    appendVec(out, b.vel);
+    out += ", \"angvel\": ";
+    appendDouble(out, static_cast<double>(b.angvel));
+    out += '}';
   }
-  json j = {
-      {"time", state.time},
-      {"steps", state.steps},
-      {"bodies", bodies},
-      {"events",
-       {{"begin", state.events.begin},
-        {"end", state.events.end},
-        {"hit", state.events.hit},
-        {"sensor", state.events.sensor}}},
-      {"timing", {{"ms_per_step", state.timing.msPerStep}, {"total_ms", state.timing.totalMs}}}};
-  return j.dump(1) + "\n";
+  out += state.bodies.empty() ? "],\n" : "\n ],\n";
+  out += " \"events\": {\"begin\": " + std::to_string(state.events.begin) +
+         ", \"end\": " + std::to_string(state.events.end) +
+         ", \"hit\": " + std::to_string(state.events.hit) +
+         ", \"sensor\": " + std::to_string(state.events.sensor) + "}}\n";
+  return out;
 }
 
 Result<StateFile> parseState(std::string_view text, const std::string& fileName) {
@@ -134,13 +158,10 @@ Result<StateFile> parseState(std::string_view text, const std::string& fileName)
     if (!c) return error(c.error().message);
     *target = *c;
   }
-  if (!j.contains("timing") || !j.at("timing").is_object())
+  // "timing": written by Quack before state files became a pure function of the scene;
+  // accepted and ignored.
+  if (j.contains("timing") && !j.at("timing").is_object())
     return error("timing: must be an object");
-  Result<double> ms = readDouble(j.at("timing"), "ms_per_step", "timing");
-  if (!ms) return error(ms.error().message);
-  Result<double> total = readDouble(j.at("timing"), "total_ms", "timing");
-  if (!total) return error(total.error().message);
-  s.timing = {*ms, *total};
   return s;
 }
 

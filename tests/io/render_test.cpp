@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 namespace quack {
 namespace {
 
@@ -72,6 +74,71 @@ TEST(Render, ReplayKeepsAtMostItsFrameBudget) {
   EXPECT_EQ(html.substr(dataStart, dataEnd - dataStart).find("</"), std::string::npos);
   EXPECT_EQ(html.find("http://"), std::string::npos);  // no network
   EXPECT_EQ(html.find("https://"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace quack
+
+namespace quack {
+namespace {
+
+// A pile of 3,000 mixed shapes on a floor: many shapes, many contacts.
+SceneWorld pile() {
+  Result<Scene> scene = parseScene(R"({
+      "bodies": [{"name": "ground", "type": "static", "shapes": [{"type": "box", "half": [60, 0.5], "center": [0, -0.5]}]}],
+      "generate": [{"kind": "rain", "count": 3000, "pos": [0, 20], "size": [55, 19]}]})",
+                                   "pile");
+  return buildWorld(scene.value()).value();
+}
+
+// Issue 15: a million bodies made a 424 MB SVG and replay. Each has a size budget; a
+// scene beyond it draws an even sample of its shapes and says so.
+TEST(Render, LargeSceneSvgAndReplayStayWithinTheirSizeBudgets) {
+  SceneWorld sw = pile();
+  for (int i = 0; i < 5; ++i)
+    ASSERT_TRUE(sw.world.step().ok());
+  SvgOptions svgOptions;
+  svgOptions.maxShapes = 500;
+  svgOptions.maxContacts = 100;
+  svgOptions.maxBytes = 100000;
+  std::string svg = renderSvg(sw, "pile", svgOptions);
+  EXPECT_LE(svg.size(), svgOptions.maxBytes);
+  EXPECT_NE(svg.find("shapes and "), std::string::npos);
+  EXPECT_NE(svg.find("(the SVG size budget)"), std::string::npos);
+  EXPECT_NE(svg.find("</svg>"), std::string::npos);
+  // Unlimited, the same picture is far bigger: the budget did the work.
+  SvgOptions unlimited;
+  unlimited.maxShapes = unlimited.maxContacts = unlimited.maxBytes = std::size_t{1} << 40;
+  std::string full = renderSvg(sw, "pile", unlimited);
+  EXPECT_GT(full.size(), 4 * svgOptions.maxBytes);
+  EXPECT_EQ(full.find("size budget"), std::string::npos);
+
+  ReplayOptions options;
+  options.maxBytes = 400000;
+  options.maxShapes = 1000000;  // the byte budget alone limits the shapes here
+  options.maxContactsPerFrame = 200;
+  options.maxBoxesPerFrame = 300;
+  options.broadPhaseBoxes = true;
+  const int steps = 40;
+  ReplayRecorder replay(sw, steps + 1, options);
+  replay.record(sw);
+  for (int i = 0; i < steps; ++i) {
+    ASSERT_TRUE(sw.world.step().ok());
+    replay.record(sw);
+  }
+  std::string html = replay.html("pile");
+  EXPECT_LE(html.size(), options.maxBytes);
+  EXPECT_LT(replay.shapesDrawn(), replay.shapesTotal());
+  EXPECT_GT(replay.shapesDrawn(), 100u);
+  EXPECT_GE(replay.frameCount(), 2);
+  EXPECT_LT(replay.frameCount(), steps + 1);  // thinned to fit
+  // The page says what it left out, and the last frame is the end of the run.
+  EXPECT_NE(html.find("\"drawn\":" + std::to_string(replay.shapesDrawn())), std::string::npos);
+  EXPECT_NE(html.find("\"capped\":true"), std::string::npos);
+  EXPECT_NE(html.find("(size budget)"), std::string::npos);
+  std::size_t last = html.rfind("{\"t\":");
+  ASSERT_NE(last, std::string::npos);
+  EXPECT_NEAR(std::strtod(html.c_str() + last + 5, nullptr), sw.world.time(), 1e-4);
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
-# quack run on a sample scene (exit 0, state, SVG and replay written) and on a bad scene
-# (exit 2, the message names file and JSON path, nothing written).
+# quack run on a sample scene (exit 0, state, SVG and replay written), on a bad scene
+# (exit 2, the message names file and JSON path, nothing written) and on bad arguments.
 file(REMOVE_RECURSE ${OUT})
 file(MAKE_DIRECTORY ${OUT})
 execute_process(COMMAND ${QUACK} run ${SRC}/scenes/pyramid.json --steps 30 --out ${OUT}/state.json
@@ -28,7 +28,8 @@ string(FIND "${err}" "bad_radius.json: bodies[1].shapes[0].radius: must be > 0" 
 if(at EQUAL -1)
   message(FATAL_ERROR "unexpected message: ${err}")
 endif()
-if(EXISTS ${OUT}/bad.json OR EXISTS ${OUT}/bad.json.part)
+file(GLOB bad_parts ${OUT}/bad.json.part*)
+if(EXISTS ${OUT}/bad.json OR bad_parts)
   message(FATAL_ERROR "a failed run wrote output")
 endif()
 # An unwritable output is refused before running, and the earlier state file survives.
@@ -41,4 +42,40 @@ file(READ ${OUT}/state.json state)
 string(FIND "${state}" "\"steps\": 30" at)
 if(at EQUAL -1)
   message(FATAL_ERROR "the earlier state file was overwritten")
+endif()
+# Issue 12: `--steps abc` said "Value abc not in range"; a usage error exits 2 and says what
+# is wrong with the value.
+execute_process(COMMAND ${QUACK} run ${SRC}/scenes/pyramid.json --steps abc --out ${OUT}/s.json
+                RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(NOT rc EQUAL 2)
+  message(FATAL_ERROR "--steps abc should exit 2, got ${rc}")
+endif()
+string(FIND "${err}" "--steps: abc is not a whole number" at)
+if(at EQUAL -1)
+  message(FATAL_ERROR "unexpected message for --steps abc: ${err}")
+endif()
+execute_process(COMMAND ${QUACK} run ${SRC}/scenes/pyramid.json --steps 100000001 --out ${OUT}/s.json
+                RESULT_VARIABLE rc ERROR_VARIABLE err)
+string(FIND "${err}" "--steps: 100000001 is more than 100000000 steps" at)
+if(NOT rc EQUAL 2 OR at EQUAL -1)
+  message(FATAL_ERROR "unexpected answer to --steps 100000001 (${rc}): ${err}")
+endif()
+# Issue 12: a scene path that is a directory said "unexpected end of input".
+execute_process(COMMAND ${QUACK} run ${SRC}/scenes --out ${OUT}/s.json RESULT_VARIABLE rc
+                ERROR_VARIABLE err)
+string(FIND "${err}" "scenes: is a directory, not a scene file" at)
+if(NOT rc EQUAL 2 OR at EQUAL -1)
+  message(FATAL_ERROR "unexpected answer to a directory scene (${rc}): ${err}")
+endif()
+# Issue 9: `--out DIR` is refused before running, and leaves no DIR.part.
+file(MAKE_DIRECTORY ${OUT}/dir)
+execute_process(COMMAND ${QUACK} run ${SRC}/scenes/pyramid.json --out ${OUT}/dir
+                RESULT_VARIABLE rc ERROR_VARIABLE err)
+string(FIND "${err}" "dir: is a directory" at)
+if(NOT rc EQUAL 2 OR at EQUAL -1)
+  message(FATAL_ERROR "unexpected answer to --out DIR (${rc}): ${err}")
+endif()
+file(GLOB parts ${OUT}/*.part*)
+if(parts)
+  message(FATAL_ERROR "temporaries left behind: ${parts}")
 endif()

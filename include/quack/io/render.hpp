@@ -3,8 +3,10 @@
 /// (one file, no network: play, pause, scrub, zoom, pan; shapes, contact points and
 /// normals, and optionally the broad-phase boxes).
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "quack/io/scene.hpp"
@@ -19,17 +21,37 @@ struct Outline {
 };
 Outline outlineOf(const ShapeGeometry& geometry, float maxArcStep = 0.2f);
 
-/// SVG of the world now: shapes filled by body type, contact points and normals in red.
-std::string renderSvg(const SceneWorld& scene, const std::string& title);
+/// The SVG's size budget: a big scene draws an even sample of its shapes and says so in
+/// the picture (docs/scenes.md, "Size budgets").
+struct SvgOptions {
+  /// At most this many shapes (every k-th in scene order), and at most `maxBytes` of text.
+  std::size_t maxShapes = 20000;
+  /// At most this many contact points.
+  std::size_t maxContacts = 5000;
+  /// The file stays below this size, bytes.
+  std::size_t maxBytes = 16u << 20;
+};
 
+/// SVG of the world now: shapes filled by body type, contact points and normals in red.
+std::string renderSvg(const SceneWorld& scene, const std::string& title,
+                      const SvgOptions& options = {});
+
+/// The replay's budgets (docs/scenes.md, "Size budgets"): a big scene draws an even sample
+/// of its shapes, a long or large run keeps fewer frames, and the page says what it left
+/// out, so the file stays small enough for a browser.
 struct ReplayOptions {
   /// Record every proxy's fat box too (drawn when the viewer ticks "broad-phase boxes").
   bool broadPhaseBoxes = false;
-  /// At most this many frames; a long run keeps every k-th step.
+  /// At most this many frames; a long run keeps every k-th step (and always the last).
   int maxFrames = 1000;
-  /// At most about this many numbers in the file (body poses, contacts, boxes), so a big
-  /// scene gives fewer frames rather than a file too large for a browser.
-  std::size_t maxNumbers = 4000000;
+  /// The page stays below this size, bytes: a quarter for the shapes, the rest for frames
+  /// (thinned, evenly, until they fit).
+  std::size_t maxBytes = 32u << 20;
+  /// At most this many shapes drawn (every k-th in scene order).
+  std::size_t maxShapes = 20000;
+  /// At most this many contact points and broad-phase boxes in one frame.
+  std::size_t maxContactsPerFrame = 2000;
+  std::size_t maxBoxesPerFrame = 5000;
 };
 
 /// Records a run frame by frame and writes the replay page.
@@ -41,16 +63,25 @@ class ReplayRecorder {
   void record(const SceneWorld& scene);
   /// The replay page.
   std::string html(const std::string& title) const;
-  int frameCount() const noexcept { return frames_; }
+  int frameCount() const noexcept { return static_cast<int>(frames_.size()); }
+  /// Shapes drawn, and shapes in the world when recording began.
+  std::size_t shapesDrawn() const noexcept { return shapesDrawn_; }
+  std::size_t shapesTotal() const noexcept { return shapesTotal_; }
 
  private:
+  void thin();
+
   ReplayOptions options_;
+  std::uint64_t totalCalls_ = 0;
   std::uint64_t every_ = 1;
   std::uint64_t calls_ = 0;
-  int frames_ = 0;
+  std::size_t shapesDrawn_ = 0, shapesTotal_ = 0;
+  bool contactsCapped_ = false;
   std::string shapes_;                 // JSON: one entry per shape (body index, outline, style)
-  std::vector<std::uint32_t> moving_;  // scene indices of non-static bodies
-  std::string frameData_;              // JSON array items, comma-separated
+  std::vector<std::uint32_t> moving_;  // scene indices of drawn non-static bodies
+  std::vector<float> reach_;           // per moving_ entry: farthest outline point from origin
+  std::vector<std::pair<std::uint64_t, std::string>> frames_;  // (call, JSON object)
+  std::size_t frameBytes_ = 0;
   Aabb bounds_{{1e30f, 1e30f}, {-1e30f, -1e30f}};
 };
 

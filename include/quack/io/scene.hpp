@@ -6,6 +6,8 @@
 /// `scenes/bad.json: bodies[3].shapes[0].radius: must be > 0`. Every default is listed in
 /// docs/scenes.md.
 
+#include <cstddef>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -15,10 +17,28 @@
 
 namespace quack {
 
+/// Limits of scene files (docs/scenes.md, "Limits"). A value outside them is an error that
+/// names its field, so a scene never builds a world whose numbers overflow a float.
+inline constexpr float kSceneMaxTimeStep = 1.0f;          ///< world.dt, seconds
+inline constexpr int kSceneMaxSubsteps = 64;              ///< world.substeps
+inline constexpr float kSceneMaxGravity = 1.0e5f;         ///< |world.gravity|, m/s^2
+inline constexpr float kSceneMaxSpeed = 1.0e5f;           ///< |vel|, m/s
+inline constexpr float kSceneMaxAngularSpeed = 1.0e5f;    ///< |angvel|, rad/s
+inline constexpr float kSceneMaxAngle = 1.0e4f;           ///< |angle| of a body, radians
+inline constexpr float kSceneMaxDensity = 1.0e9f;         ///< kg/m^2
+inline constexpr float kSceneMaxFriction = 1.0e3f;        ///< friction coefficient
+inline constexpr float kSceneMaxRestitution = 1.0f;       ///< 1: a perfectly elastic bounce
+inline constexpr double kSceneMaxMass = 1.0e30;           ///< kg, and kg m^2 for inertia
+inline constexpr float kSceneMinGeneratedSize = 1.0e-6f;  ///< generator sizes, metres
+inline constexpr float kSceneMaxGeneratedSize = 1.0e6f;   ///< generator sizes, metres
+inline constexpr std::size_t kSceneMaxBodies = 1000000;   ///< listed and generated
+
 /// A shape of a scene body: geometry in the body frame, and its material and filter.
 struct SceneShape {
   ShapeGeometry geometry;
   ShapeDef def;
+  /// Where it came from, for messages: "bodies[3].shapes[0]" or "generate[1]".
+  std::string path;
 };
 
 /// A chain of one-sided segments on a static scene body (World::createChain), body frame.
@@ -26,11 +46,14 @@ struct SceneChain {
   std::vector<Vec2> points;
   bool loop = false;
   ShapeDef def;
+  std::string path;  ///< "bodies[0].shapes[2]"
 };
 
 /// A body of a scene, listed or generated.
 struct SceneBody {
   std::string name;
+  /// Where it came from, for messages: "bodies[3]", or "generate[1]" for a generated body.
+  std::string path;
   BodyDef def;
   std::vector<SceneShape> shapes;
   /// Chains, made after the shapes ({"type": "chain"} in the file; static bodies only).
@@ -47,10 +70,17 @@ struct Scene {
   std::vector<SceneBody> bodies;
 };
 
-/// Parses and checks a scene. `fileName` prefixes every error message.
-Result<Scene> parseScene(std::string_view text, const std::string& fileName);
-/// Reads and parses a scene file (errors: unreadable file, and those of parseScene).
-Result<Scene> loadScene(const std::string& path);
+/// Progress of a long scene operation: `done` of `total` bodies (total 0: not known yet).
+/// Return false to stop; the operation then fails with "interrupted".
+using SceneProgress = std::function<bool(std::size_t done, std::size_t total)>;
+
+/// Parses and checks a scene. `fileName` prefixes every error message. `progress`, when
+/// given, is called every few thousand bodies made.
+Result<Scene> parseScene(std::string_view text, const std::string& fileName,
+                         const SceneProgress& progress = {});
+/// Reads and parses a scene file (errors: a missing, unreadable or directory path with
+/// the reason, and those of parseScene).
+Result<Scene> loadScene(const std::string& path, const SceneProgress& progress = {});
 
 /// A world built from a scene, with its bodies in scene order and their names.
 struct SceneWorld {
@@ -60,7 +90,8 @@ struct SceneWorld {
 };
 
 /// Builds the world. The scene was checked when parsed, so this fails only on what the
-/// world itself refuses, with the body's name and index.
-Result<SceneWorld> buildWorld(const Scene& scene);
+/// world itself refuses; the message names the scene field (`bodies[3].shapes[0]`, or the
+/// generator and the body's name). `progress` as for parseScene.
+Result<SceneWorld> buildWorld(const Scene& scene, const SceneProgress& progress = {});
 
 }  // namespace quack

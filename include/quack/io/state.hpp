@@ -1,13 +1,15 @@
 #pragma once
-/// The state file `quack run` writes: where every body ended, how many events happened,
-/// and how long it took. Format (keys exact):
+/// The state file `quack run` writes: where every body ended and how many events happened.
+/// Format (keys exact):
 ///
 /// {"time": seconds, "steps": n,
 ///  "bodies": [{"name", "pos": [x, y], "angle", "vel": [x, y], "angvel"}, ...],
-///  "events": {"begin", "end", "hit", "sensor"},
-///  "timing": {"ms_per_step", "total_ms"}}
+///  "events": {"begin", "end", "hit", "sensor"}}
 ///
-/// Numbers are written so that reading them back gives the same floats (round trip).
+/// A state file is a pure function of the scene and the step count: two runs write the
+/// same bytes. How long a run took is not in it (`quack run` prints it, and writes it with
+/// `--timing FILE`); a "timing" object in a file from an older Quack is accepted and
+/// ignored. Numbers are written so that reading them back gives the same floats.
 
 #include <cstdint>
 #include <string>
@@ -36,23 +38,16 @@ struct EventTotals {
   friend bool operator==(const EventTotals&, const EventTotals&) = default;
 };
 
-struct RunTiming {
-  double msPerStep = 0.0;
-  double totalMs = 0.0;
-  friend bool operator==(const RunTiming&, const RunTiming&) = default;
-};
-
 struct StateFile {
   double time = 0.0;
   std::uint64_t steps = 0;
   std::vector<BodyState> bodies;
   EventTotals events;
-  RunTiming timing;
   friend bool operator==(const StateFile&, const StateFile&) = default;
 };
 
 /// The state of a scene's world now, in scene order.
-StateFile captureState(const SceneWorld& scene, const EventTotals& events, const RunTiming& timing);
+StateFile captureState(const SceneWorld& scene, const EventTotals& events);
 /// JSON text of a state file.
 std::string writeState(const StateFile& state);
 /// Reads a state file back; errors name the file and the JSON path.

@@ -1,0 +1,271 @@
+// `quack run` called directly (apps/quack/run.hpp): outputs checked before anything runs,
+// written all or nothing, temporaries removed on failure and on signals, state files a
+// pure function of the scene, progress and size budgets on big scenes.
+
+#include "run.hpp"
+
+#include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace quack::app {
+namespace {
+
+namespace fs = std::filesystem;
+const fs::path kSource = QUACK_SOURCE_DIR;
+
+// A fresh folder per test, removed after.
+class Run : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("quack_run_test_" + std::to_string(getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string at(const std::string& name) const { return (dir_ / name).string(); }
+
+  RunOptions options(const std::string& scene = "pyramid.json", std::uint64_t steps = 5) const {
+    RunOptions o;
+    o.scene = (kSource / "scenes" / scene).string();
+    o.steps = steps;
+    o.out = at("state.json");
+    o.quiet = true;
+    return o;
+  }
+
+  int run(const RunOptions& o) {
+    out_.str("");
+    err_.str("");
+    return runScene(o, out_, err_);
+  }
+
+  // Every file in the folder, recursively, that is a temporary (".part").
+  std::vector<std::string> temporaries() const {
+    std::vector<std::string> found;
+    for (const auto& e : fs::recursive_directory_iterator(dir_)) {
+      if (e.path().filename().string().find(".part") != std::string::npos)
+        found.push_back(e.path().string());
+    }
+    return found;
+  }
+
+  static std::string read(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+  static void write(const std::string& path, const std::string& text) {
+    std::ofstream(path, std::ios::binary) << text;
+  }
+
+  fs::path dir_;
+  std::ostringstream out_, err_;
+};
+
+// Issue 9: `--out DIR` simulated the whole run, then failed and left `DIR.part`.
+TEST_F(Run, OutIsADirectoryIsRefusedBeforeLoadingAndLeavesNothing) {
+  fs::create_directory(at("dir"));
+  RunOptions o = options();
+  o.out = at("dir");
+  std::vector<std::string> phases;
+  o.onPhase = [&](const std::string& p) { phases.push_back(p); };
+  EXPECT_EQ(run(o), kRunFailed);
+  EXPECT_TRUE(phases.empty()) << "it began " << phases.front();
+  EXPECT_NE(err_.str().find("--out " + at("dir") + ": is a directory"), std::string::npos)
+      << err_.str();
+  EXPECT_TRUE(temporaries().empty());
+  EXPECT_TRUE(fs::is_directory(at("dir")));
+}
+
+// Issue 9: `--out x --svg x` exited 0 with the state file lost under the SVG. Outputs must
+// be distinct after normalisation, and none may be the scene.
+TEST_F(Run, TheSameFileTwiceOrTheSceneAsOutputIsRefused) {
+  fs::create_directory(at("sub"));
+  RunOptions o = options();
+  o.out = at("x");
+  o.svg = at("sub/../x");
+  EXPECT_EQ(run(o), kRunFailed);
+  EXPECT_NE(err_.str().find("is the same file as --out"), std::string::npos) << err_.str();
+  o.svg = at("y.svg");
+  o.html = at("./y.svg");
+  EXPECT_EQ(run(o), kRunFailed);
+  EXPECT_NE(err_.str().find("--html " + at("./y.svg") + ": is the same file as --svg"),
+            std::string::npos)
+      << err_.str();
+  // A symbolic link to another output is the same file too.
+  fs::create_symlink(at("x"), at("link"));
+  o.html = at("link");
+  EXPECT_EQ(run(o), kRunFailed);
+  EXPECT_NE(err_.str().find("is the same file as --out"), std::string::npos) << err_.str();
+  // The scene itself, under another spelling.
+  write(at("scene.json"), read((kSource / "scenes/pyramid.json").string()));
+  o = options();
+  o.scene = at("scene.json");
+  o.timing = at("sub/../scene.json");
+  EXPECT_EQ(run(o), kRunFailed);
+  EXPECT_NE(err_.str().find("is the scene file"), std::string::npos) << err_.str();
+  EXPECT_EQ(read(at("scene.json")), read((kSource / "scenes/pyramid.json").string()));
+  EXPECT_FALSE(fs::exists(at("x")));
+  EXPECT_FALSE(fs::exists(at("state.json")));
+  EXPECT_TRUE(temporaries().empty());
+}
+
+// Issue 12: "cannot write PATH" gave no reason.
+TEST_F(Run, AnOutputThatCannotBeWrittenSaysWhy) {
+  RunOptions o = options();
+  o.svg = at("no/such/folder/x.svg");
+  EXPECT_EQ(run(o), kRunFailed);
+  EXPECT_NE(err_.str().find("--svg " + at("no/such/folder/x.svg") + ": cannot write: the folder " +
+                            at("no/such/folder") + " does not exist"),
+            std::string::npos)
+      << err_.str();
+  o.svg = "/dev/null";
+  EXPECT_EQ(run(o), kRunFailed);
+  EXPECT_NE(err_.str().find("is not a regular file"), std::string::npos) << err_.str();
+}
+
+// Issue 9: a full disk while writing the replay left the state file already replaced and a
+// `.part` behind. A file size limit (RLIMIT_FSIZE) makes the disk "full" for a child
+// process: the state file fits, the replay does not.
+TEST_F(Run, FullDiskWhileWritingTheReplayChangesNoOutputAndLeavesNoTemporary) {
+  write(at("state.json"), "previous state\n");
+  write(at("last.svg"), "previous svg\n");
+  pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    std::signal(SIGXFSZ, SIG_IGN);  // a write past the limit fails with EFBIG instead
+    rlimit limit{200000, 200000};
+    setrlimit(RLIMIT_FSIZE, &limit);
+    RunOptions o = options("pyramid.json", 30);
+    o.svg = at("last.svg");
+    o.html = at("replay.html");
+    std::ostringstream out, err;
+    int rc = runScene(o, out, err);
+    std::ofstream(at("child.err")) << err.str();
+    _exit(rc);
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), kRunFailed);
+  std::string err = read(at("child.err"));
+  EXPECT_NE(err.find("writing " + at("replay.html") + " failed: File too large"), std::string::npos)
+      << err;
+  EXPECT_EQ(read(at("state.json")), "previous state\n");
+  EXPECT_EQ(read(at("last.svg")), "previous svg\n");
+  EXPECT_FALSE(fs::exists(at("replay.html")));
+  EXPECT_TRUE(temporaries().empty());
+}
+
+// Issue 9: Ctrl-C left empty `.part` files. A signal while the temporaries exist (here
+// raised the moment all are complete, before any rename) removes them and exits 130
+// (SIGINT) or 143 (SIGTERM); the previous outputs stay.
+TEST_F(Run, SignalWhileWritingRemovesTemporariesAndExits130Or143) {
+  for (int sig : {SIGINT, SIGTERM}) {
+    SCOPED_TRACE(sig);
+    write(at("state.json"), "previous state\n");
+    RunOptions o = options();
+    o.svg = at("last.svg");
+    o.html = at("replay.html");
+    o.timing = at("timing.json");
+    bool sawTemporaries = false;
+    o.onPhase = [&](const std::string& p) {
+      if (p != "commit") return;
+      sawTemporaries = temporaries().size() == 4;
+      std::raise(sig);
+    };
+    EXPECT_EQ(run(o), sig == SIGINT ? kRunInterrupted : kRunTerminated);
+    EXPECT_TRUE(sawTemporaries);
+    EXPECT_TRUE(temporaries().empty());
+    EXPECT_EQ(read(at("state.json")), "previous state\n");
+    EXPECT_FALSE(fs::exists(at("last.svg")));
+    EXPECT_FALSE(fs::exists(at("replay.html")));
+    EXPECT_FALSE(fs::exists(at("timing.json")));
+  }
+  // A signal between steps stops the simulation there; nothing is written.
+  RunOptions o = options("pyramid.json", 1000000);
+  o.onPhase = [](const std::string& p) {
+    if (p == "simulate") std::raise(SIGTERM);
+  };
+  EXPECT_EQ(run(o), kRunTerminated);
+  EXPECT_EQ(read(at("state.json")), "previous state\n");
+  EXPECT_TRUE(temporaries().empty());
+  // The handlers are put back: this process still has its own.
+  struct sigaction now {};
+  sigaction(SIGINT, nullptr, &now);
+  EXPECT_EQ(now.sa_handler, SIG_DFL);
+}
+
+// Issue 14: `timing` made two identical runs' state files differ. The state file is a pure
+// function of the scene and the step count; timing goes to the summary and `--timing`.
+TEST_F(Run, TwoRunsWriteByteIdenticalStateFilesAndTimingGoesElsewhere) {
+  RunOptions o = options("rain.json", 60);
+  o.timing = at("timing.json");
+  ASSERT_EQ(run(o), kRunOk) << err_.str();
+  std::string first = read(at("state.json"));
+  EXPECT_NE(out_.str().find("ms/step"), std::string::npos);
+  EXPECT_NE(out_.str().find("timing    " + at("timing.json")), std::string::npos);
+  std::string timing = read(at("timing.json"));
+  for (const char* key : {"\"ms_per_step\"", "\"steps_per_s\"", "\"load_ms\"", "\"build_ms\"",
+                          "\"simulate_ms\"", "\"render_ms\"", "\"write_ms\""})
+    EXPECT_NE(timing.find(key), std::string::npos) << key;
+  o.timing.clear();
+  o.out = at("again.json");
+  ASSERT_EQ(run(o), kRunOk) << err_.str();
+  EXPECT_EQ(read(at("again.json")), first);
+  EXPECT_EQ(first.find("timing"), std::string::npos);
+}
+
+// Issue 15: 10^6 bodies gave no progress while building and writing, and "0 steps/s".
+// A big generated scene (kept fast: two steps) reports every phase on stderr, with a rate
+// in s/step when steps are slow, and its SVG and replay stay within their size budgets
+// (docs/scenes.md, "Size budgets") while drawing a sample of the shapes.
+TEST_F(Run, LargeGeneratedSceneShowsProgressAndStaysWithinSizeBudgets) {
+  write(at("big.json"), R"({"bodies": [{"name": "ground", "type": "static", "pos": [0, -1],
+      "shapes": [{"type": "box", "half": [400, 1]}]}],
+      "generate": [{"kind": "rain", "count": 40000, "pos": [0, 100], "size": [390, 95]}]})");
+  RunOptions o = options();
+  o.scene = at("big.json");
+  o.steps = 2;
+  o.quiet = false;
+  o.progressAfter = 0.0;
+  o.svg = at("big.svg");
+  o.html = at("big.html");
+  o.htmlBoxes = true;
+  ASSERT_EQ(run(o), kRunOk) << err_.str();
+  EXPECT_LE(fs::file_size(at("big.svg")), std::uintmax_t{16} << 20);
+  EXPECT_LE(fs::file_size(at("big.html")), std::uintmax_t{32} << 20);
+  EXPECT_NE(read(at("big.svg")).find("of 40001 shapes"), std::string::npos);
+  EXPECT_NE(out_.str().find("of 40001 shapes drawn"), std::string::npos) << out_.str();
+  EXPECT_NE(out_.str().find("bodies    40001"), std::string::npos) << out_.str();
+  // Progress: every phase (shown from the start here: progressAfter 0).
+  const std::string err = err_.str();
+  for (const char* line : {"quack run: loading: ", "quack run: building the world: 40001 bodies",
+                           "quack run: simulating: 2 steps", "quack run: simulating: step 1/2",
+                           "quack run: rendering: the state file", "quack run: rendering: the SVG",
+                           "quack run: rendering: the replay", "quack run: writing: "})
+    EXPECT_NE(err.find(line), std::string::npos) << line << " in\n" << err;
+  // The rate reads at any speed: "240 steps/s", "2.5 steps/s" or "3.2 s/step".
+  EXPECT_TRUE(std::regex_search(
+      err, std::regex(R"(step 1/2 \(50%\), (\d+ steps/s|\d+\.\d steps/s|\d+\.\d s/step),)")))
+      << err;
+  EXPECT_EQ(err.find(" 0 steps/s"), std::string::npos) << err;
+  EXPECT_EQ(err.find(" 0.0 s/step"), std::string::npos) << err;
+}
+
+}  // namespace
+}  // namespace quack::app
