@@ -63,11 +63,6 @@ std::string show(Vec2 v) {
   return "[" + show(static_cast<double>(v.x)) + ", " + show(static_cast<double>(v.y)) + "]";
 }
 
-// Coordinates beyond the broad phase's limit cannot be stored (broad_phase.hpp).
-bool withinCoordinateLimit(Vec2 v) {
-  return std::fabs(v.x) <= kMaxCoordinate && std::fabs(v.y) <= kMaxCoordinate;
-}
-
 const std::string& coordinateLimitText() {
   static const std::string text =
       "the coordinate limit (+-" + show(static_cast<double>(kMaxCoordinate)) + " m)";
@@ -177,7 +172,7 @@ Result<ShapeDef> parseMaterial(const Parser& p, const json& j, const std::string
   Result<float> restitution = nonNegative(j, "restitution", path, def.restitution);
   if (!restitution) return restitution.error();
   if (Status s = atMost(*restitution, kSceneMaxRestitution, join(path, "restitution"),
-                        " (1 is a perfectly elastic bounce)");
+                        " (above 1 a bounce gains energy)");
       !s) {
     return fail(s.message());
   }
@@ -285,19 +280,20 @@ Status checkBodyShapes(const SceneBody& b) {
                 static_cast<double>(m.centroid.y) * static_cast<double>(m.centroid.y);
     double shapeInertia = static_cast<double>(m.inertia) + static_cast<double>(m.mass) * c2;
     if (!std::isfinite(m.mass) || !std::isfinite(m.inertia) ||
-        static_cast<double>(m.mass) > kSceneMaxMass || shapeInertia > kSceneMaxMass) {
+        (b.def.type == BodyType::dynamicBody &&
+         (static_cast<double>(m.mass) > kSceneMaxMass || shapeInertia > kSceneMaxInertia))) {
       return fail(shapeWhere(b, shape.path + ".density") + ": the shape's mass (" +
                   show(static_cast<double>(m.mass)) + " kg) or rotational inertia (" +
-                  show(shapeInertia) + " kg m^2) is above " + show(kSceneMaxMass) +
-                  "; use a lower density or a smaller shape");
+                  show(shapeInertia) + " kg m^2) is above " + show(kSceneMaxMass) + " kg (" +
+                  show(kSceneMaxInertia) + " kg m^2); use a lower density or a smaller shape");
     }
     mass += static_cast<double>(m.mass);
     inertia += shapeInertia;
   }
-  if (mass > kSceneMaxMass || inertia > kSceneMaxMass) {
+  if (b.def.type == BodyType::dynamicBody && (mass > kSceneMaxMass || inertia > kSceneMaxInertia)) {
     return fail(b.path + ".shapes: the body's mass (" + show(mass) +
                 " kg) or rotational inertia (" + show(inertia) + " kg m^2) is above " +
-                show(kSceneMaxMass));
+                show(kSceneMaxMass) + " kg (" + show(kSceneMaxInertia) + " kg m^2)");
   }
   for (const SceneChain& chain : b.chains) {
     for (std::size_t k = 0; k < chain.points.size(); ++k) {

@@ -19,19 +19,20 @@ namespace quack {
 
 /// Limits of scene files (docs/scenes.md, "Limits"). A value outside them is an error that
 /// names its field, so a scene never builds a world whose numbers overflow a float.
-inline constexpr float kSceneMaxTimeStep = 1.0f;          ///< world.dt, seconds
-inline constexpr int kSceneMaxSubsteps = 64;              ///< world.substeps
-inline constexpr float kSceneMaxGravity = 1.0e5f;         ///< |world.gravity|, m/s^2
-inline constexpr float kSceneMaxSpeed = 1.0e5f;           ///< |vel|, m/s
-inline constexpr float kSceneMaxAngularSpeed = 1.0e5f;    ///< |angvel|, rad/s
-inline constexpr float kSceneMaxAngle = 1.0e4f;           ///< |angle| of a body, radians
-inline constexpr float kSceneMaxDensity = 1.0e9f;         ///< kg/m^2
-inline constexpr float kSceneMaxFriction = 1.0e3f;        ///< friction coefficient
-inline constexpr float kSceneMaxRestitution = 1.0f;       ///< 1: a perfectly elastic bounce
-inline constexpr double kSceneMaxMass = 1.0e30;           ///< kg, and kg m^2 for inertia
-inline constexpr float kSceneMinGeneratedSize = 1.0e-6f;  ///< generator sizes, metres
-inline constexpr float kSceneMaxGeneratedSize = 1.0e6f;   ///< generator sizes, metres
-inline constexpr std::size_t kSceneMaxBodies = 1000000;   ///< listed and generated
+inline constexpr float kSceneMaxTimeStep = kMaxTimeStep;          ///< world.dt, seconds
+inline constexpr int kSceneMaxSubsteps = 64;                      ///< world.substeps
+inline constexpr float kSceneMaxGravity = kMaxGravity;            ///< |world.gravity|, m/s^2
+inline constexpr float kSceneMaxSpeed = kMaxLinearSpeed;          ///< |vel|, m/s
+inline constexpr float kSceneMaxAngularSpeed = kMaxAngularSpeed;  ///< |angvel|, rad/s
+inline constexpr float kSceneMaxAngle = 1.0e4f;                   ///< |angle| of a body, radians
+inline constexpr float kSceneMaxDensity = 1.0e9f;                 ///< kg/m^2
+inline constexpr float kSceneMaxFriction = 1.0e3f;                ///< friction coefficient
+inline constexpr float kSceneMaxRestitution = kMaxRestitution;    ///< above 1 adds energy
+inline constexpr double kSceneMaxMass = kMaxBodyMass;             ///< kg, of a dynamic body
+inline constexpr double kSceneMaxInertia = 1.0e30;                ///< kg m^2, of a dynamic body
+inline constexpr float kSceneMinGeneratedSize = 1.0e-6f;          ///< generator sizes, metres
+inline constexpr float kSceneMaxGeneratedSize = 1.0e6f;           ///< generator sizes, metres
+inline constexpr std::size_t kSceneMaxBodies = 1000000;           ///< listed and generated
 
 /// A shape of a scene body: geometry in the body frame, and its material and filter.
 struct SceneShape {
