@@ -2,6 +2,7 @@
 /// The whole collision layer.
 #include "quack/collision/epa.hpp"
 #include "quack/collision/gjk.hpp"
+#include "quack/collision/manifold.hpp"
 #include "quack/collision/minkowski.hpp"
 #include "quack/collision/proxy.hpp"
 #include "quack/collision/sat.hpp"

@@ -1,0 +1,8 @@
+#pragma once
+/// The io layer: JSON shapes and scene files, state files, SVG and HTML replays. Needs
+/// nlohmann-json (Debian `nlohmann-json3-dev`); link `quack::io` (or `quack::quack`).
+
+#include "quack/io/render.hpp"
+#include "quack/io/scene.hpp"
+#include "quack/io/shape_json.hpp"
+#include "quack/io/state.hpp"
