@@ -28,11 +28,12 @@ inline constexpr float kSceneMaxAngle = 1.0e4f;                   ///< |angle| o
 inline constexpr float kSceneMaxDensity = 1.0e9f;                 ///< kg/m^2
 inline constexpr float kSceneMaxFriction = 1.0e3f;                ///< friction coefficient
 inline constexpr float kSceneMaxRestitution = kMaxRestitution;    ///< above 1 adds energy
-inline constexpr double kSceneMaxMass = kMaxBodyMass;             ///< kg, of a dynamic body
-inline constexpr double kSceneMaxInertia = 1.0e30;                ///< kg m^2, of a dynamic body
-inline constexpr float kSceneMinGeneratedSize = 1.0e-6f;          ///< generator sizes, metres
-inline constexpr float kSceneMaxGeneratedSize = 1.0e6f;           ///< generator sizes, metres
-inline constexpr std::size_t kSceneMaxBodies = 1000000;           ///< listed and generated
+inline constexpr double kSceneMaxMass =
+    static_cast<double>(kMaxBodyMass);                    ///< kg, of a dynamic body
+inline constexpr double kSceneMaxInertia = 1.0e30;        ///< kg m^2, of a dynamic body
+inline constexpr float kSceneMinGeneratedSize = 1.0e-6f;  ///< generator sizes, metres
+inline constexpr float kSceneMaxGeneratedSize = 1.0e6f;   ///< generator sizes, metres
+inline constexpr std::size_t kSceneMaxBodies = 1000000;   ///< listed and generated
 
 /// A shape of a scene body: geometry in the body frame, and its material and filter.
 struct SceneShape {
