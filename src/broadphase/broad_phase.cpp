@@ -117,15 +117,12 @@ void BroadPhase::buffer(std::uint32_t proxy) {
 Result<ProxyId> BroadPhase::createProxy(Aabb box, std::uint64_t userData, Filter filter,
                                         ProxyKind kind) {
   if (Status s = checkBox(box, "createProxy", "box"); !s) return fail(s.message());
-  std::uint32_t p;
-  if (!free_.empty()) {
-    p = free_.back();
-    free_.pop_back();
-  } else {
-    if (records_.size() >= 0x7fffffffu) return fail("createProxy: too many proxies (2^31)");
-    p = static_cast<std::uint32_t>(records_.size());
-    // Generation 1 for a fresh slot, so the default (null) id never matches a live proxy.
-    records_.push_back({{}, 0, 1});
+  if (ids_.nextIndex() >= 0x7fffffffu) return fail("createProxy: too many proxies (2^31)");
+  // Slots and generations come from the IdPool (core): a fresh slot has generation 1, so
+  // the default (null) id never matches a live proxy.
+  const std::uint32_t p = ids_.allocate();
+  if (p == records_.size()) {
+    records_.push_back({});
     fat_.push_back({});
     tight_.push_back({});
     flags_.push_back(0);
@@ -133,13 +130,12 @@ Result<ProxyId> BroadPhase::createProxy(Aabb box, std::uint64_t userData, Filter
   Record& r = records_[p];
   r.filter = filter;
   r.userData = userData;
-  flags_[p] = static_cast<std::uint8_t>(kAlive | (kind == ProxyKind::kStatic ? kStatic : 0));
+  flags_[p] = static_cast<std::uint8_t>(kind == ProxyKind::kStatic ? kStatic : 0);
   tight_[p] = box;
   fat_[p] = inflate(box, config_.margin);
   std::visit([&](auto& index) { index.insert(p, fat_[p]); }, index_);
   buffer(p);
-  ++liveCount_;
-  return ProxyId{p, r.generation};
+  return ProxyId{p, ids_.generation(p)};
 }
 
 Status BroadPhase::destroyProxy(ProxyId id) {
@@ -149,9 +145,7 @@ Status BroadPhase::destroyProxy(ProxyId id) {
   // A stale move-buffer entry is skipped by updatePairs (kBuffered is cleared here), and if
   // the slot is reused before then, the new proxy's entry is deduplicated there.
   flags_[p] = 0;
-  ++records_[p].generation;
-  free_.push_back(p);
-  --liveCount_;
+  ids_.release(p);
   return {};
 }
 
@@ -210,8 +204,8 @@ void BroadPhase::addPair(std::uint32_t a, std::uint32_t b, std::vector<ProxyPair
   const Record& rb = records_[b];
   if (!shouldCollide(ra.filter, rb.filter)) return;
   if (config_.checkTightBoxes && !overlaps(tight_[a], tight_[b])) return;
-  ProxyId ia{a, ra.generation};
-  ProxyId ib{b, rb.generation};
+  ProxyId ia = idOf(a);
+  ProxyId ib = idOf(b);
   if (a > b) std::swap(ia, ib);
   if (pairFilter_ != nullptr && !pairFilter_(pairFilterContext_, ia, records_[ia.index].userData,
                                              ib, records_[ib.index].userData)) {
@@ -297,11 +291,11 @@ void BroadPhase::rebuild() {
 
 BroadPhaseStats BroadPhase::stats() const {
   BroadPhaseStats s;
-  s.proxyCount = liveCount_;
+  s.proxyCount = ids_.liveCount();
   s.structureBytes = std::visit([](const auto& index) { return index.bytesUsed(); }, index_);
   s.recordBytes = (fat_.capacity() + tight_.capacity()) * sizeof(Aabb) +
                   flags_.capacity() * sizeof(std::uint8_t) + records_.capacity() * sizeof(Record) +
-                  (free_.capacity() + moveBuffer_.capacity()) * sizeof(std::uint32_t);
+                  moveBuffer_.capacity() * sizeof(std::uint32_t) + ids_.memoryBytes();
   if (const auto* t = std::get_if<DynamicTree>(&index_)) {
     s.height = t->height();
     s.areaRatio = t->areaRatio();
@@ -319,12 +313,12 @@ Status BroadPhase::validate() const {
   Status result;
   std::visit(
       [&](const auto& index) {
-        if (index.proxyCount() != liveCount_) {
+        if (index.proxyCount() != ids_.liveCount()) {
           result = fail("structure proxy count differs from the live proxy count");
           return;
         }
         for (std::uint32_t p = 0; p < records_.size(); ++p) {
-          const bool alive = (flags_[p] & kAlive) != 0;
+          const bool alive = ids_.isAlive(p);
           if (alive != index.contains(p)) {
             result = fail("proxy " + std::to_string(p) + " is live in one place only");
             return;
@@ -344,12 +338,9 @@ Status BroadPhase::validate() const {
       },
       index_);
   if (!result) return result;
-  if (live != liveCount_) return fail("live count is wrong");
-  for (std::uint32_t p : free_) {
-    if (p >= records_.size() || (flags_[p] & kAlive) != 0)
-      return fail("free list holds a live slot");
-  }
-  if (free_.size() + liveCount_ != records_.size()) return fail("free + live slots != slots");
+  if (live != ids_.liveCount()) return fail("live count is wrong");
+  if (Status s = ids_.validate(); !s) return s;
+  if (ids_.capacity() != records_.size()) return fail("id slots and records differ in number");
   std::vector<bool> inBuffer(records_.size(), false);
   for (std::uint32_t p : moveBuffer_) {
     if (p >= records_.size()) return fail("move buffer entry out of range");

@@ -53,6 +53,7 @@
 #include "quack/broadphase/quadtree.hpp"
 #include "quack/broadphase/spatial_hash.hpp"
 #include "quack/broadphase/sweep_and_prune.hpp"
+#include "quack/core/id_pool.hpp"
 #include "quack/core/result.hpp"
 #include "quack/math/aabb.hpp"
 
@@ -169,10 +170,7 @@ class BroadPhase {
   Status touchProxy(ProxyId id);
 
   /// True when `id` names a live proxy.
-  bool isValid(ProxyId id) const noexcept {
-    return id.index < records_.size() && records_[id.index].generation == id.generation &&
-           (flags_[id.index] & kAlive) != 0;
-  }
+  bool isValid(ProxyId id) const noexcept { return ids_.isValid(id.index, id.generation); }
   /// Precondition `isValid(id)` (asserted): the user data given at creation.
   std::uint64_t userData(ProxyId id) const;
   /// Precondition `isValid(id)` (asserted): the proxy's filter.
@@ -182,7 +180,7 @@ class BroadPhase {
   /// Precondition `isValid(id)` (asserted): the enlarged box stored in the structure.
   Aabb fatBox(ProxyId id) const;
   /// Number of live proxies.
-  std::uint32_t proxyCount() const noexcept { return liveCount_; }
+  std::uint32_t proxyCount() const noexcept { return ids_.liveCount(); }
 
   /// Installs the user pair filter (null removes it).
   void setPairFilter(PairFilterFn userFilter, void* context) noexcept {
@@ -238,15 +236,13 @@ class BroadPhase {
 
  private:
   using Index = std::variant<DynamicTree, Quadtree, SweepAndPrune, SpatialHash, BruteForce>;
-  static constexpr std::uint8_t kAlive = 1;
   static constexpr std::uint8_t kStatic = 2;
   static constexpr std::uint8_t kBuffered = 4;  // in the move buffer
   static constexpr std::uint8_t kInPass = 8;    // being paired by the current updatePairs
 
   struct Record {
     Filter filter;
-    std::uint64_t userData;
-    std::uint32_t generation;
+    std::uint64_t userData = 0;
   };
 
   // Re-insert a proxy whose fat box has grown past its wanted fat box plus this many margins
@@ -268,7 +264,7 @@ class BroadPhase {
   Status checkId(ProxyId id, const char* function) const;
   void buffer(std::uint32_t proxy);
   void addPair(std::uint32_t a, std::uint32_t b, std::vector<ProxyPair>& pairs) const;
-  ProxyId idOf(std::uint32_t proxy) const noexcept { return {proxy, records_[proxy].generation}; }
+  ProxyId idOf(std::uint32_t proxy) const noexcept { return {proxy, ids_.generation(proxy)}; }
 
   template <class Callback>
   void castImpl(Vec2 origin, Vec2 translation, Vec2 inflation, Callback& callback) const;
@@ -279,9 +275,8 @@ class BroadPhase {
   std::vector<Aabb> tight_;
   std::vector<std::uint8_t> flags_;
   std::vector<Record> records_;
-  std::vector<std::uint32_t> free_;
+  IdPool ids_;  // slots, generations and the free list of proxies
   std::vector<std::uint32_t> moveBuffer_;
-  std::uint32_t liveCount_ = 0;
   PairFilterFn pairFilter_ = nullptr;
   void* pairFilterContext_ = nullptr;
 };
