@@ -1,12 +1,18 @@
 // World benchmark: milliseconds per step, single-threaded, for Quack's World and Box2D
 // 2.4.1's b2World on the same scenes in the same run.
 //
-//   world_bench [--rows N] [--field N] [--steps N] [--warmup N]
+//   world_bench [--rows N] [--field N] [--steps N] [--warmup N] [--scene NAME]
+//               [--only quack|box2d]
 //
 // Scenes (both libraries, 60 Hz):
 //   pyramid  a pyramid of N rows of 1 m boxes (N = 100: 5,050 boxes), the peers' standard scene;
-//   field    N mixed shapes (boxes, circles, capsules, triangles) dropped into a box,
-//            timed after 4 s, once they have piled up.
+//   many     20 x 20 pyramids of 10 rows (22,000 boxes), each row of pyramids on its own
+//            ground (Box2D v3's "many pyramids" benchmark, its figures quoted in docs/world.md);
+//   rain     N mixed shapes (boxes, circles, capsules, triangles) raining into a box, timed
+//            from the start while they fall and pile up;
+//   field    the same N shapes timed after 4 s, once they have piled up.
+// --scene runs one scene; --only runs one library (for callgrind: instruction counts per
+// library, `valgrind --tool=callgrind world_bench --scene pyramid --only quack --steps 20`).
 // Quack runs its default 4 sub-steps; Box2D its standard 8 velocity and 3 position
 // iterations. Box2D's sleeping is switched off (Quack has none yet), so both simulate every
 // body every step; the note at the end says what sleeping would change.
@@ -35,7 +41,16 @@ struct Options {
   int field = 2000;
   int steps = 200;
   int warmup = 20;
+  std::string scene;  // empty: all
+  std::string only;   // empty: both libraries
 };
+
+// Many pyramids: kManyGrid x kManyGrid pyramids of kManyRows rows, kManySpacing metres apart
+// both ways; each row of pyramids stands on its own ground segment (the layout of Box2D v3's
+// "many pyramids" benchmark: 2 (rows + 1) m between grounds, a 2 m gap between pyramids).
+constexpr int kManyGrid = 20;
+constexpr int kManyRows = 10;
+constexpr float kManySpacing = 2.0f * (kManyRows + 1);
 
 // One falling shape of the field scene, the same for both libraries.
 struct Piece {
@@ -79,6 +94,33 @@ Timing timeSteps(const Options& o, StepFn step, CountFn count, int extraWarmup =
 
 // ---- Quack ------------------------------------------------------------------------------
 
+void quackAddPyramid(World& world, const Polygon& box, int rows, Vec2 base) {
+  for (int row = 0; row < rows; ++row) {
+    for (int i = 0; i < rows - row; ++i) {
+      float x = base.x + static_cast<float>(i) - 0.5f * static_cast<float>(rows - row - 1);
+      BodyId b =
+          world.createBody({.position = {x, base.y + 0.5f + static_cast<float>(row)}}).value();
+      (void)world.createShape(b, {}, box);
+    }
+  }
+}
+
+Timing quackMany(const Options& o) {
+  World world = World::create({}).value();
+  BodyId ground = world.createBody({.type = BodyType::staticBody}).value();
+  const float width = kManySpacing * kManyGrid;
+  Polygon box = makeBox(0.5f, 0.5f).value();
+  for (int r = 0; r < kManyGrid; ++r) {
+    const float y = kManySpacing * static_cast<float>(r);
+    (void)world.createShape(ground, {},
+                            makeSegment({-kManySpacing, y}, {width + kManySpacing, y}).value());
+    for (int c = 0; c < kManyGrid; ++c)
+      quackAddPyramid(world, box, kManyRows, {kManySpacing * (static_cast<float>(c) + 0.5f), y});
+  }
+  return timeSteps(
+      o, [&] { world.step(); }, [&] { return world.touchingContactCount(); });
+}
+
 Timing quackPyramid(const Options& o) {
   World world = World::create({}).value();
   BodyId ground = world.createBody({.type = BodyType::staticBody}).value();
@@ -92,10 +134,10 @@ Timing quackPyramid(const Options& o) {
     }
   }
   return timeSteps(
-      o, [&] { (void)world.step(); }, [&] { return world.touchingContactCount(); });
+      o, [&] { world.step(); }, [&] { return world.touchingContactCount(); });
 }
 
-Timing quackField(const Options& o, const std::vector<Piece>& pieces) {
+Timing quackField(const Options& o, const std::vector<Piece>& pieces, int settleSteps) {
   World world = World::create({}).value();
   BodyId ground = world.createBody({.type = BodyType::staticBody}).value();
   (void)world.createShape(ground, {}, makeBox(32.0f, 0.5f, {0, -0.5f}).value());
@@ -121,8 +163,7 @@ Timing quackField(const Options& o, const std::vector<Piece>& pieces) {
     }
   }
   return timeSteps(
-      o, [&] { (void)world.step(); }, [&] { return world.touchingContactCount(); },
-      kFieldSettleSteps);
+      o, [&] { world.step(); }, [&] { return world.touchingContactCount(); }, settleSteps);
 }
 
 #ifdef QUACK_BENCH_HAS_BOX2D
@@ -162,7 +203,44 @@ Timing box2dPyramid(const Options& o) {
       o, [&] { world.Step(1.0f / 60.0f, 8, 3); }, [&] { return box2dTouching(world); });
 }
 
-Timing box2dField(const Options& o, const std::vector<Piece>& pieces) {
+void box2dAddPyramid(b2World& world, const b2PolygonShape& box, int rows, b2Vec2 base) {
+  for (int row = 0; row < rows; ++row) {
+    for (int i = 0; i < rows - row; ++i) {
+      b2BodyDef bd;
+      bd.type = b2_dynamicBody;
+      bd.position.Set(base.x + static_cast<float>(i) - 0.5f * static_cast<float>(rows - row - 1),
+                      base.y + 0.5f + static_cast<float>(row));
+      b2FixtureDef fd;
+      fd.shape = &box;
+      fd.density = 1.0f;
+      fd.friction = 0.6f;
+      world.CreateBody(&bd)->CreateFixture(&fd);
+    }
+  }
+}
+
+Timing box2dMany(const Options& o) {
+  b2World world(b2Vec2(0.0f, -10.0f));
+  world.SetAllowSleeping(false);
+  b2BodyDef gd;
+  b2Body* ground = world.CreateBody(&gd);
+  const float width = kManySpacing * kManyGrid;
+  b2PolygonShape box;
+  box.SetAsBox(0.5f, 0.5f);
+  for (int r = 0; r < kManyGrid; ++r) {
+    const float y = kManySpacing * static_cast<float>(r);
+    b2EdgeShape gs;
+    gs.SetTwoSided(b2Vec2(-kManySpacing, y), b2Vec2(width + kManySpacing, y));
+    ground->CreateFixture(&gs, 0.0f);
+    for (int c = 0; c < kManyGrid; ++c)
+      box2dAddPyramid(world, box, kManyRows,
+                      b2Vec2(kManySpacing * (static_cast<float>(c) + 0.5f), y));
+  }
+  return timeSteps(
+      o, [&] { world.Step(1.0f / 60.0f, 8, 3); }, [&] { return box2dTouching(world); });
+}
+
+Timing box2dField(const Options& o, const std::vector<Piece>& pieces, int settleSteps) {
   b2World world(b2Vec2(0.0f, -10.0f));
   world.SetAllowSleeping(false);
   b2BodyDef gd;
@@ -220,7 +298,7 @@ Timing box2dField(const Options& o, const std::vector<Piece>& pieces) {
   }
   return timeSteps(
       o, [&] { world.Step(1.0f / 60.0f, 8, 3); }, [&] { return box2dTouching(world); },
-      kFieldSettleSteps);
+      settleSteps);
 }
 #endif
 
@@ -255,31 +333,70 @@ int main(int argc, char** argv) {
       o.steps = parseInt("--steps", argv[++i]);
     else if (a == "--warmup")
       o.warmup = parseInt("--warmup", argv[++i]);
+    else if (a == "--scene")
+      o.scene = argv[++i];
+    else if (a == "--only")
+      o.only = argv[++i];
     else {
       std::fprintf(stderr, "world_bench: unknown option %s\n", a.c_str());
       return 2;
     }
   }
+  if (!o.scene.empty() && o.scene != "pyramid" && o.scene != "many" && o.scene != "rain" &&
+      o.scene != "field") {
+    std::fprintf(stderr, "world_bench: --scene must be pyramid, many, rain or field, got %s\n",
+                 o.scene.c_str());
+    return 2;
+  }
+  if (!o.only.empty() && o.only != "quack" && o.only != "box2d") {
+    std::fprintf(stderr, "world_bench: --only must be quack or box2d, got %s\n", o.only.c_str());
+    return 2;
+  }
+  const bool runQuack = o.only != "box2d";
+#ifdef QUACK_BENCH_HAS_BOX2D
+  const bool runBox2d = o.only != "quack";
+#endif
   std::vector<Piece> pieces = makeField(o.field);
   std::printf("world_bench: %d warm-up steps, then %d timed steps at 60 Hz, single thread\n",
               o.warmup, o.steps);
   std::printf("%-24s %14s %14s %10s\n", "scene", "library", "ms/step", "contacts");
-  Timing qp = quackPyramid(o);
-  std::printf("%-24s %14s %14.3f %10zu\n", ("pyramid " + std::to_string(o.rows) + " rows").c_str(),
-              "quack", qp.msPerStep, qp.contacts);
+  auto scene = [&](const std::string& name, const std::string& label, auto quackFn,
+                   [[maybe_unused]] auto box2dFn) {
+    if (!o.scene.empty() && o.scene != name) return;
+    Timing q{}, b{};
+    if (runQuack) {
+      q = quackFn();
+      std::printf("%-24s %14s %14.3f %10zu\n", label.c_str(), "quack", q.msPerStep, q.contacts);
+    }
 #ifdef QUACK_BENCH_HAS_BOX2D
-  Timing bp = box2dPyramid(o);
-  std::printf("%-24s %14s %14.3f %10zu\n", "", "box2d 2.4.1", bp.msPerStep, bp.contacts);
-  std::printf("%-24s %14s %14.2fx\n", "", "box2d/quack", bp.msPerStep / qp.msPerStep);
+    if (runBox2d) {
+      b = box2dFn();
+      std::printf("%-24s %14s %14.3f %10zu\n", runQuack ? "" : label.c_str(), "box2d 2.4.1",
+                  b.msPerStep, b.contacts);
+    }
+    if (runQuack && runBox2d)
+      std::printf("%-24s %14s %14.2fx\n", "", "box2d/quack", b.msPerStep / q.msPerStep);
 #endif
-  Timing qf = quackField(o, pieces);
-  std::printf("%-24s %14s %14.3f %10zu\n", ("field " + std::to_string(o.field) + " shapes").c_str(),
-              "quack", qf.msPerStep, qf.contacts);
+  };
 #ifdef QUACK_BENCH_HAS_BOX2D
-  Timing bf = box2dField(o, pieces);
-  std::printf("%-24s %14s %14.3f %10zu\n", "", "box2d 2.4.1", bf.msPerStep, bf.contacts);
-  std::printf("%-24s %14s %14.2fx\n", "", "box2d/quack", bf.msPerStep / qf.msPerStep);
+#define QUACK_BOX2D(call) [&] { return call; }
 #else
+#define QUACK_BOX2D(call) 0
+#endif
+  scene(
+      "pyramid", "pyramid " + std::to_string(o.rows) + " rows", [&] { return quackPyramid(o); },
+      QUACK_BOX2D(box2dPyramid(o)));
+  scene(
+      "many", "many 20x20 pyramids", [&] { return quackMany(o); }, QUACK_BOX2D(box2dMany(o)));
+  scene(
+      "rain", "rain " + std::to_string(o.field) + " shapes",
+      [&] { return quackField(o, pieces, 0); }, QUACK_BOX2D(box2dField(o, pieces, 0)));
+  scene(
+      "field", "field " + std::to_string(o.field) + " shapes",
+      [&] { return quackField(o, pieces, kFieldSettleSteps); },
+      QUACK_BOX2D(box2dField(o, pieces, kFieldSettleSteps)));
+#undef QUACK_BOX2D
+#ifndef QUACK_BENCH_HAS_BOX2D
   std::printf("(Box2D 2.4.1 not built in: apt-get install libbox2d-dev and reconfigure)\n");
 #endif
   return 0;
