@@ -62,7 +62,10 @@ struct Direction {
   float vLength = -1.0f;  // length(v) when it was needed, else -1
 };
 
-Direction findClosestDirection(const Simplex2& simplex, Vec2 v, float vv) noexcept {
+// Always inlined, as it was when runGjk had one instantiation: with the observed one as a
+// third caller the compiler calls it instead, which cost 50 instructions a query.
+[[gnu::always_inline]] inline Direction findClosestDirection(const Simplex2& simplex, Vec2 v,
+                                                             float vv) noexcept {
   if (simplex.count == 2) {
     Vec2 a = simplex.vertices[0].support.w;
     Vec2 n = normalize(leftPerp(simplex.vertices[1].support.w - a));
@@ -218,8 +221,15 @@ template GjkRun runGjk<NoGjkObserver>(const ShapeProxy&, const ShapeProxy&, Tran
 template GjkRun runGjk<GjkRecorder>(const ShapeProxy&, const ShapeProxy&, Transform, GjkCache*,
                                     float, GjkRecorder&) noexcept;
 
-DistanceOutput makeDistanceOutput(const ShapeProxy& a, const ShapeProxy& b, Transform worldFromA,
-                                  const GjkRun& run) noexcept {
+namespace {
+
+// computeDistance's answer from a run's state (the final one, or any pass's, for the trace);
+// iterations and status are left to the caller. Always inlined, as this code was when it
+// sat in computeDistance (called, it cost 30 instructions a query).
+[[gnu::always_inline]] inline DistanceOutput makeDistanceOutput(const ShapeProxy& a,
+                                                                const ShapeProxy& b,
+                                                                Transform worldFromA,
+                                                                const GjkRun& run) noexcept {
   WitnessPoints witness = computeWitnessPoints(run.simplex);
   DistanceOutput out;
   float radii = a.radius() + b.radius();
@@ -246,6 +256,8 @@ DistanceOutput makeDistanceOutput(const ShapeProxy& a, const ShapeProxy& b, Tran
   return out;
 }
 
+}  // namespace
+
 void GjkRecorder::onPass(const GjkRun& run, const SupportPoint* support) noexcept {
   if (trace == nullptr) return;
   GjkIterationRecord* record = claimTraceRecord(*trace);
@@ -265,23 +277,32 @@ void GjkRecorder::onPass(const GjkRun& run, const SupportPoint* support) noexcep
 
 }  // namespace detail
 
-DistanceOutput computeDistance(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
-                               Transform worldFromB, GjkCache* cache, GjkTrace* trace) noexcept {
+namespace {
+
+template <class Observer>
+DistanceOutput distanceWith(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
+                            Transform worldFromB, GjkCache* cache, Observer& observer) noexcept {
   Transform aFromB = invMul(worldFromA, worldFromB);
-  auto runUnobserved = [&] {
-    detail::NoGjkObserver none;
-    return detail::runGjk(a, b, aFromB, cache, -1.0f, none);
-  };
-  auto runObserved = [&] {
-    detail::resetTrace(*trace);
-    detail::GjkRecorder recorder{a, b, worldFromA, trace};
-    return detail::runGjk(a, b, aFromB, cache, -1.0f, recorder);
-  };
-  detail::GjkRun run = trace == nullptr ? runUnobserved() : runObserved();
+  detail::GjkRun run = detail::runGjk(a, b, aFromB, cache, -1.0f, observer);
   DistanceOutput out = detail::makeDistanceOutput(a, b, worldFromA, run);
   out.iterations = run.iterations;
   out.status = run.status;
   return out;
+}
+
+}  // namespace
+
+DistanceOutput computeDistance(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
+                               Transform worldFromB, GjkCache* cache) noexcept {
+  detail::NoGjkObserver none;
+  return distanceWith(a, worldFromA, b, worldFromB, cache, none);
+}
+
+DistanceOutput computeDistance(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
+                               Transform worldFromB, GjkCache* cache, GjkTrace& trace) noexcept {
+  detail::resetTrace(trace);
+  detail::GjkRecorder recorder{a, b, worldFromA, &trace};
+  return distanceWith(a, worldFromA, b, worldFromB, cache, recorder);
 }
 
 bool testOverlap(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,

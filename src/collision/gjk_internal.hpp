@@ -25,11 +25,6 @@ struct GjkRun {
 // direction error grows like size / |v|). Zero when v is zero.
 Vec2 closestDirection(const Simplex2& simplex, Vec2 v) noexcept;
 
-// computeDistance's answer from a run's state (the final one, or any pass's, for the trace).
-// Iterations and status are left to the caller.
-DistanceOutput makeDistanceOutput(const ShapeProxy& a, const ShapeProxy& b, Transform worldFromA,
-                                  const GjkRun& run) noexcept;
-
 // The slot for the next record of a trace (GjkTrace, EpaTrace): the first capacity - 1
 // passes in order, then the last slot again and again, so it ends holding the final pass.
 // Null when the buffer has no room at all (no records, or capacity <= 0).

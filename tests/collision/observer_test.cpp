@@ -95,7 +95,7 @@ void checkPair(const ShapeProxy& a, Transform xa, const ShapeProxy& b, Transform
   // Distance.
   DistanceOutput plain = computeDistance(a, xa, b, xb, cache(c1));
   GjkTrace gjk = buffers.gjkTrace();
-  DistanceOutput seen = computeDistance(a, xa, b, xb, cache(c2), &gjk);
+  DistanceOutput seen = computeDistance(a, xa, b, xb, cache(c2), gjk);
   {
     SCOPED_TRACE("observing changes nothing (distance)");
     expectSameAnswer(plain, seen);
@@ -175,7 +175,7 @@ TEST(Observer, HandWorkedCirclesApart) {
   ShapeProxy b = makeProxy(makeCircle({}, 1.0f).value());
   GjkIterationRecord records[4];
   GjkTrace trace{records, 4};
-  DistanceOutput d = computeDistance(a, {}, b, makeTransform({3.0f, 0.0f}, 0.0f), nullptr, &trace);
+  DistanceOutput d = computeDistance(a, {}, b, makeTransform({3.0f, 0.0f}, 0.0f), nullptr, trace);
   EXPECT_EQ(d.status, GjkStatus::repeatedSupport);
   EXPECT_EQ(d.iterations, 1);
   ASSERT_EQ(trace.count, 1);
@@ -274,7 +274,7 @@ TEST(Observer, TooSmallGjkBufferIsTruncatedNeverOverrun) {
 
   std::vector<GjkIterationRecord> full(kGjkMaxTraceRecords);
   GjkTrace fullTrace{full.data(), kGjkMaxTraceRecords};
-  DistanceOutput answer = computeDistance(a, xa, b, xb, nullptr, &fullTrace);
+  DistanceOutput answer = computeDistance(a, xa, b, xb, nullptr, fullTrace);
   ASSERT_GE(fullTrace.count, 3) << "the pair should take several passes";
   const GjkIterationRecord& fullLast = full[fullTrace.count - 1];
 
@@ -285,7 +285,7 @@ TEST(Observer, TooSmallGjkBufferIsTruncatedNeverOverrun) {
     buffer[capacity].distance = -12345.0f;
     buffer[capacity].simplex.count = 77;
     GjkTrace trace{buffer.data(), capacity};
-    DistanceOutput d = computeDistance(a, xa, b, xb, nullptr, &trace);
+    DistanceOutput d = computeDistance(a, xa, b, xb, nullptr, trace);
     expectSameAnswer(d, answer);
     EXPECT_TRUE(trace.truncated);
     EXPECT_EQ(trace.passes, fullTrace.count);
@@ -304,7 +304,7 @@ TEST(Observer, TooSmallGjkBufferIsTruncatedNeverOverrun) {
   }
   // No buffer at all: nothing written, the passes still counted.
   GjkTrace none{nullptr, 10};
-  DistanceOutput d = computeDistance(a, xa, b, xb, nullptr, &none);
+  DistanceOutput d = computeDistance(a, xa, b, xb, nullptr, none);
   expectSameAnswer(d, answer);
   EXPECT_EQ(none.count, 0);
   EXPECT_EQ(none.passes, fullTrace.count);
@@ -313,7 +313,7 @@ TEST(Observer, TooSmallGjkBufferIsTruncatedNeverOverrun) {
   GjkTrace exact{full.data(), fullTrace.count};
   exact.truncated = true;
   exact.count = 99;
-  (void)computeDistance(a, xa, b, xb, nullptr, &exact);
+  (void)computeDistance(a, xa, b, xb, nullptr, exact);
   EXPECT_FALSE(exact.truncated);
   EXPECT_EQ(exact.count, fullTrace.count);
 }

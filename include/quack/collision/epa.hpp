@@ -98,9 +98,9 @@ inline constexpr int kEpaMaxTraceRecords = kEpaMaxVertices - 2;
 /// are kept, `truncated` says some were dropped). `count` is 0 when EPA did not run
 /// (separated, coresSeparated, degenerate). An EpaIterationRecord is about 4 kB.
 struct EpaTrace {
-  EpaIterationRecord* records = nullptr;
+  EpaIterationRecord* records = nullptr;  ///< caller-owned array of `capacity` records
   int capacity = 0;
-  int count = 0;           ///< records written: min(passes, capacity)
+  int count = 0;           ///< records written: min(passes, capacity), 0 when records is null
   int passes = 0;          ///< passes the run made
   bool truncated = false;  ///< passes > capacity: middle passes were dropped
   /// Support points taken to grow GJK's final simplex into EPA's first triangle (counted in
@@ -110,12 +110,15 @@ struct EpaTrace {
 
 /// Penetration of proxy B (placed by `worldFromB`) into proxy A (placed by `worldFromA`):
 /// GJK first; when the cores overlap, EPA on the cores plus both radii. `cache` as for
-/// computeDistance. `gjkTrace` and `epaTrace` (each may be null) record every pass of GJK
-/// and of EPA (see GjkTrace, EpaTrace). No allocation (the polytope is a fixed array on the
-/// stack).
+/// computeDistance. No allocation (the polytope is a fixed array on the stack).
 PenetrationOutput computePenetration(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
-                                     Transform worldFromB, GjkCache* cache = nullptr,
-                                     GjkTrace* gjkTrace = nullptr,
-                                     EpaTrace* epaTrace = nullptr) noexcept;
+                                     Transform worldFromB, GjkCache* cache = nullptr) noexcept;
+
+/// computePenetration that also records every pass of GJK into `gjkTrace` and of EPA into
+/// `epaTrace` (either may be null; see GjkTrace, EpaTrace). The answer is the same, bit for
+/// bit.
+PenetrationOutput computePenetration(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
+                                     Transform worldFromB, GjkCache* cache, GjkTrace* gjkTrace,
+                                     EpaTrace* epaTrace) noexcept;
 
 }  // namespace quack

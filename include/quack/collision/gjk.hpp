@@ -99,23 +99,26 @@ inline constexpr int kGjkMaxTraceRecords = kGjkMaxIterations + 1;
 /// the call resets the rest. When the run has more passes than `capacity`, the first
 /// `capacity - 1` are kept, the last slot holds the final pass (so `records[count - 1]` is
 /// always where GJK ended) and `truncated` is set; nothing is written past `capacity`.
-/// Observing never changes the answer, and the unobserved call (null trace) runs the same
-/// code as before, with the recording compiled out.
+/// Observing never changes the answer; the overloads without a trace run the same loop with
+/// the recording compiled out.
 struct GjkTrace {
-  GjkIterationRecord* records = nullptr;
+  GjkIterationRecord* records = nullptr;  ///< caller-owned array of `capacity` records
   int capacity = 0;
-  int count = 0;           ///< records written: min(passes, capacity)
+  int count = 0;           ///< records written: min(passes, capacity), 0 when records is null
   int passes = 0;          ///< passes the run made
   bool truncated = false;  ///< passes > capacity: middle passes were dropped
 };
 
 /// Distance and closest points between proxy A placed by `worldFromA` and proxy B placed by
-/// `worldFromB`. `cache` (may be null) warm-starts the search and is updated. `trace` (may
-/// be null) records every pass (see GjkTrace). No allocation. Preconditions: valid proxies
-/// (see ShapeProxy) and finite transforms.
+/// `worldFromB`. `cache` (may be null) warm-starts the search and is updated. No
+/// allocation. Preconditions: valid proxies (see ShapeProxy) and finite transforms.
 DistanceOutput computeDistance(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
-                               Transform worldFromB, GjkCache* cache = nullptr,
-                               GjkTrace* trace = nullptr) noexcept;
+                               Transform worldFromB, GjkCache* cache = nullptr) noexcept;
+
+/// computeDistance that also records every pass of GJK into `trace` (see GjkTrace). The
+/// answer is the same, bit for bit.
+DistanceOutput computeDistance(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
+                               Transform worldFromB, GjkCache* cache, GjkTrace& trace) noexcept;
 
 /// True when the closed rounded shapes share a point (touching counts, to the tolerances
 /// above). Stops as soon as a separating direction is found, so it is cheaper than
