@@ -213,7 +213,7 @@ struct EpaRecorder {
 
 // Instantiated unobserved and observed. The helpers above are always inlined, as they were
 // when this was the only copy: with two callers each the compiler calls them instead, which
-// cost 200 instructions a query.
+// cost about 120 instructions a query (callgrind, 8-gon pairs).
 template <class GjkObserver, class EpaObserver>
 PenetrationOutput penetrate(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
                             Transform worldFromB, GjkCache* cache, GjkObserver& gjkObserver,

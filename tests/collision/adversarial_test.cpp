@@ -13,8 +13,8 @@
 namespace quack {
 namespace {
 
-using testing::AnyShape;
 using testing::AdversarialCase;
+using testing::AnyShape;
 
 void expectFinite(Vec2 v, const std::string& what) {
   EXPECT_TRUE(isFinite(v)) << what;
