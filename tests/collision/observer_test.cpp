@@ -257,6 +257,38 @@ TEST(Observer, FinalRecordIsTheAnswerOnRandomPairs) {
   }
 }
 
+// GJK's stall guard puts the previous simplex back; the last record is that kept simplex
+// (the pass before's), and still the answer. A thin pair found by a random search (none
+// of the corpus or the random pairs above stalls).
+TEST(Observer, StalledRunEndsOnTheKeptSimplex) {
+  const Vec2 pointsA[] = {{-0x1.b66912p-2f, 0x1.5f70acp-4f},
+                          {0x1.b3796p-4f, -0x1.ad7aecp-2f},
+                          {-0x1.a7e008p-2f, 0x1.7008f8p-3f}};
+  const Vec2 pointsB[] = {{-0x1.331c4p-1f, -0x1.69ea76p-12f},
+                          {-0x1.63b538p-2f, -0x1.97a9d8p-12f},
+                          {-0x1.26e54ap-2f, -0x1.91a4acp-12f},
+                          {0x1.a76cccp-2f, -0x1.982b1ep-14f},
+                          {0x1.4cde12p-1f, 0x1.644d68p-13f}};
+  Polygon polygonA = makePolygon(pointsA).value();
+  Polygon polygonB = makePolygon(pointsB).value();
+  ShapeProxy a = makeProxy(polygonA);
+  ShapeProxy b = makeProxy(polygonB);
+  Transform xa{{-0x1.d74bdp+1f, 0x1.8f908p-1f}, {0x1.c02436p-1f, 0x1.ef3af2p-2f}};
+  Transform xb{{-0x1.42caeep+2f, 0x1.a42e3cp-2f}, {-0x1.93b816p-1f, 0x1.3ae382p-1f}};
+
+  Buffers buffers;
+  GjkTrace trace = buffers.gjkTrace();
+  DistanceOutput d = computeDistance(a, xa, b, xb, nullptr, trace);
+  ASSERT_EQ(d.status, GjkStatus::stalled);
+  ASSERT_GE(trace.count, 2);
+  const GjkIterationRecord& last = trace.records[trace.count - 1];
+  const GjkIterationRecord& before = trace.records[trace.count - 2];
+  EXPECT_FALSE(last.hasSupport);
+  EXPECT_TRUE(sameBits(last.closest, before.closest));
+  EXPECT_EQ(last.simplex.count, before.simplex.count);
+  checkPair(a, xa, b, xb, nullptr, buffers);
+}
+
 // A run longer than the buffer: the first capacity - 1 passes, then the final one; the flag
 // is set, the pass count is the whole run's, and nothing past capacity is touched.
 TEST(Observer, TooSmallGjkBufferIsTruncatedNeverOverrun) {
