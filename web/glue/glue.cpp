@@ -11,9 +11,9 @@
 
 #include <emscripten/emscripten.h>
 
-#include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <variant>
@@ -183,8 +183,12 @@ json epaJson(const EpaTrace& trace, const PenetrationOutput& p, Transform worldF
           {"iterations", p.iterations},   {"truncated", trace.truncated}};
 }
 
+// memcpy, not std::bit_cast: emscripten 3.1.6's libc++ has no bit_cast.
 bool sameBits(float x, float y) {
-  return std::bit_cast<std::uint32_t>(x) == std::bit_cast<std::uint32_t>(y);
+  std::uint32_t bx, by;
+  std::memcpy(&bx, &x, sizeof bx);
+  std::memcpy(&by, &y, sizeof by);
+  return bx == by;
 }
 bool sameBits(Vec2 x, Vec2 y) {
   return sameBits(x.x, y.x) && sameBits(x.y, y.y);
