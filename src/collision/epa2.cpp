@@ -56,7 +56,7 @@ bool sameSupport(const SupportPoint& x, const SupportPoint& y) noexcept {
 
 // The nearest edge, ties broken towards the normal (A to B, i.e. minus the edge normal)
 // most along the centre direction c.
-int findNearestEdge(const Polytope2& p, Vec2 c) noexcept {
+[[gnu::always_inline]] inline int findNearestEdge(const Polytope2& p, Vec2 c) noexcept {
   int best = 0;
   for (int i = 1; i < p.count; ++i) {
     if (p.distances[i] < p.distances[best]) best = i;
@@ -92,8 +92,10 @@ struct Degenerate {
 
 // Grows GJK's simplex (which holds the origin, possibly on its boundary) into a
 // counter-clockwise triangle. Returns flat when B - A has no area near the origin.
-Degenerate buildTriangle(Polytope2& p, const Simplex2& s, const ShapeProxy& a, const ShapeProxy& b,
-                         Transform aFromB, Vec2 c, int& iterations) noexcept {
+[[gnu::always_inline]] inline Degenerate buildTriangle(Polytope2& p, const Simplex2& s,
+                                                       const ShapeProxy& a, const ShapeProxy& b,
+                                                       Transform aFromB, Vec2 c,
+                                                       int& iterations) noexcept {
   p.count = s.count;
   for (int i = 0; i < s.count; ++i)
     p.vertices[i] = s.vertices[i].support;
@@ -147,12 +149,77 @@ Degenerate buildTriangle(Polytope2& p, const Simplex2& s, const ShapeProxy& a, c
   return {};
 }
 
-}  // namespace
+// The answer from the polytope's nearest edge (the final one, or any pass's, for the
+// trace): depth, normal and the deepest points, world frame.
+[[gnu::always_inline]] inline void finishFromEdge(const Polytope2& poly, int edge,
+                                                  const ShapeProxy& a, const ShapeProxy& b,
+                                                  Transform worldFromA,
+                                                  PenetrationOutput& out) noexcept {
+  const float radii = a.radius() + b.radius();
+  const SupportPoint& v0 = poly.vertices[edge];
+  const SupportPoint& v1 = poly.vertices[(edge + 1) % poly.count];
+  Vec2 e = v1.w - v0.w;
+  float ee = dot(e, e);
+  // Barycentric weight of the origin's projection onto the nearest edge.
+  float t = ee > 0.0f ? clampf(-dot(v0.w, e) / ee, 0.0f, 1.0f) : 0.0f;
+  Vec2 coreA = lerp(v0.pointA, v1.pointA, t);
+  Vec2 coreB = lerp(v0.pointB, v1.pointB, t);
+  Vec2 n = -poly.normals[edge];
+  float coreDepth = maxf(poly.distances[edge], 0.0f);
+  out.depth = coreDepth + radii;
+  out.normal = rotate(worldFromA.q, n);
+  out.pointA = transformPoint(worldFromA, coreA + a.radius() * n);
+  out.pointB = transformPoint(worldFromA, coreB - b.radius() * n);
+}
 
-PenetrationOutput computePenetration(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
-                                     Transform worldFromB, GjkCache* cache) noexcept {
+// The EPA observers, as for GJK (gjk_internal.hpp): onStart gets the support points spent
+// on the first triangle, onPass the polytope of each pass, its nearest edge and the pass's
+// support point (null when the polytope was full).
+struct NoEpaObserver {
+  void onStart(int) noexcept {}
+  void onPass(const Polytope2&, int, const SupportPoint*) noexcept {}
+};
+
+struct EpaRecorder {
+  const ShapeProxy& a;
+  const ShapeProxy& b;
+  Transform worldFromA;
+  EpaTrace* trace;
+
+  void onStart(int triangleSupports) noexcept {
+    if (trace != nullptr) trace->triangleSupports = triangleSupports;
+  }
+
+  void onPass(const Polytope2& poly, int edge, const SupportPoint* support) noexcept {
+    if (trace == nullptr) return;
+    EpaIterationRecord* record = detail::claimTraceRecord(*trace);
+    if (record == nullptr) return;
+    for (int i = 0; i < poly.count; ++i)
+      record->polytope[i] = poly.vertices[i];
+    record->polytopeCount = poly.count;
+    record->edge = edge;
+    record->edgeNormal = poly.normals[edge];
+    record->edgeDistance = poly.distances[edge];
+    record->hasSupport = support != nullptr;
+    record->support = support != nullptr ? *support : SupportPoint{};
+    PenetrationOutput answer;
+    finishFromEdge(poly, edge, a, b, worldFromA, answer);
+    record->depth = answer.depth;
+    record->normal = answer.normal;
+    record->pointA = answer.pointA;
+    record->pointB = answer.pointB;
+  }
+};
+
+// Instantiated unobserved and observed. The helpers above are always inlined, as they were
+// when this was the only copy: with two callers each the compiler calls them instead, which
+// cost about 120 instructions a query (callgrind, 8-gon pairs).
+template <class GjkObserver, class EpaObserver>
+PenetrationOutput penetrate(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
+                            Transform worldFromB, GjkCache* cache, GjkObserver& gjkObserver,
+                            EpaObserver& epaObserver) noexcept {
   Transform aFromB = invMul(worldFromA, worldFromB);
-  detail::GjkRun run = detail::runGjk(a, b, aFromB, cache, -1.0f);
+  detail::GjkRun run = detail::runGjk(a, b, aFromB, cache, -1.0f, gjkObserver);
   PenetrationOutput out;
   out.iterations = run.iterations;
   const float radii = a.radius() + b.radius();
@@ -178,6 +245,7 @@ PenetrationOutput computePenetration(const ShapeProxy& a, Transform worldFromA, 
   const Vec2 c = transformPoint(aFromB, b.center()) - a.center();
   Polytope2 poly;
   Degenerate flat = buildTriangle(poly, run.simplex, a, b, aFromB, c, out.iterations);
+  epaObserver.onStart(out.iterations - run.iterations);
   if (flat.flat) {
     // The cores meet but B - A has no area: the witness point of GJK is shared by both cores.
     WitnessPoints witness = computeWitnessPoints(run.simplex);
@@ -193,10 +261,15 @@ PenetrationOutput computePenetration(const ShapeProxy& a, Transform worldFromA, 
   out.status = EpaStatus::maxIterations;
   for (;;) {
     edge = findNearestEdge(poly, c);
-    if (poly.count >= kEpaMaxVertices) break;
+    if (poly.count >= kEpaMaxVertices) {
+      epaObserver.onPass(poly, edge, nullptr);
+      break;
+    }
     Vec2 n = poly.normals[edge];
     SupportPoint w = supportMinkowski(a, b, aFromB, n);
     ++out.iterations;
+    // Seen before the stopping tests: if one ends the loop, this pass's edge is the answer.
+    epaObserver.onPass(poly, edge, &w);
     const SupportPoint& e0 = poly.vertices[edge];
     const SupportPoint& e1 = poly.vertices[(edge + 1) % poly.count];
     if (sameSupport(w, e0) || sameSupport(w, e1)) {
@@ -221,21 +294,30 @@ PenetrationOutput computePenetration(const ShapeProxy& a, Transform worldFromA, 
     updateEdge(poly, edge + 1);
   }
 
-  const SupportPoint& v0 = poly.vertices[edge];
-  const SupportPoint& v1 = poly.vertices[(edge + 1) % poly.count];
-  Vec2 e = v1.w - v0.w;
-  float ee = dot(e, e);
-  // Barycentric weight of the origin's projection onto the nearest edge.
-  float t = ee > 0.0f ? clampf(-dot(v0.w, e) / ee, 0.0f, 1.0f) : 0.0f;
-  Vec2 coreA = lerp(v0.pointA, v1.pointA, t);
-  Vec2 coreB = lerp(v0.pointB, v1.pointB, t);
-  Vec2 n = -poly.normals[edge];
-  float coreDepth = maxf(poly.distances[edge], 0.0f);
-  out.depth = coreDepth + radii;
-  out.normal = rotate(worldFromA.q, n);
-  out.pointA = transformPoint(worldFromA, coreA + a.radius() * n);
-  out.pointB = transformPoint(worldFromA, coreB - b.radius() * n);
+  finishFromEdge(poly, edge, a, b, worldFromA, out);
   return out;
+}
+
+}  // namespace
+
+PenetrationOutput computePenetration(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
+                                     Transform worldFromB, GjkCache* cache) noexcept {
+  detail::NoGjkObserver noGjk;
+  NoEpaObserver noEpa;
+  return penetrate(a, worldFromA, b, worldFromB, cache, noGjk, noEpa);
+}
+
+PenetrationOutput computePenetration(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
+                                     Transform worldFromB, GjkCache* cache, GjkTrace* gjkTrace,
+                                     EpaTrace* epaTrace) noexcept {
+  if (gjkTrace != nullptr) detail::resetTrace(*gjkTrace);
+  if (epaTrace != nullptr) {
+    detail::resetTrace(*epaTrace);
+    epaTrace->triangleSupports = 0;
+  }
+  detail::GjkRecorder gjkRecorder{a, b, worldFromA, gjkTrace};
+  EpaRecorder epaRecorder{a, b, worldFromA, epaTrace};
+  return penetrate(a, worldFromA, b, worldFromB, cache, gjkRecorder, epaRecorder);
 }
 
 }  // namespace quack

@@ -62,7 +62,10 @@ struct Direction {
   float vLength = -1.0f;  // length(v) when it was needed, else -1
 };
 
-Direction findClosestDirection(const Simplex2& simplex, Vec2 v, float vv) noexcept {
+// Always inlined, as it was when runGjk had one instantiation: with the observed one as a
+// third caller the compiler calls it instead, which cost 50 instructions a query.
+[[gnu::always_inline]] inline Direction findClosestDirection(const Simplex2& simplex, Vec2 v,
+                                                             float vv) noexcept {
   if (simplex.count == 2) {
     Vec2 a = simplex.vertices[0].support.w;
     Vec2 n = normalize(leftPerp(simplex.vertices[1].support.w - a));
@@ -80,8 +83,9 @@ Vec2 closestDirection(const Simplex2& simplex, Vec2 v) noexcept {
   return findClosestDirection(simplex, v, lengthSquared(v)).unit;
 }
 
+template <class Observer>
 GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, Transform aFromB, GjkCache* cache,
-              float earlyOutRadius) noexcept {
+              float earlyOutRadius, Observer& observer) noexcept {
   GjkRun run;
   Simplex2& s = run.simplex;
   if (!loadCache(cache, a, b, aFromB, s)) {
@@ -106,6 +110,7 @@ GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, Transform aFromB, GjkCac
     if (solution.holdsOrigin) {
       run.closest = {};
       run.status = GjkStatus::overlap;
+      observer.onPass(run, nullptr);
       break;
     }
     Vec2 v = solution.closest;
@@ -116,6 +121,7 @@ GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, Transform aFromB, GjkCac
     if (vv <= kGjkContactRelativeTolerance * kGjkContactRelativeTolerance * maxWW) {
       run.closest = {};
       run.status = GjkStatus::overlap;
+      observer.onPass(run, nullptr);
       break;
     }
     // |v| must fall every iteration. When it rose (or is NaN), rounding has the last word
@@ -137,15 +143,18 @@ GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, Transform aFromB, GjkCac
         run.hasDirection = true;
       }
       run.status = GjkStatus::stalled;
+      observer.onPass(run, nullptr);
       break;
     }
     run.closest = v;
     if (earlyOut && vv <= earlyOutSq) {
       run.status = GjkStatus::overlap;
+      observer.onPass(run, nullptr);
       break;
     }
     if (run.iterations >= kGjkMaxIterations) {
       run.status = GjkStatus::maxIterations;
+      observer.onPass(run, nullptr);
       break;
     }
     previous = s;
@@ -162,6 +171,9 @@ GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, Transform aFromB, GjkCac
     run.hasDirection = true;
     SupportPoint w = supportMinkowski(a, b, aFromB, -dir);
     ++run.iterations;
+    // Seen before the stopping tests: whichever ends the loop, this pass's answer is the
+    // final one (closest, direction and simplex are not touched again).
+    observer.onPass(run, &w);
     // v.w measured along the exact direction: |v| * (dir . w). Formed only when a test
     // needs it: most runs end on a repeated support point.
     auto measureVW = [&] {
@@ -204,16 +216,22 @@ GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, Transform aFromB, GjkCac
   return run;
 }
 
-}  // namespace detail
+template GjkRun runGjk<NoGjkObserver>(const ShapeProxy&, const ShapeProxy&, Transform, GjkCache*,
+                                      float, NoGjkObserver&) noexcept;
+template GjkRun runGjk<GjkRecorder>(const ShapeProxy&, const ShapeProxy&, Transform, GjkCache*,
+                                    float, GjkRecorder&) noexcept;
 
-DistanceOutput computeDistance(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
-                               Transform worldFromB, GjkCache* cache) noexcept {
-  Transform aFromB = invMul(worldFromA, worldFromB);
-  detail::GjkRun run = detail::runGjk(a, b, aFromB, cache, -1.0f);
+namespace {
+
+// computeDistance's answer from a run's state (the final one, or any pass's, for the trace);
+// iterations and status are left to the caller. Always inlined, as this code was when it
+// sat in computeDistance (called, it cost 30 instructions a query).
+[[gnu::always_inline]] inline DistanceOutput makeDistanceOutput(const ShapeProxy& a,
+                                                                const ShapeProxy& b,
+                                                                Transform worldFromA,
+                                                                const GjkRun& run) noexcept {
   WitnessPoints witness = computeWitnessPoints(run.simplex);
   DistanceOutput out;
-  out.iterations = run.iterations;
-  out.status = run.status;
   float radii = a.radius() + b.radius();
   if (run.status == GjkStatus::overlap) {
     // The weights make pointA and pointB the same point of both cores.
@@ -222,7 +240,7 @@ DistanceOutput computeDistance(const ShapeProxy& a, Transform worldFromA, const 
     return out;
   }
   float core = length(run.closest);
-  Vec2 n = run.hasDirection ? run.direction : detail::closestDirection(run.simplex, run.closest);
+  Vec2 n = run.hasDirection ? run.direction : closestDirection(run.simplex, run.closest);
   out.coreDistance = core;
   out.normal = rotate(worldFromA.q, n);
   Vec2 pa = witness.pointA + a.radius() * n;
@@ -238,11 +256,61 @@ DistanceOutput computeDistance(const ShapeProxy& a, Transform worldFromA, const 
   return out;
 }
 
+}  // namespace
+
+void GjkRecorder::onPass(const GjkRun& run, const SupportPoint* support) noexcept {
+  if (trace == nullptr) return;
+  GjkIterationRecord* record = claimTraceRecord(*trace);
+  if (record == nullptr) return;
+  record->simplex = run.simplex;
+  record->closest = run.closest;
+  record->hasSupport = support != nullptr;
+  record->direction = support != nullptr ? run.direction : Vec2{};
+  record->support = support != nullptr ? *support : SupportPoint{};
+  DistanceOutput answer = makeDistanceOutput(a, b, worldFromA, run);
+  record->distance = answer.distance;
+  record->coreDistance = answer.coreDistance;
+  record->pointA = answer.pointA;
+  record->pointB = answer.pointB;
+  record->normal = answer.normal;
+}
+
+}  // namespace detail
+
+namespace {
+
+template <class Observer>
+DistanceOutput distanceWith(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
+                            Transform worldFromB, GjkCache* cache, Observer& observer) noexcept {
+  Transform aFromB = invMul(worldFromA, worldFromB);
+  detail::GjkRun run = detail::runGjk(a, b, aFromB, cache, -1.0f, observer);
+  DistanceOutput out = detail::makeDistanceOutput(a, b, worldFromA, run);
+  out.iterations = run.iterations;
+  out.status = run.status;
+  return out;
+}
+
+}  // namespace
+
+DistanceOutput computeDistance(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
+                               Transform worldFromB, GjkCache* cache) noexcept {
+  detail::NoGjkObserver none;
+  return distanceWith(a, worldFromA, b, worldFromB, cache, none);
+}
+
+DistanceOutput computeDistance(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
+                               Transform worldFromB, GjkCache* cache, GjkTrace& trace) noexcept {
+  detail::resetTrace(trace);
+  detail::GjkRecorder recorder{a, b, worldFromA, &trace};
+  return distanceWith(a, worldFromA, b, worldFromB, cache, recorder);
+}
+
 bool testOverlap(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
                  Transform worldFromB, GjkCache* cache) noexcept {
   Transform aFromB = invMul(worldFromA, worldFromB);
   float radii = a.radius() + b.radius();
-  detail::GjkRun run = detail::runGjk(a, b, aFromB, cache, radii);
+  detail::NoGjkObserver none;
+  detail::GjkRun run = detail::runGjk(a, b, aFromB, cache, radii, none);
   if (run.separatedEarly) return false;
   if (run.status == GjkStatus::overlap) return true;
   return length(run.closest) <= radii;

@@ -1,6 +1,6 @@
 #pragma once
 // GJK's inner loop, shared by computeDistance, testOverlap and EPA (which starts from the
-// final simplex).
+// final simplex), and the observer hook that records its passes.
 
 #include "quack/collision/gjk.hpp"
 #include "quack/collision/simplex2.hpp"
@@ -25,9 +25,54 @@ struct GjkRun {
 // direction error grows like size / |v|). Zero when v is zero.
 Vec2 closestDirection(const Simplex2& simplex, Vec2 v) noexcept;
 
+// The slot for the next record of a trace (GjkTrace, EpaTrace): the first capacity - 1
+// passes in order, then the last slot again and again, so it ends holding the final pass.
+// Null when the buffer has no room at all (no records, or capacity <= 0).
+template <class Trace>
+auto* claimTraceRecord(Trace& trace) noexcept {
+  const int pass = trace.passes++;
+  const int capacity = trace.records == nullptr ? 0 : trace.capacity;
+  // No slot of its own: this pass (no room at all) or the one the last slot held is lost.
+  if (pass >= capacity) trace.truncated = true;
+  if (capacity <= 0) return static_cast<decltype(trace.records)>(nullptr);
+  const int slot = pass < capacity ? pass : capacity - 1;
+  trace.count = slot + 1;
+  return &trace.records[slot];
+}
+
+template <class Trace>
+void resetTrace(Trace& trace) noexcept {
+  trace.count = 0;
+  trace.passes = 0;
+  trace.truncated = false;
+}
+
+// The observers runGjk is instantiated with. onPass sees the run at the end of each pass
+// (after the support search, or at the stop when there is none) with `support` the pass's
+// support point or null. The default does nothing and compiles away.
+struct NoGjkObserver {
+  void onPass(const GjkRun&, const SupportPoint*) noexcept {}
+};
+
+// Records each pass into a GjkTrace (may be null: then it records nothing).
+struct GjkRecorder {
+  const ShapeProxy& a;
+  const ShapeProxy& b;
+  Transform worldFromA;
+  GjkTrace* trace;
+
+  void onPass(const GjkRun& run, const SupportPoint* support) noexcept;
+};
+
 // With earlyOutRadius >= 0 the loop also stops as soon as the distance is proven above
 // it (separatedEarly) or below it (status overlap with a non-zero closest point).
+template <class Observer>
 GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, Transform aFromB, GjkCache* cache,
-              float earlyOutRadius) noexcept;
+              float earlyOutRadius, Observer& observer) noexcept;
+
+extern template GjkRun runGjk<NoGjkObserver>(const ShapeProxy&, const ShapeProxy&, Transform,
+                                             GjkCache*, float, NoGjkObserver&) noexcept;
+extern template GjkRun runGjk<GjkRecorder>(const ShapeProxy&, const ShapeProxy&, Transform,
+                                           GjkCache*, float, GjkRecorder&) noexcept;
 
 }  // namespace quack::detail

@@ -1,8 +1,9 @@
 // The WebAssembly face of Quack for the pages in web/: a plain C ABI (called from
 // JavaScript with cwrap) that takes shapes as the JSON of DESIGN.md ("Formats") and answers
 // with JSON strings. Every number the pages show comes from the library's public API
-// (computeDistance, computePenetration, collide, computeMinkowskiDifference, World); the
-// per-iteration pictures come from trace.cpp, which is checked against those answers here.
+// (computeDistance, computePenetration, collide, computeMinkowskiDifference, World), and so
+// do the per-iteration pictures: the same computeDistance and computePenetration calls fill
+// the library's GjkTrace and EpaTrace (gjk.hpp, epa.hpp) with every pass of GJK and EPA.
 //
 // Frames in the answers: shape outlines are in their shape frame (the page places them with
 // the pose it passed); everything else is in the world frame, and points of B - A are in
@@ -11,6 +12,8 @@
 #include <emscripten/emscripten.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <variant>
@@ -21,7 +24,6 @@
 #include "quack/collision/manifold.hpp"
 #include "quack/collision/minkowski.hpp"
 #include "quack/world/world.hpp"
-#include "trace.hpp"
 
 namespace quack::web {
 namespace {
@@ -137,9 +139,11 @@ json supportJson(const SupportPoint& s, Transform worldFromA) {
           {"ib", s.indexB}};
 }
 
-json gjkJson(const GjkTrace& trace, Transform worldFromA) {
+// The records are in A's frame; the page draws in world axes.
+json gjkJson(const GjkTrace& trace, const DistanceOutput& d, Transform worldFromA) {
   json steps = json::array();
-  for (const GjkStep& step : trace.steps) {
+  for (int k = 0; k < trace.count; ++k) {
+    const GjkIterationRecord& step = trace.records[k];
     json simplex = json::array();
     for (int i = 0; i < step.simplex.count; ++i) {
       json v = supportJson(step.simplex.vertices[i].support, worldFromA);
@@ -154,36 +158,63 @@ json gjkJson(const GjkTrace& trace, Transform worldFromA) {
     steps.push_back(s);
   }
   return {{"steps", steps},
-          {"iterations", trace.iterations},
-          {"status", toString(trace.status)},
-          {"distance", trace.distance}};
+          {"iterations", d.iterations},
+          {"status", toString(d.status)},
+          {"distance", d.distance},
+          {"truncated", trace.truncated}};
 }
 
-json epaJson(const EpaTrace& trace, Transform worldFromA) {
+json epaJson(const EpaTrace& trace, const PenetrationOutput& p, Transform worldFromA) {
   json steps = json::array();
-  for (const EpaStep& step : trace.steps) {
+  for (int k = 0; k < trace.count; ++k) {
+    const EpaIterationRecord& step = trace.records[k];
     json polytope = json::array();
-    for (const SupportPoint& p : step.polytope)
-      polytope.push_back(supportJson(p, worldFromA));
+    for (int i = 0; i < step.polytopeCount; ++i)
+      polytope.push_back(supportJson(step.polytope[i], worldFromA));
     json s = {{"polytope", polytope},
-              {"edge", step.nearestEdge},
-              {"normal", toJson(rotate(worldFromA.q, step.normal))},
-              {"distance", step.distance}};
+              {"edge", step.edge},
+              {"normal", toJson(rotate(worldFromA.q, step.edgeNormal))},
+              {"distance", step.edgeDistance}};
     if (step.hasSupport) s["support"] = supportJson(step.support, worldFromA);
     steps.push_back(s);
   }
-  return {{"ran", trace.ran},
-          {"steps", steps},
-          {"status", toString(trace.status)},
-          {"depth", trace.depth},
-          {"iterations", trace.iterations}};
+  return {{"ran", trace.count > 0},       {"steps", steps},
+          {"status", toString(p.status)}, {"depth", p.depth},
+          {"iterations", p.iterations},   {"truncated", trace.truncated}};
 }
 
-// Relative agreement to a few float ulps of the scale (the trace repeats the library's
-// arithmetic, so in practice they are equal).
-bool agrees(float x, float y, float scale) {
-  return std::fabs(x - y) <= 1e-5f * (1.0f + scale);
+// memcpy, not std::bit_cast: emscripten 3.1.6's libc++ has no bit_cast.
+bool sameBits(float x, float y) {
+  std::uint32_t bx, by;
+  std::memcpy(&bx, &x, sizeof bx);
+  std::memcpy(&by, &y, sizeof by);
+  return bx == by;
 }
+bool sameBits(Vec2 x, Vec2 y) {
+  return sameBits(x.x, y.x) && sameBits(x.y, y.y);
+}
+
+// The observers' promise, checked on every call: the whole run was recorded and its last
+// record is the returned answer, bit for bit (tests/collision/observer_test.cpp tests it
+// too; the page shows the result).
+bool traceMatches(const GjkTrace& trace, const DistanceOutput& d) {
+  if (trace.truncated || trace.count < 1) return false;
+  const GjkIterationRecord& last = trace.records[trace.count - 1];
+  return sameBits(last.distance, d.distance) && sameBits(last.pointA, d.pointA) &&
+         sameBits(last.pointB, d.pointB) && sameBits(last.normal, d.normal);
+}
+
+bool traceMatches(const EpaTrace& trace, const PenetrationOutput& p) {
+  if (trace.truncated) return false;
+  if (trace.count == 0) return true;  // EPA did not run: the answer is GJK's
+  const EpaIterationRecord& last = trace.records[trace.count - 1];
+  return sameBits(last.depth, p.depth) && sameBits(last.normal, p.normal) &&
+         sameBits(last.pointA, p.pointA) && sameBits(last.pointB, p.pointB);
+}
+
+// Trace buffers big enough for any run, allocated once (an EPA record is about 4 kB).
+std::vector<GjkIterationRecord> gGjkRecords(kGjkMaxTraceRecords);
+std::vector<EpaIterationRecord> gEpaRecords(kEpaMaxTraceRecords);
 
 ShapeGeometry gShapes[2] = {Circle{{}, 0.5f}, Circle{{}, 0.5f}};
 std::string gAnswer;
@@ -235,8 +266,9 @@ EMSCRIPTEN_KEEPALIVE const char* qk_set_shape(int slot, const char* shapeJson) {
 }
 
 /// Everything the GJK page draws for shape A at (ax, ay, aAngle) and B at (bx, by, bAngle):
-/// the library's distance, penetration and manifold answers, the core of B - A, and the
-/// GJK and EPA traces with a flag saying whether they agree with the library.
+/// the library's distance, penetration and manifold answers, the core of B - A, and every
+/// pass of GJK and EPA (the library's traces) with a flag saying whether each trace's last
+/// record is the answer, bit for bit.
 EMSCRIPTEN_KEEPALIVE const char* qk_analyze(double ax, double ay, double aAngle, double bx,
                                             double by, double bAngle) {
   Transform worldFromA =
@@ -246,8 +278,11 @@ EMSCRIPTEN_KEEPALIVE const char* qk_analyze(double ax, double ay, double aAngle,
   ShapeProxy a = proxyOf(gShapes[0]);
   ShapeProxy b = proxyOf(gShapes[1]);
 
-  DistanceOutput d = computeDistance(a, worldFromA, b, worldFromB);
-  PenetrationOutput p = computePenetration(a, worldFromA, b, worldFromB);
+  GjkTrace gjkTrace{gGjkRecords.data(), kGjkMaxTraceRecords};
+  EpaTrace epaTrace{gEpaRecords.data(), kEpaMaxTraceRecords};
+  DistanceOutput d = computeDistance(a, worldFromA, b, worldFromB, nullptr, gjkTrace);
+  PenetrationOutput p =
+      computePenetration(a, worldFromA, b, worldFromB, nullptr, nullptr, &epaTrace);
   Manifold m = collide(refOf(gShapes[0]), worldFromA, refOf(gShapes[1]), worldFromB);
 
   json out;
@@ -290,17 +325,9 @@ EMSCRIPTEN_KEEPALIVE const char* qk_analyze(double ax, double ay, double aAngle,
   }
   out["minkowski"] = minkowski;
 
-  Transform aFromB = invMul(worldFromA, worldFromB);
-  GjkTrace gjk = traceGjk(a, b, aFromB);
-  EpaTrace epa = traceEpa(a, b, aFromB, gjk);
-  out["gjk"] = gjkJson(gjk, worldFromA);
-  out["epa"] = epaJson(epa, worldFromA);
-  float scale = length(worldFromB.p - worldFromA.p) + a.radius() + b.radius() + 1.0f;
-  bool gjkAgrees = gjk.status == d.status && gjk.iterations == d.iterations &&
-                   agrees(gjk.distance, d.distance, scale);
-  bool epaAgrees =
-      epa.status == p.status && epa.iterations == p.iterations && agrees(epa.depth, p.depth, scale);
-  out["traceAgrees"] = {{"gjk", gjkAgrees}, {"epa", epaAgrees}};
+  out["gjk"] = gjkJson(gjkTrace, d, worldFromA);
+  out["epa"] = epaJson(epaTrace, p, worldFromA);
+  out["traceAgrees"] = {{"gjk", traceMatches(gjkTrace, d)}, {"epa", traceMatches(epaTrace, p)}};
   return answer(out);
 }
 

@@ -1,6 +1,7 @@
 // Page 1: two shapes, their Minkowski difference B - A, and GJK and EPA at work.
-// Every number shown comes from the library (qk_analyze in web/glue/glue.cpp); the
-// per-iteration pictures come from the glue's trace, which the page checks against it.
+// Every number shown comes from the library (qk_analyze in web/glue/glue.cpp), and so do
+// the per-iteration pictures: the library's own GJK and EPA record every pass (GjkTrace,
+// EpaTrace); the page shows whether each trace's last pass is the answer, bit for bit.
 import { loadQuack, View, drawShape, place, fmt, fmtVec } from './common.js';
 import { PRESETS } from './shapes.js';
 

@@ -68,10 +68,57 @@ struct PenetrationOutput {
   EpaStatus status = EpaStatus::separated;
 };
 
+/// One pass of EPA's loop, as an observer sees it: the polytope, its edge nearest the
+/// origin, and (unless the polytope was full) the support point along that edge's normal.
+struct EpaIterationRecord {
+  /// The polytope at the start of the pass, counter-clockwise, A frame; edge i runs from
+  /// vertex i to vertex (i + 1) % polytopeCount.
+  SupportPoint polytope[kEpaMaxVertices];
+  int polytopeCount = 0;
+  int edge = 0;               ///< the nearest edge (after the tie-break)
+  Vec2 edgeNormal;            ///< its outward unit normal, A frame
+  float edgeDistance = 0.0f;  ///< its line's signed distance from the origin (the core depth)
+  bool hasSupport = false;    ///< a support point was taken in this pass
+  SupportPoint support;       ///< the support point of B - A along edgeNormal when hasSupport
+
+  /// The answer computePenetration would return had EPA stopped at this pass, world frame
+  /// (the last record's are the returned answer, bit for bit).
+  float depth = 0.0f;
+  Vec2 normal;
+  Vec2 pointA;
+  Vec2 pointB;
+};
+
+/// Enough EPA records for any run: every pass but the last adds a vertex to a polytope that
+/// starts with 3 and holds at most kEpaMaxVertices.
+inline constexpr int kEpaMaxTraceRecords = kEpaMaxVertices - 2;
+
+/// A caller-owned buffer that computePenetration fills with one record per pass of EPA's
+/// loop; the same contract as GjkTrace (the first `capacity - 1` passes and the final one
+/// are kept, `truncated` says some were dropped). `count` is 0 when EPA did not run
+/// (separated, coresSeparated, degenerate). An EpaIterationRecord is about 4 kB.
+struct EpaTrace {
+  EpaIterationRecord* records = nullptr;  ///< caller-owned array of `capacity` records
+  int capacity = 0;
+  int count = 0;           ///< records written: min(passes, capacity), 0 when records is null
+  int passes = 0;          ///< passes the run made
+  bool truncated = false;  ///< passes > capacity: middle passes were dropped
+  /// Support points taken to grow GJK's final simplex into EPA's first triangle (counted in
+  /// PenetrationOutput::iterations, not in any record).
+  int triangleSupports = 0;
+};
+
 /// Penetration of proxy B (placed by `worldFromB`) into proxy A (placed by `worldFromA`):
 /// GJK first; when the cores overlap, EPA on the cores plus both radii. `cache` as for
 /// computeDistance. No allocation (the polytope is a fixed array on the stack).
 PenetrationOutput computePenetration(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
                                      Transform worldFromB, GjkCache* cache = nullptr) noexcept;
+
+/// computePenetration that also records every pass of GJK into `gjkTrace` and of EPA into
+/// `epaTrace` (either may be null; see GjkTrace, EpaTrace). The answer is the same, bit for
+/// bit.
+PenetrationOutput computePenetration(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
+                                     Transform worldFromB, GjkCache* cache, GjkTrace* gjkTrace,
+                                     EpaTrace* epaTrace) noexcept;
 
 }  // namespace quack

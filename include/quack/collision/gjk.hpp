@@ -15,7 +15,7 @@
 
 #include <cstdint>
 
-#include "quack/collision/proxy.hpp"
+#include "quack/collision/simplex2.hpp"
 
 namespace quack {
 
@@ -67,11 +67,58 @@ struct DistanceOutput {
   GjkStatus status = GjkStatus::converged;
 };
 
+/// One pass of GJK's loop, as an observer sees it: the simplex solve, then (unless the loop
+/// stops first) the support point along the new search direction. `DistanceOutput::iterations`
+/// counts the support points, so a run has as many records with `hasSupport` as iterations,
+/// and one more record, without a support point, when it stopped before taking one (overlap,
+/// stall, cap).
+struct GjkIterationRecord {
+  /// The simplex after the solve (reduced, weights set), A frame; on a stall, the previous
+  /// simplex, which GJK keeps. Each vertex carries its points on A and B (SupportPoint).
+  Simplex2 simplex;
+  Vec2 closest;             ///< the simplex point nearest the origin (v), A frame; zero on overlap
+  bool hasSupport = false;  ///< a support point was taken in this pass
+  Vec2 direction;           ///< unit, A frame: v's direction; the support is taken along -direction
+  SupportPoint support;     ///< the new support point of B - A (A frame) when hasSupport
+
+  /// The answer computeDistance would return had GJK stopped after this pass, world frame
+  /// (the last record's are the returned answer, bit for bit).
+  float distance = 0.0f;
+  float coreDistance = 0.0f;
+  Vec2 pointA;
+  Vec2 pointB;
+  Vec2 normal;
+};
+
+/// Enough GJK records for any run: at most kGjkMaxIterations support points, plus the last
+/// pass that takes none.
+inline constexpr int kGjkMaxTraceRecords = kGjkMaxIterations + 1;
+
+/// A caller-owned buffer that computeDistance (and computePenetration) fill with one record
+/// per pass of GJK's loop, for viewers, tests and teaching. Set `records` and `capacity`;
+/// the call resets the rest. When the run has more passes than `capacity`, the first
+/// `capacity - 1` are kept, the last slot holds the final pass (so `records[count - 1]` is
+/// always where GJK ended) and `truncated` is set; nothing is written past `capacity`.
+/// Observing never changes the answer; the overloads without a trace run the same loop with
+/// the recording compiled out.
+struct GjkTrace {
+  GjkIterationRecord* records = nullptr;  ///< caller-owned array of `capacity` records
+  int capacity = 0;
+  int count = 0;           ///< records written: min(passes, capacity), 0 when records is null
+  int passes = 0;          ///< passes the run made
+  bool truncated = false;  ///< passes > capacity: middle passes were dropped
+};
+
 /// Distance and closest points between proxy A placed by `worldFromA` and proxy B placed by
 /// `worldFromB`. `cache` (may be null) warm-starts the search and is updated. No
 /// allocation. Preconditions: valid proxies (see ShapeProxy) and finite transforms.
 DistanceOutput computeDistance(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
                                Transform worldFromB, GjkCache* cache = nullptr) noexcept;
+
+/// computeDistance that also records every pass of GJK into `trace` (see GjkTrace). The
+/// answer is the same, bit for bit.
+DistanceOutput computeDistance(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
+                               Transform worldFromB, GjkCache* cache, GjkTrace& trace) noexcept;
 
 /// True when the closed rounded shapes share a point (touching counts, to the tolerances
 /// above). Stops as soon as a separating direction is found, so it is cheaper than
