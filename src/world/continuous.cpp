@@ -5,12 +5,17 @@
 #include <algorithm>
 #include <cmath>
 
+#include "continuous.hpp"
 #include "quack/collision/toi.hpp"
 #include "quack/geometry/bounds.hpp"
-#include "quack/world/world.hpp"
-#include "world_internal.hpp"
 
-namespace quack {
+#include "body_store.hpp"
+#include "event_dispatcher.hpp"
+#include "ghost_edges.hpp"
+#include "quack/world/world.hpp"
+#include "world_state.hpp"
+
+namespace quack::detail {
 namespace {
 
 Aabb geometryBox(const ShapeGeometry& g, Transform xf) {
@@ -28,8 +33,8 @@ bool earlier(const Candidate& x, const Candidate& y) {
 
 }  // namespace
 
-Aabb World::sweptBox(const FastBody& f) const {
-  const Body& b = bodies_[f.body];
+Aabb ContinuousPhase::sweptBox(const BodyStore& store, const FastBody& f) const {
+  const Body& b = store.bodies[f.body];
   Aabb box;
   if (f.sweep.a1 != f.sweep.a2) {
     // Any point of the body stays within maxExtent of the centre, whatever the rotation.
@@ -38,8 +43,8 @@ Aabb World::sweptBox(const FastBody& f) const {
     const Transform start = transformAt(f.sweep, 0.0f), end = transformAt(f.sweep, 1.0f);
     bool first = true;
     for (std::uint32_t s : b.shapes) {
-      Aabb u =
-          merge(geometryBox(shapes_[s].geometry, start), geometryBox(shapes_[s].geometry, end));
+      Aabb u = merge(geometryBox(store.shapes[s].geometry, start),
+                     geometryBox(store.shapes[s].geometry, end));
       box = first ? u : merge(box, u);
       first = false;
     }
@@ -48,39 +53,40 @@ Aabb World::sweptBox(const FastBody& f) const {
   return inflate(box, kToiTargetSeparation + kToiTolerance);
 }
 
-bool World::findImpact(std::uint32_t fast, bool continuation, ToiCandidate& best,
-                       std::uint32_t onlyBody) {
-  const FastBody& f = fastBodies_[fast];
-  const Body& body = bodies_[f.body];
-  toiCandidates_.clear();
+bool ContinuousPhase::findImpact(const BodyStore& store, const BroadPhase& broadPhase,
+                                 const GhostEdges& edges, std::uint32_t fast, bool continuation,
+                                 ToiCandidate& best, std::uint32_t onlyBody) {
+  const FastBody& f = fast_[fast];
+  const Body& body = store.bodies[f.body];
+  candidates_.clear();
   auto consider = [&](std::uint32_t s) {
-    const Shape& other = shapes_[s];
+    const Shape& other = store.shapes[s];
     if (other.body == f.body || other.def.sensor) return;
-    const Body& ob = bodies_[other.body];
+    const Body& ob = store.bodies[other.body];
     // Fast bodies meet static and kinematic shapes; bullets meet dynamic non-bullets too,
     // as those stand at the end of the step (Box2D's rule, read for understanding).
     if (ob.type == BodyType::dynamicBody && (!body.bullet || ob.bullet)) return;
-    toiCandidates_.push_back(s);
+    candidates_.push_back(s);
   };
   if (onlyBody != 0xffffffffu) {
-    for (std::uint32_t s : bodies_[onlyBody].shapes)
+    for (std::uint32_t s : store.bodies[onlyBody].shapes)
       consider(s);
   } else {
-    broadPhase_.queryAabb(f.box, [&](ProxyId, std::uint64_t user) {
+    broadPhase.queryAabb(f.box, [&](ProxyId, std::uint64_t user) {
       consider(static_cast<std::uint32_t>(user));
       return true;
     });
   }
-  std::sort(toiCandidates_.begin(), toiCandidates_.end());
+  std::sort(candidates_.begin(), candidates_.end());
   bool found = false;
   for (std::uint32_t own : body.shapes) {
-    const Shape& shape = shapes_[own];
+    const Shape& shape = store.shapes[own];
     if (shape.def.sensor) continue;
     const ShapeProxy proxy = proxyOf(shape.geometry);
-    for (std::uint32_t s : toiCandidates_) {
-      const Shape& other = shapes_[s];
+    for (std::uint32_t s : candidates_) {
+      const Shape& other = store.shapes[s];
       if (!shouldCollide(shape.def.filter, other.def.filter)) continue;
-      const Body& ob = bodies_[other.body];
+      const Body& ob = store.bodies[other.body];
       const float angle = ob.xf.q.angle();
       const Sweep still{ob.localCenter, ob.center, ob.center, angle, angle};
       const ShapeProxy otherProxy = proxyOf(other.geometry);
@@ -111,7 +117,8 @@ bool World::findImpact(std::uint32_t fast, bool continuation, ToiCandidate& best
       c.shapeB = s;
       // Ghost collisions: an impact on a flush seam of static geometry, or from behind a
       // chain, is not a surface (edges.cpp); the discrete contacts handle the real ones.
-      if (edgeShapes_ != 0 && other.edges.active && isGhostImpact(s, toi.point, -toi.normal))
+      if (edges.activeShapes() != 0 && other.edges.active &&
+          edges.isGhostImpact(store, s, toi.point, -toi.normal))
         continue;
       c.point = toi.point;
       c.normal = toi.normal;
@@ -123,55 +130,57 @@ bool World::findImpact(std::uint32_t fast, bool continuation, ToiCandidate& best
   return found;
 }
 
-void World::solveContinuous(float dt) {
-  if (!def_.enableContinuous) return;
-  fastBodies_.clear();
+void ContinuousPhase::run(const WorldDef& def, BodyStore& store, BroadPhase& broadPhase,
+                          const GhostEdges& edges, EventDispatcher& events, float dt) {
+  if (!def.enableContinuous) return;
+  fast_.clear();
   int bullets = 0;
-  for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
-    Body& b = bodies_[i];
-    if (!b.alive || !b.fast) continue;
+  for (std::uint32_t i = 0; i < store.bodies.size(); ++i) {
+    Body& b = store.bodies[i];
+    if (!store.bodyAlive(i) || !b.fast) continue;
     b.fast = false;
     FastBody f;
     f.body = i;
     f.sweep = {b.localCenter, b.startCenter, b.center, b.startAngle, b.endAngle};
-    f.box = sweptBox(f);
+    f.box = sweptBox(store, f);
     bullets += b.bullet ? 1 : 0;
-    fastBodies_.push_back(f);
+    fast_.push_back(f);
   }
-  if (fastBodies_.empty()) return;
+  if (fast_.empty()) return;
 
   // A min-heap by time (std's heap functions keep the largest on top: invert the order).
   auto later = [](const ToiCandidate& x, const ToiCandidate& y) { return earlier(y, x); };
-  toiQueue_.clear();
+  queue_.clear();
   auto push = [&](const ToiCandidate& c) {
-    fastBodies_[c.fast].bestTime = c.time;
-    fastBodies_[c.fast].bestBody = shapes_[c.shapeB].body;
-    toiQueue_.push_back(c);
-    std::push_heap(toiQueue_.begin(), toiQueue_.end(), later);
+    fast_[c.fast].bestTime = c.time;
+    fast_[c.fast].bestBody = store.shapes[c.shapeB].body;
+    queue_.push_back(c);
+    std::push_heap(queue_.begin(), queue_.end(), later);
   };
-  for (std::uint32_t i = 0; i < fastBodies_.size(); ++i) {
+  for (std::uint32_t i = 0; i < fast_.size(); ++i) {
     ToiCandidate c;
-    if (findImpact(i, false, c)) push(c);
+    if (findImpact(store, broadPhase, edges, i, false, c)) push(c);
   }
 
-  while (!toiQueue_.empty()) {
-    std::pop_heap(toiQueue_.begin(), toiQueue_.end(), later);
-    const ToiCandidate e = toiQueue_.back();
-    toiQueue_.pop_back();
-    FastBody& f = fastBodies_[e.fast];
+  while (!queue_.empty()) {
+    std::pop_heap(queue_.begin(), queue_.end(), later);
+    const ToiCandidate e = queue_.back();
+    queue_.pop_back();
+    FastBody& f = fast_[e.fast];
     if (e.stamp != f.stamp) continue;  // the sweep changed since this was found
     f.bestTime = 2.0f;
     f.bestBody = 0xffffffffu;
-    Body& b = bodies_[f.body];
-    const Shape& other = shapes_[e.shapeB];
-    Body& ob = bodies_[other.body];
+    Body& b = store.bodies[f.body];
+    const Shape& other = store.shapes[e.shapeB];
+    Body& ob = store.bodies[other.body];
 
     // Move the body to the time of impact.
     const float u = f.t0 < 1.0f ? clampf((e.time - f.t0) / (1.0f - f.t0), 0.0f, 1.0f) : 1.0f;
     const Sweep at = advance(f.sweep, u);
     const Vec2 c = at.c1;
     const float angle = at.a1;
-    events_.toi.push_back({e.time, shapeId(e.shapeA), shapeId(e.shapeB), e.point, e.normal});
+    events.events.toi.push_back(
+        {e.time, store.shapeId(e.shapeA), store.shapeId(e.shapeB), e.point, e.normal});
 
     // Immediate velocity response along the normal (no friction: the next step's contact
     // has it), so the rest of the step's motion goes where the body would go after the
@@ -184,7 +193,7 @@ void World::solveContinuous(float dt) {
     const Transform xfAt = {c - rotate(Rot::fromAngle(angle), b.localCenter),
                             Rot::fromAngle(angle)};
     const Manifold m =
-        quack::collide(refOf(shapes_[e.shapeA].geometry), xfAt, refOf(other.geometry), ob.xf,
+        quack::collide(refOf(store.shapes[e.shapeA].geometry), xfAt, refOf(other.geometry), ob.xf,
                        kToiTargetSeparation + 2.0f * kToiTolerance);
     if (m.pointCount > 0) {
       n = m.normal;
@@ -197,8 +206,8 @@ void World::solveContinuous(float dt) {
     const Vec2 vB = ob.v + cross(ob.w, rB);  // zero for static bodies
     const float vn = dot(vB - (b.v + cross(b.w, rA)), n);
     if (vn < 0.0f) {
-      float e0 = maxf(shapes_[e.shapeA].def.restitution, other.def.restitution);
-      if (-vn < def_.restitutionThreshold) e0 = 0.0f;
+      float e0 = maxf(store.shapes[e.shapeA].def.restitution, other.def.restitution);
+      if (-vn < def.restitutionThreshold) e0 = 0.0f;
       const float rnA = cross(rA, n), rnB = cross(rB, n);
       float k = b.invMass + b.invInertia * rnA * rnA;
       if (otherMoves) k += ob.invMass + ob.invInertia * rnB * rnB;
@@ -228,8 +237,18 @@ void World::solveContinuous(float dt) {
     } else {
       f.sweep = {b.localCenter, c, c, angle, angle};
     }
+    if (!store.shapesWithinWorld(
+            f.body, makeTransform(f.sweep.c2 - rotate(Rot::fromAngle(f.sweep.a2), b.localCenter),
+                                  f.sweep.a2))) {
+      // The rest of the sweep would leave the world (kMaxCoordinate): stop here, as the
+      // solver does with a body at the edge (StepEvents::outOfBounds).
+      f.sweep = {b.localCenter, c, c, angle, angle};
+      b.v = {};
+      b.w = 0.0f;
+      events.events.outOfBounds.push_back(store.bodyId(f.body));
+    }
     f.t0 = e.time;
-    f.box = sweptBox(f);
+    f.box = sweptBox(store, f);
     ++f.stamp;
     // The body ends the step where its new sweep ends; the broad phase follows at once so
     // that later searches see it there.
@@ -237,19 +256,21 @@ void World::solveContinuous(float dt) {
     b.center = f.sweep.c2;
     b.xf.q = Rot::fromAngle(f.sweep.a2);
     b.xf.p = b.center - rotate(b.xf.q, b.localCenter);
-    updateShapeBoxes(f.body, b.center - oldCenter);
+    store.updateShapeBoxes(broadPhase, f.body, b.center - oldCenter);
 
     // Re-check what this touches: the body's own new sweep, and bullets that may meet the
     // body's new end pose (only bullets look at dynamic bodies). New events go into the
     // queue in time order; none is earlier than this one.
     ToiCandidate next;
     // A stopped body stays where it is for the rest of the step: nothing more to find.
-    if (f.events < kMaxToiEventsPerBody && !e.stop && findImpact(e.fast, true, next)) push(next);
+    if (f.events < kMaxToiEventsPerBody && !e.stop &&
+        findImpact(store, broadPhase, edges, e.fast, true, next))
+      push(next);
     if (b.bullet || bullets == 0) continue;
     const Aabb moved = f.box;
-    for (std::uint32_t g = 0; g < fastBodies_.size(); ++g) {
-      FastBody& bullet = fastBodies_[g];
-      if (g == e.fast || !bodies_[bullet.body].bullet || bullet.events >= kMaxToiEventsPerBody)
+    for (std::uint32_t g = 0; g < fast_.size(); ++g) {
+      FastBody& bullet = fast_[g];
+      if (g == e.fast || !store.bodies[bullet.body].bullet || bullet.events >= kMaxToiEventsPerBody)
         continue;
       if (bullet.bestBody != f.body && !overlaps(bullet.box, moved)) continue;
       if (bullet.t0 < e.time) {
@@ -257,15 +278,16 @@ void World::solveContinuous(float dt) {
         bullet.sweep =
             advance(bullet.sweep, clampf((e.time - bullet.t0) / (1.0f - bullet.t0), 0.0f, 1.0f));
         bullet.t0 = e.time;
-        bullet.box = sweptBox(bullet);
+        bullet.box = sweptBox(store, bullet);
       }
       if (bullet.bestBody == f.body) {
         // Its impact was with this body, which has moved: search again from scratch.
         ++bullet.stamp;
         bullet.bestTime = 2.0f;
         bullet.bestBody = 0xffffffffu;
-        if (findImpact(g, true, next)) push(next);
-      } else if (findImpact(g, true, next, f.body) && next.time < bullet.bestTime) {
+        if (findImpact(store, broadPhase, edges, g, true, next)) push(next);
+      } else if (findImpact(store, broadPhase, edges, g, true, next, f.body) &&
+                 next.time < bullet.bestTime) {
         // Only this body is new to it: an earlier impact with it goes into the queue beside
         // the old one (same stamp); whichever comes out first is handled, the other is then
         // stale.
@@ -275,4 +297,4 @@ void World::solveContinuous(float dt) {
   }
 }
 
-}  // namespace quack
+}  // namespace quack::detail

@@ -5,10 +5,14 @@
 
 #include <cmath>
 
-#include "quack/world/world.hpp"
-#include "world_internal.hpp"
+#include "solver.hpp"
 
-namespace quack {
+#include "body_store.hpp"
+#include "contact_set.hpp"
+#include "event_dispatcher.hpp"
+#include "quack/world/world.hpp"
+
+namespace quack::detail {
 namespace {
 
 Softness makeSoftness(float hertz, float zeta, float h) {
@@ -18,6 +22,16 @@ Softness makeSoftness(float hertz, float zeta, float h) {
   float a2 = h * omega * a1;
   float a3 = 1.0f / (1.0f + a2);
   return {omega / a1, a2 * a3, a3};
+}
+
+// `v` shortened to kMaxLinearSpeed if it is faster. Components are clamped first, so even
+// an infinite component gives a finite result.
+Vec2 clampSpeed(Vec2 v) {
+  constexpr float kMaxSquared = kMaxLinearSpeed * kMaxLinearSpeed;
+  if (dot(v, v) <= kMaxSquared) return v;
+  v = {clampf(v.x, -kMaxLinearSpeed, kMaxLinearSpeed),
+       clampf(v.y, -kMaxLinearSpeed, kMaxLinearSpeed)};
+  return (kMaxLinearSpeed / length(v)) * v;
 }
 
 Rot integrateRotation(Rot q, float deltaAngle) {
@@ -95,37 +109,44 @@ void solveContacts(Constraint* constraints, std::size_t count, Body* bodies, flo
 
 }  // namespace
 
-void World::solve(float dt, int substeps) {
+void Solver::solve(const WorldDef& worldDef, BodyStore& store, ContactSet& contactSet,
+                   BroadPhase& broadPhase, EventDispatcher& events, float dt, int substeps) {
+  std::vector<Body>& bodies = store.bodies;
+  const std::vector<Shape>& shapes = store.shapes;
+  const std::vector<Contact>& contacts = contactSet.contacts;
+  const WorldDef& def = worldDef;
   const float h = dt / static_cast<float>(substeps);
   const float invH = 1.0f / h;
   // Contacts stiffer than a quarter of the sub-step rate are not resolved by the sub-step.
-  const float hertz = minf(def_.contactHertz, 0.25f * invH);
-  const Softness soft = makeSoftness(hertz, def_.contactDampingRatio, h);
+  const float hertz = minf(def.contactHertz, 0.25f * invH);
+  const Softness soft = makeSoftness(hertz, def.contactDampingRatio, h);
   // Against static (and kinematic) bodies there is only one body to move: twice as stiff.
-  const Softness staticSoft = makeSoftness(2.0f * hertz, def_.contactDampingRatio, h);
-  const float pushMax = def_.contactPushMaxSpeed;
+  const Softness staticSoft = makeSoftness(2.0f * hertz, def.contactDampingRatio, h);
+  const float pushMax = def.contactPushMaxSpeed;
 
   std::vector<SolverBody>& sb = solverBodies_;
-  sb.assign(bodies_.size(), SolverBody{});
-  for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
-    const Body& b = bodies_[i];
-    if (!b.alive) continue;
+  sb.assign(bodies.size(), SolverBody{});
+  for (std::uint32_t i = 0; i < bodies.size(); ++i) {
+    const Body& b = bodies[i];
+    if (!store.bodyAlive(i)) continue;
     SolverBody& s = sb[i];
     s.v = b.v;
-    s.w = b.w;
+    // A dynamic body without rotational inertia (zero density, or segments only) does not
+    // turn, whatever spin it was given.
+    s.w = (b.type == BodyType::dynamicBody && b.invInertia == 0.0f) ? 0.0f : b.w;
     s.invMass = b.invMass;
     s.invInertia = b.invInertia;
   }
 
   // Prepare the constraints of touching contacts (a dynamic body in every one).
   constraints_.clear();
-  for (std::uint32_t ci = 0; ci < contacts_.size(); ++ci) {
-    const Contact& c = contacts_[ci];
+  for (std::uint32_t ci = 0; ci < contacts.size(); ++ci) {
+    const Contact& c = contacts[ci];
     if (!c.alive || !c.touching || c.sensor) continue;
     ContactConstraint k;
     k.contact = ci;
-    k.bodyA = shapes_[c.shapeA].body;
-    k.bodyB = shapes_[c.shapeB].body;
+    k.bodyA = shapes[c.shapeA].body;
+    k.bodyB = shapes[c.shapeB].body;
     k.normal = c.manifold.normal;
     k.friction = c.friction;
     k.restitution = c.restitution;
@@ -133,8 +154,8 @@ void World::solve(float dt, int substeps) {
     const SolverBody& B = sb[k.bodyB];
     k.softness = (A.invMass == 0.0f || B.invMass == 0.0f) ? staticSoft : soft;
     k.pointCount = c.manifold.pointCount;
-    const Vec2 cA = bodies_[k.bodyA].center;
-    const Vec2 cB = bodies_[k.bodyB].center;
+    const Vec2 cA = bodies[k.bodyA].center;
+    const Vec2 cB = bodies[k.bodyB].center;
     const Vec2 n = k.normal;
     const Vec2 t = rightPerp(n);
     for (int j = 0; j < k.pointCount; ++j) {
@@ -165,15 +186,24 @@ void World::solve(float dt, int substeps) {
     B.w += B.invInertia * cross(rB, P);
   };
 
-  const float maxRotation = def_.maxRotationPerSubstep;
+  const float maxRotation = def.maxRotationPerSubstep;
   for (int stepIndex = 0; stepIndex < substeps; ++stepIndex) {
     // Integrate velocities: gravity and damping (implicit, so any damping is stable).
-    for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
-      const Body& b = bodies_[i];
-      if (!b.alive || b.type != BodyType::dynamicBody) continue;
+    for (std::uint32_t i = 0; i < bodies.size(); ++i) {
+      const Body& b = bodies[i];
+      if (!store.bodyAlive(i) || b.type != BodyType::dynamicBody) continue;
       SolverBody& s = sb[i];
-      s.v = (1.0f / (1.0f + h * b.linearDamping)) * (s.v + (h * b.gravityScale) * def_.gravity);
-      s.w = s.w / (1.0f + h * b.angularDamping);
+      Vec2 v = s.v + (h * b.gravityScale) * def.gravity;
+      float w = s.w;
+      // Applied forces (applyForce, applyTorque); a branch, so that a body without them
+      // gives the same bits as before forces existed.
+      if (b.force.x != 0.0f || b.force.y != 0.0f) v += (h * b.invMass) * b.force;
+      if (b.torque != 0.0f) w += h * b.invInertia * b.torque;
+      s.v = (1.0f / (1.0f + h * b.linearDamping)) * v;
+      s.w = w / (1.0f + h * b.angularDamping);
+      // Speed limits (world.hpp): keep speed * dt and every impulse finite.
+      s.v = clampSpeed(s.v);
+      s.w = clampf(s.w, -kMaxAngularSpeed, kMaxAngularSpeed);
     }
     // Warm start with the accumulated impulses.
     for (const ContactConstraint& k : constraints_) {
@@ -187,9 +217,9 @@ void World::solve(float dt, int substeps) {
     }
     solveContacts(constraints_.data(), constraints_.size(), sb.data(), invH, pushMax, true);
     // Integrate positions.
-    for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
-      const Body& b = bodies_[i];
-      if (!b.alive || b.type == BodyType::staticBody) continue;
+    for (std::uint32_t i = 0; i < bodies.size(); ++i) {
+      const Body& b = bodies[i];
+      if (!store.bodyAlive(i) || b.type == BodyType::staticBody) continue;
       SolverBody& s = sb[i];
       if (absf(h * s.w) > maxRotation) s.w = (s.w > 0.0f ? maxRotation : -maxRotation) * invH;
       s.dq = integrateRotation(s.dq, h * s.w);
@@ -205,7 +235,7 @@ void World::solve(float dt, int substeps) {
 
   // Restitution: for points that approached faster than the threshold, aim the normal
   // velocity at -e times the approach velocity.
-  const float threshold = def_.restitutionThreshold;
+  const float threshold = def.restitutionThreshold;
   for (ContactConstraint& k : constraints_) {
     if (k.restitution == 0.0f) continue;
     SolverBody& A = sb[k.bodyA];
@@ -226,45 +256,60 @@ void World::solve(float dt, int substeps) {
 
   // Store impulses for warm starting; report hits.
   for (const ContactConstraint& k : constraints_) {
-    Contact& c = contacts_[k.contact];
+    Contact& c = contactSet.contacts[k.contact];
     float strongest = 0.0f;
     int at = -1;
     for (int j = 0; j < k.pointCount; ++j) {
       c.normalImpulse[j] = k.points[j].normalImpulse;
       c.tangentImpulse[j] = k.points[j].tangentImpulse;
       float approach = -k.points[j].relativeVelocity;
-      if (k.points[j].maxNormalImpulse > 0.0f && approach > def_.hitEventThreshold &&
+      if (k.points[j].maxNormalImpulse > 0.0f && approach > def.hitEventThreshold &&
           approach > strongest) {
         strongest = approach;
         at = j;
       }
     }
     if (at >= 0) {
-      events_.hit.push_back(
-          {shapeId(c.shapeA), shapeId(c.shapeB), c.manifold.points[at].point, k.normal, strongest});
+      events.events.hit.push_back({store.shapeId(c.shapeA), store.shapeId(c.shapeB),
+                                   c.manifold.points[at].point, k.normal, strongest});
     }
   }
 
   // Finalise bodies and move their proxies.
-  for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
-    Body& b = bodies_[i];
-    if (!b.alive || b.type == BodyType::staticBody) continue;
+  for (std::uint32_t i = 0; i < bodies.size(); ++i) {
+    Body& b = bodies[i];
+    if (!store.bodyAlive(i) || b.type == BodyType::staticBody) continue;
     const SolverBody& s = sb[i];
-    b.v = s.v;
-    b.w = s.w;
+    // Forces act through one step.
+    b.force = {};
+    b.torque = 0.0f;
+    // Restitution may have sped a body up after the last clamp.
+    b.v = clampSpeed(s.v);
+    b.w = clampf(s.w, -kMaxAngularSpeed, kMaxAngularSpeed);
     // Continuous collision wants the sweeps of fast bodies (world.hpp, kCcdFastFraction).
-    b.fast = b.type == BodyType::dynamicBody && def_.enableContinuous && b.maxExtent > 0.0f &&
+    b.fast = b.type == BodyType::dynamicBody && def.enableContinuous && b.maxExtent > 0.0f &&
              (b.bullet || length(s.dp) + absf(s.da) * b.maxExtent > kCcdFastFraction * b.minExtent);
     if (b.fast) {
       b.startCenter = b.center;
       b.startAngle = b.xf.q.angle();
       b.endAngle = b.startAngle + s.da;
     }
-    b.center += s.dp;
-    b.xf.q = normalizeRot(mulRot(s.dq, b.xf.q));
-    b.xf.p = b.center - rotate(b.xf.q, b.localCenter);
-    updateShapeBoxes(i, s.dp);
+    const Vec2 center = b.center + s.dp;
+    const Rot q = normalizeRot(mulRot(s.dq, b.xf.q));
+    const Transform xf{center - rotate(q, b.localCenter), q};
+    if (!store.shapesWithinWorld(i, xf)) {
+      // The edge of the world (world.hpp, kMaxCoordinate): the body stays where the step
+      // began, stopped, and the game is told (StepEvents::outOfBounds).
+      b.v = {};
+      b.w = 0.0f;
+      b.fast = false;
+      events.events.outOfBounds.push_back(store.bodyId(i));
+      continue;
+    }
+    b.center = center;
+    b.xf = xf;
+    store.updateShapeBoxes(broadPhase, i, s.dp);
   }
 }
 
-}  // namespace quack
+}  // namespace quack::detail

@@ -64,7 +64,7 @@ TEST(Ccd, BulletAtAThousandMetresPerSecondNeverPassesAThinWall) {
       (void)world.createShape(b, {}, makeBox(0.01f, 0.004f).value());
     }
     for (int step = 0; step < 10; ++step) {
-      ASSERT_TRUE(world.step().ok());
+      ASSERT_TRUE(testing::stepAndValidate(world));
       ASSERT_LT(world.position(b).x, 0.0f) << "through the wall at step " << step;
       events += static_cast<int>(world.events().toi.size());
       expectSortedEvents(world);
@@ -81,7 +81,7 @@ TEST(Ccd, WithoutContinuousCollisionTheBulletTunnels) {
   BodyId b = world.createBody({.position = {-5, 0}, .linearVelocity = {1000, 0}}).value();
   (void)world.createShape(b, {}, makeCircle({}, 0.01f).value());
   for (int step = 0; step < 10; ++step)
-    ASSERT_TRUE(world.step().ok());
+    ASSERT_TRUE(testing::stepAndValidate(world));
   EXPECT_GT(world.position(b).x, 0.0f);
 }
 
@@ -104,7 +104,7 @@ TEST(Ccd, ThinFastSpinningRodNeverPassesAThinWall) {
     Polygon thin = makeBox(0.5f, 0.004f).value();
     (void)world.createShape(rod, {}, thin);
     for (int step = 0; step < 120; ++step) {
-      ASSERT_TRUE(world.step().ok());
+      ASSERT_TRUE(testing::stepAndValidate(world));
       const Transform xf = world.transform(rod);
       ASSERT_LT(xf.p.x, 0.0f) << "centre through the wall at step " << step;
       for (Vec2 end : {Vec2{0.5f, 0}, Vec2{-0.5f, 0}}) {
@@ -129,7 +129,7 @@ TEST(Ccd, EventsComeOutSortedByTime) {
                    .value();
     (void)world.createShape(b, {}, makeCircle({}, 0.05f).value());
   }
-  ASSERT_TRUE(world.step().ok());
+  ASSERT_TRUE(testing::stepAndValidate(world));
   const auto& toi = world.events().toi;
   ASSERT_EQ(toi.size(), 30u);
   expectSortedEvents(world);
@@ -163,7 +163,7 @@ TEST(Ccd, HundredsOfSimultaneousImpactsFinish) {
   }
   std::size_t maxEvents = 0;
   for (int step = 0; step < 10; ++step) {
-    ASSERT_TRUE(world.step().ok());
+    ASSERT_TRUE(testing::stepAndValidate(world));
     expectSortedEvents(world);
     maxEvents = std::max(maxEvents, world.events().toi.size());
     for (BodyId b : bullets) {
@@ -186,7 +186,7 @@ TEST(Ccd, BulletDoesNotPassThroughADynamicBox) {
   (void)world.createShape(bullet, {.density = 0.1f}, makeCircle({}, 0.01f).value());
   bool hit = false;
   for (int step = 0; step < 3; ++step) {
-    ASSERT_TRUE(world.step().ok());
+    ASSERT_TRUE(testing::stepAndValidate(world));
     for (const ToiEvent& e : world.events().toi)
       hit = hit || world.body(e.shapeB) == box;
     ASSERT_LT(world.position(bullet).x, world.position(box).x) << "step " << step;
@@ -207,7 +207,7 @@ TEST(Ccd, BulletIsRecheckedAgainstABodyThatAnEarlierEventMoved) {
       world.createBody({.position = {-0.12f, 5}, .linearVelocity = {0, -600}, .bullet = true})
           .value();
   ShapeId bulletShape = world.createShape(bullet, {}, makeCircle({}, 0.01f).value()).value();
-  ASSERT_TRUE(world.step().ok());
+  ASSERT_TRUE(testing::stepAndValidate(world));
   const auto& toi = world.events().toi;
   ASSERT_EQ(toi.size(), 2u);
   EXPECT_EQ(toi[0].shapeA, boxShape);
@@ -235,7 +235,7 @@ TEST(Ccd, DeterministicAcrossRunsAndBroadPhases) {
       (void)world.createShape(b, {.restitution = 0.3f}, makeBox(0.05f, 0.02f).value());
     }
     for (int step = 0; step < 60; ++step)
-      EXPECT_TRUE(world.step().ok());
+      EXPECT_TRUE(testing::stepAndValidate(world));
     return world.stateHash();
   };
   const std::uint64_t first = run(BroadPhaseKind::kTree);

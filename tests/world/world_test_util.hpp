@@ -1,11 +1,33 @@
 #pragma once
 // Scene builders shared by the world tests.
 
+#include <gtest/gtest.h>
+
+#include <string>
 #include <vector>
 
 #include "quack/world/world.hpp"
 
 namespace quack::testing {
+
+// One step, then World::validate (every cross-reference checked), as the tree tests do
+// after every operation.
+inline ::testing::AssertionResult stepAndValidate(World& world) {
+  StepStatus s = world.step();
+  if (!s) return ::testing::AssertionFailure() << "step: " << s.message();
+  Status v = world.validate();
+  if (!v)
+    return ::testing::AssertionFailure()
+           << "validate after step " << world.stepCount() << ": " << v.message();
+  return ::testing::AssertionSuccess();
+}
+
+// World::validate as an assertion, for after creation and destruction.
+inline ::testing::AssertionResult valid(const World& world) {
+  Status v = world.validate();
+  if (!v) return ::testing::AssertionFailure() << "validate: " << v.message();
+  return ::testing::AssertionSuccess();
+}
 
 inline BodyId addStaticBox(World& world, Vec2 center, Vec2 half, float angle = 0.0f,
                            ShapeDef def = {}) {

@@ -10,11 +10,13 @@
 namespace quack {
 
 /// Handle to a body: slot index plus the slot's generation at creation, so a handle kept
-/// after the body was destroyed is caught instead of reaching a reused slot. The default
+/// after the body was destroyed is caught instead of reaching a reused slot, plus the id of
+/// the world that made it, so a handle given to another world is refused. The default
 /// handle is null.
 struct BodyId {
   std::uint32_t index = 0xffffffffu;
   std::uint32_t generation = 0;
+  std::uint32_t world = 0;  ///< World::id() of its world; 0: none
   friend constexpr bool operator==(BodyId, BodyId) noexcept = default;
 };
 
@@ -22,6 +24,7 @@ struct BodyId {
 struct ShapeId {
   std::uint32_t index = 0xffffffffu;
   std::uint32_t generation = 0;
+  std::uint32_t world = 0;  ///< World::id() of its world; 0: none
   friend constexpr bool operator==(ShapeId, ShapeId) noexcept = default;
 };
 
@@ -101,6 +104,10 @@ struct StepEvents {
   std::vector<SensorEvent> sensorEnd;
   /// Time-of-impact events, sorted by time (ties: in the order they were handled).
   std::vector<ToiEvent> toi;
+  /// Bodies whose motion in this step would have taken a shape beyond kMaxCoordinate (the
+  /// edge of the world): each was held at its pose from the start of the step with zero
+  /// velocity, and is listed once per step in which that happened, in index order.
+  std::vector<BodyId> outOfBounds;
 };
 
 }  // namespace quack

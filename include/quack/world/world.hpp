@@ -18,22 +18,29 @@
 /// the argument; a failed call changes nothing. Bodies and shapes may be created and
 /// destroyed at any time outside `step`; from inside an event callback, destruction is
 /// deferred until the callbacks of that step are done (the handle stays valid until then,
-/// and later callbacks involving it are skipped). Calling `step` from a callback fails.
+/// and the step's later events involving it still get their callbacks: the callbacks and
+/// the event lists always agree). Calling `step` from a callback fails.
 ///
 /// Determinism: the same scene built in the same order and stepped with the same inputs
 /// gives bit-identical state (`stateHash`) on the same build.
 
+#include <cstddef>
 #include <functional>
+#include <iterator>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include "quack/collision/manifold.hpp"
 #include "quack/world/types.hpp"
 
 namespace quack {
+
+namespace detail {
+struct WorldState;
+}
 
 /// How a world is made. Every default is documented in docs/world.md.
 struct WorldDef {
@@ -90,6 +97,32 @@ inline constexpr float kCcdFastFraction = 0.5f;
 /// body wedged between walls) cannot loop. Eight, as Box2D 2.4's b2_maxSubSteps.
 inline constexpr int kMaxToiEventsPerBody = 8;
 
+/// Limits on what a world accepts, so that nothing it computes can overflow a float
+/// (docs/world.md, "Limits"). Inputs beyond them are refused with a message naming the
+/// field; speeds the solver produces are held within them.
+///
+/// Longest step, seconds. The contact softness and the continuous phase are tuned for steps
+/// of milliseconds; a second is already far beyond any frame, and a bound keeps
+/// gravity * dt and speed * dt finite.
+inline constexpr float kMaxTimeStep = 1.0f;
+/// Strongest gravity, m/s^2 (a thousand g). Times kMaxTimeStep and any sensible gravity
+/// scale it stays far from overflow.
+inline constexpr float kMaxGravity = 1.0e4f;
+/// Largest |BodyDef::gravityScale|.
+inline constexpr float kMaxGravityScale = 1.0e3f;
+/// Fastest linear speed, m/s (100 km/s, two hundred times a rifle bullet). Velocities set
+/// through the API beyond it are refused; the solver clamps to it (as Box2D v3 clamps to its
+/// maximum linear speed), so speed * dt stays within a few kMaxCoordinate.
+inline constexpr float kMaxLinearSpeed = 1.0e5f;
+/// Fastest spin, rad/s. The solver also limits the turn per sub-step (maxRotationPerSubstep).
+inline constexpr float kMaxAngularSpeed = 1.0e5f;
+/// Heaviest body, kg. An impulse is mass times speed: 1e20 kg at kMaxLinearSpeed, times a
+/// lever arm of kMaxCoordinate, stays below 1e35, inside float range.
+inline constexpr float kMaxBodyMass = 1.0e20f;
+/// Largest restitution. Above 1 a contact adds energy (a bounce pad); ten is already a
+/// cartoon, and a bound keeps restitution times approach speed finite.
+inline constexpr float kMaxRestitution = 10.0f;
+
 /// A shape a ray met. World frame.
 struct RayHitResult {
   ShapeId shape;
@@ -109,6 +142,31 @@ struct ShapeOverlap {
   Vec2 depenetration;
 };
 
+/// The first shape a world shape cast met. World frame.
+struct ShapeCastResult {
+  ShapeId shape;
+  BodyId body;
+  Vec2 point;          ///< on the shape met, where the cast shape touches it
+  Vec2 normal;         ///< unit, from the shape met towards the cast shape
+  float fraction = 0;  ///< of the translation; 0 when the cast shape starts overlapping
+};
+
+/// What `step` says: done, or why it refused (called from a callback, a bad dt). Unlike
+/// `Status` it may be ignored, so `world.step();` reads plainly in a game loop; check it
+/// where a refusal matters (`if (!world.step(dt, 4)) ...`).
+class StepStatus {
+ public:
+  StepStatus() = default;
+  StepStatus(Error error) : status_(std::move(error)) {}  // NOLINT: implicit, as Status
+  bool ok() const noexcept { return status_.ok(); }
+  explicit operator bool() const noexcept { return ok(); }
+  const std::string& message() const noexcept { return status_.message(); }
+  operator Status() const { return status_; }  // NOLINT: a StepStatus is a Status
+
+ private:
+  Status status_;
+};
+
 /// Which shapes a query sees: those whose filter accepts this one (see shouldCollide).
 struct QueryFilter {
   std::uint64_t category = 1;
@@ -126,7 +184,10 @@ class World {
   World& operator=(const World&) = delete;
   ~World();
 
-  const WorldDef& def() const noexcept { return def_; }
+  const WorldDef& def() const noexcept;
+  /// This world's id, carried by every handle it gives out (BodyId::world), so that a
+  /// handle from another world is refused. Unique in the process; never 0.
+  std::uint32_t id() const noexcept;
 
   // ---- bodies and shapes -------------------------------------------------------------
   Result<BodyId> createBody(const BodyDef& def);
@@ -150,13 +211,32 @@ class World {
 
   bool isValid(BodyId body) const noexcept;
   bool isValid(ShapeId shape) const noexcept;
-  std::size_t bodyCount() const noexcept { return bodyCount_; }
-  std::size_t shapeCount() const noexcept { return shapeCount_; }
+  std::size_t bodyCount() const noexcept;
+  std::size_t shapeCount() const noexcept;
   /// Live contacts (fat boxes overlapping) and how many of them touch.
-  std::size_t contactCount() const noexcept { return contactCount_; }
+  std::size_t contactCount() const noexcept;
   std::size_t touchingContactCount() const noexcept;
 
-  // ---- body state (preconditions: valid handles, asserted; use isValid) ----------------
+  // ---- iteration, without allocating -----------------------------------------------------
+  class BodyRange;
+  class ShapeRange;
+  class ContactRange;
+  /// Every live body, in index order (a range of BodyId; nothing is allocated).
+  BodyRange bodies() const noexcept;
+  /// Shapes of a body, in creation order (empty for a bad handle).
+  ShapeRange shapes(BodyId body) const noexcept;
+  /// Touching, non-sensor contacts (for drawing): the two shapes and the manifold.
+  struct ContactView {
+    ShapeId shapeA, shapeB;
+    Manifold manifold;
+  };
+  ContactRange touchingContacts() const noexcept;
+
+  // ---- body state ------------------------------------------------------------------------
+  // A null, stale (destroyed) or foreign (another world's) handle is caught in every build:
+  // the getters then return a neutral value (zero vectors and numbers, the identity
+  // transform, a static body type, a null BodyId, an empty circle, a default ShapeDef), and
+  // the setters fail with a message. Use isValid to tell.
   BodyType bodyType(BodyId body) const;
   Transform transform(BodyId body) const;  ///< worldFromBody
   Vec2 position(BodyId body) const;        ///< of the body origin, world frame
@@ -170,29 +250,38 @@ class World {
   BodyId body(ShapeId shape) const;
   const ShapeGeometry& geometry(ShapeId shape) const;
   const ShapeDef& shapeDef(ShapeId shape) const;
-  /// Shapes of a body, in creation order.
-  std::vector<ShapeId> shapes(BodyId body) const;
-  /// Every live body, in index order.
-  std::vector<BodyId> bodies() const;
 
   /// Teleports a body (errors: bad handle, non-finite numbers).
   Status setTransform(BodyId body, Vec2 position, float angle);
   Status setLinearVelocity(BodyId body, Vec2 velocity);
   Status setAngularVelocity(BodyId body, float velocity);
-  /// Impulse (N s) at a world point; dynamic bodies only (others ignore it).
+  /// Impulse (N s) at a world point; dynamic bodies only (others ignore it). Refused when
+  /// the resulting speed would pass kMaxLinearSpeed or kMaxAngularSpeed.
   Status applyLinearImpulse(BodyId body, Vec2 impulse, Vec2 worldPoint);
+  /// Angular impulse (N m s); dynamic bodies only. Refused past kMaxAngularSpeed.
+  Status applyAngularImpulse(BodyId body, float impulse);
+  /// Force (N) at a world point, acting through the next step (forces and torques are
+  /// summed, and cleared after each step, as in Box2D); dynamic bodies only.
+  Status applyForce(BodyId body, Vec2 force, Vec2 worldPoint);
+  /// Torque (N m) through the next step; dynamic bodies only.
+  Status applyTorque(BodyId body, float torque);
+  /// Changes a body's type. Its contacts end (end events) and are found again under the new
+  /// type; its mass is recomputed; a body made static stops.
+  Status setBodyType(BodyId body, BodyType type);
 
   // ---- stepping ------------------------------------------------------------------------
   /// Advances by `def().timeStep` with `def().substeps`.
-  Status step();
-  /// Advances by dt seconds (> 0, finite) with `substeps` (1..64) solver sub-steps.
-  Status step(float dt, int substeps);
-  /// The events of the last step (valid until the next step). Contacts ended by destroying
-  /// a shape between steps are reported with the next step's end events.
-  const StepEvents& events() const noexcept { return events_; }
+  StepStatus step();
+  /// Advances by dt seconds (> 0, finite, at most kMaxTimeStep) with `substeps` (1..64)
+  /// solver sub-steps.
+  StepStatus step(float dt, int substeps);
+  /// The events of the last step (valid until the next step). Contacts and sensor overlaps
+  /// ended by destroying a shape between steps are reported, and their callbacks called,
+  /// with the next step's end events; their shape handles are then stale (isValid).
+  const StepEvents& events() const noexcept;
   /// Steps taken and simulated time.
-  std::uint64_t stepCount() const noexcept { return stepCount_; }
-  double time() const noexcept { return time_; }
+  std::uint64_t stepCount() const noexcept;
+  double time() const noexcept;
 
   // ---- callbacks (called at the end of each step, in event order) -----------------------
   // A callback registered from inside a callback takes effect from the next step.
@@ -226,82 +315,152 @@ class World {
   Result<std::vector<ShapeOverlap>> overlapShape(const ShapeGeometry& geometry,
                                                  Transform worldFromShape,
                                                  QueryFilter filter = {}) const;
+  /// Sweeps `geometry` from `worldFromShape` along `translation` (metres) and returns the
+  /// first shape it meets (lowest fraction; ties: lower shape index), if any. A shape the
+  /// cast starts overlapping is met at fraction 0. Errors: non-finite input, a bad geometry.
+  Result<std::optional<ShapeCastResult>> castShape(const ShapeGeometry& geometry,
+                                                   Transform worldFromShape, Vec2 translation,
+                                                   QueryFilter filter = {}) const;
 
   // ---- inspection ----------------------------------------------------------------------------
   /// A hash of every body's position, angle and velocities (bitwise), in index order.
   std::uint64_t stateHash() const noexcept;
   /// The broad phase, for drawing and statistics.
-  const BroadPhase& broadPhase() const noexcept { return broadPhase_; }
-  /// Manifolds of touching contacts (for drawing): the two shapes and the manifold.
-  struct ContactView {
-    ShapeId shapeA, shapeB;
-    Manifold manifold;
-  };
-  std::vector<ContactView> touchingContacts() const;
+  const BroadPhase& broadPhase() const noexcept;
+  /// Checks every cross-reference: handles and free slots, each shape on its body's list and
+  /// in the broad phase under its own index with its box at the body's pose, each contact's
+  /// shapes live and listing it, the pair map, counts, finite body state. For tests (call it
+  /// after every operation) and for debugging; costs a walk over everything.
+  Status validate() const;
 
  private:
-  struct Body;
-  struct Shape;
-  struct Contact;
-  struct ContactConstraint;
-  struct Callback;
-  struct SolverBody;
-
-  explicit World(const WorldDef& def, BroadPhase broadPhase);
-
+  explicit World(std::unique_ptr<detail::WorldState> state);
+  // For the ranges: the first live body (touching contact) at or after `from`, or the
+  // number of slots when none; the handle of a slot; a body's shape slots.
+  std::uint32_t nextBody(std::uint32_t from) const noexcept;
+  std::uint32_t nextTouchingContact(std::uint32_t from) const noexcept;
+  BodyId bodyAt(std::uint32_t index) const noexcept;
+  ShapeId shapeAt(std::uint32_t index) const noexcept;
+  ContactView contactAt(std::uint32_t index) const noexcept;
   Status checkBody(BodyId id, const char* function) const;
   Status checkShape(ShapeId id, const char* function) const;
-  void updateMass(std::uint32_t body);
-  void updateShapeBoxes(std::uint32_t body, Vec2 displacement);
-  void destroyContact(std::uint32_t contact, bool emitEnd);
   void destroyShapeNow(std::uint32_t shape);
   void destroyBodyNow(std::uint32_t body);
-  void findNewContacts();
-  void collide();
-  void updateStaticEdges();
-  void removeGhostContacts(Contact& c);
-  bool isGhostImpact(std::uint32_t staticShape, Vec2 point, Vec2 normal) const;
-  void solve(float dt, int substeps);
-  struct FastBody;
-  struct ToiCandidate;
-  void solveContinuous(float dt);
-  bool findImpact(std::uint32_t fast, bool continuation, ToiCandidate& best,
-                  std::uint32_t onlyBody = 0xffffffffu);
-  Aabb sweptBox(const FastBody& f) const;
-  void dispatchCallbacks();
-  ShapeId shapeId(std::uint32_t shape) const;
   bool acceptsQuery(std::uint32_t shape, const QueryFilter& filter) const;
 
-  WorldDef def_;
-  BroadPhase broadPhase_;
-  std::vector<Body> bodies_;
-  std::vector<std::uint32_t> freeBodies_;
-  std::vector<Shape> shapes_;
-  std::vector<std::uint32_t> freeShapes_;
-  std::vector<Contact> contacts_;
-  std::vector<std::uint32_t> freeContacts_;
-  std::unordered_map<std::uint64_t, std::uint32_t> contactByPair_;
-  std::vector<ProxyPair> pairScratch_;
-  std::vector<ContactConstraint> constraints_;
-  std::vector<SolverBody> solverBodies_;
-  std::vector<FastBody> fastBodies_;          // continuous phase scratch
-  std::vector<ToiCandidate> toiQueue_;        // a binary heap, earliest on top
-  std::vector<std::uint32_t> toiCandidates_;  // shapes near one sweep
-  std::vector<Callback> pendingCallbacks_;    // registered from inside a callback
-  std::vector<Callback> callbacks_;
-  std::vector<std::uint32_t> pendingBodyDestroy_;
-  std::vector<std::uint32_t> pendingShapeDestroy_;
-  std::vector<ContactEndEvent> endsSinceStep_;  // from destruction between steps
-  StepEvents events_;
-  std::size_t bodyCount_ = 0;
-  std::size_t shapeCount_ = 0;
-  std::size_t contactCount_ = 0;
-  std::uint64_t stepCount_ = 0;
-  double time_ = 0.0;
-  bool staticEdgesDirty_ = false;  // static geometry changed: re-find flush edges
-  std::size_t edgeShapes_ = 0;     // static shapes with ghost-collision data
-  bool inStep_ = false;
-  bool inCallbacks_ = false;
+  std::unique_ptr<detail::WorldState> s_;
+};
+
+/// A forward range over slots of a world, yielding handles by value (see World::bodies).
+template <class Value, class Next, class At>
+class WorldSlotIterator {
+ public:
+  using iterator_category = std::forward_iterator_tag;
+  using value_type = Value;
+  using difference_type = std::ptrdiff_t;
+  using pointer = void;
+  using reference = Value;
+  WorldSlotIterator() = default;
+  WorldSlotIterator(const World* world, std::uint32_t index) : world_(world), index_(index) {}
+  Value operator*() const { return At{}(*world_, index_); }
+  WorldSlotIterator& operator++() {
+    index_ = Next{}(*world_, index_ + 1);
+    return *this;
+  }
+  WorldSlotIterator operator++(int) {
+    WorldSlotIterator old = *this;
+    ++*this;
+    return old;
+  }
+  friend bool operator==(const WorldSlotIterator& a, const WorldSlotIterator& b) {
+    return a.index_ == b.index_;
+  }
+
+ private:
+  const World* world_ = nullptr;
+  std::uint32_t index_ = 0;
+};
+
+class World::BodyRange {
+  struct Next {
+    std::uint32_t operator()(const World& w, std::uint32_t i) const { return w.nextBody(i); }
+  };
+  struct At {
+    BodyId operator()(const World& w, std::uint32_t i) const { return w.bodyAt(i); }
+  };
+
+ public:
+  using iterator = WorldSlotIterator<BodyId, Next, At>;
+  BodyRange(const World* world, std::uint32_t first, std::uint32_t end)
+      : world_(world), first_(first), end_(end) {}
+  iterator begin() const { return {world_, first_}; }
+  iterator end() const { return {world_, end_}; }
+
+ private:
+  const World* world_;
+  std::uint32_t first_, end_;
+};
+
+class World::ShapeRange {
+ public:
+  ShapeRange(const World* world, std::span<const std::uint32_t> slots)
+      : world_(world), slots_(slots) {}
+  class iterator {
+   public:
+    using iterator_category = std::forward_iterator_tag;
+    using value_type = ShapeId;
+    using difference_type = std::ptrdiff_t;
+    using pointer = void;
+    using reference = ShapeId;
+    iterator() = default;
+    iterator(const World* w, const std::uint32_t* p) : world_(w), p_(p) {}
+    ShapeId operator*() const { return world_->shapeAt(*p_); }
+    iterator& operator++() {
+      ++p_;
+      return *this;
+    }
+    iterator operator++(int) {
+      iterator old = *this;
+      ++p_;
+      return old;
+    }
+    friend bool operator==(const iterator& a, const iterator& b) { return a.p_ == b.p_; }
+
+   private:
+    const World* world_ = nullptr;
+    const std::uint32_t* p_ = nullptr;
+  };
+  iterator begin() const { return {world_, slots_.data()}; }
+  iterator end() const { return {world_, slots_.data() + slots_.size()}; }
+  std::size_t size() const noexcept { return slots_.size(); }
+  bool empty() const noexcept { return slots_.empty(); }
+  ShapeId operator[](std::size_t i) const { return world_->shapeAt(slots_[i]); }
+
+ private:
+  const World* world_;
+  std::span<const std::uint32_t> slots_;
+};
+
+class World::ContactRange {
+  struct Next {
+    std::uint32_t operator()(const World& w, std::uint32_t i) const {
+      return w.nextTouchingContact(i);
+    }
+  };
+  struct At {
+    ContactView operator()(const World& w, std::uint32_t i) const { return w.contactAt(i); }
+  };
+
+ public:
+  using iterator = WorldSlotIterator<ContactView, Next, At>;
+  ContactRange(const World* world, std::uint32_t first, std::uint32_t end)
+      : world_(world), first_(first), end_(end) {}
+  iterator begin() const { return {world_, first_}; }
+  iterator end() const { return {world_, end_}; }
+
+ private:
+  const World* world_;
+  std::uint32_t first_, end_;
 };
 
 }  // namespace quack

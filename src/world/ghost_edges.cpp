@@ -19,10 +19,14 @@
 #include <map>
 #include <string>
 
-#include "quack/world/world.hpp"
-#include "world_internal.hpp"
+#include "ghost_edges.hpp"
 
-namespace quack {
+#include "body_store.hpp"
+#include "contact_set.hpp"
+#include "quack/world/world.hpp"
+#include "world_state.hpp"
+
+namespace quack::detail {
 namespace {
 
 // Normals closer than this (sine of the angle between them) count as parallel: a flat
@@ -78,61 +82,18 @@ bool near(Vec2 a, Vec2 b) {
 
 }  // namespace
 
-Result<std::vector<ShapeId>> World::createChain(BodyId bodyId, const ShapeDef& def,
-                                                std::span<const Vec2> points, bool loop) {
-  if (Status s = checkBody(bodyId, "createChain"); !s) return fail(s.message());
-  if (bodies_[bodyId.index].type != BodyType::staticBody)
-    return fail("createChain: body must be static (chains are terrain)");
-  const std::size_t n = points.size();
-  if (n < (loop ? 3u : 2u)) {
-    return fail("createChain: points: needs at least " + std::string(loop ? "3" : "2") +
-                " points, got " + std::to_string(n));
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!isFinite(points[i]))
-      return fail("createChain: points[" + std::to_string(i) + "] is not finite");
-  }
-  const std::size_t segments = loop ? n : n - 1;
-  for (std::size_t i = 0; i < segments; ++i) {
-    if (near(points[i], points[(i + 1) % n])) {
-      return fail("createChain: points[" + std::to_string(i) + "] and points[" +
-                  std::to_string((i + 1) % n) + "] coincide");
-    }
-  }
-  std::vector<ShapeId> out;
-  for (std::size_t i = 0; i < segments; ++i) {
-    Result<Segment> seg = makeSegment(points[i], points[(i + 1) % n]);
-    Result<ShapeId> id =
-        seg ? createShape(bodyId, def, *seg) : Result<ShapeId>(fail(seg.error().message));
-    if (!id) {
-      for (ShapeId s : out)
-        destroyShapeNow(s.index);
-      return fail("createChain: segment " + std::to_string(i) + ": " + id.error().message);
-    }
-    StaticEdges& e = shapes_[id->index].edges;
-    e.chain = true;
-    e.hasPrev = loop || i > 0;
-    e.hasNext = loop || i + 1 < segments;
-    e.prev = points[(i + n - 1) % n];
-    e.next = points[(i + 2) % n];
-    out.push_back(*id);
-  }
-  staticEdgesDirty_ = true;
-  return out;
-}
-
-void World::updateStaticEdges() {
-  staticEdgesDirty_ = false;
-  edgeShapes_ = 0;
+void GhostEdges::update(BodyStore& store, bool removeGhostCollisions) {
+  dirty_ = false;
+  activeShapes_ = 0;
   struct WorldEdge {
     std::uint32_t shape;
     int edge;
     Vec2 a, b, n;
   };
   std::vector<WorldEdge> edges;
-  for (std::uint32_t s = 0; s < shapes_.size(); ++s) {
-    Shape& shape = shapes_[s];
-    if (!shape.alive || bodies_[shape.body].type != BodyType::staticBody) continue;
+  for (std::uint32_t s = 0; s < store.shapes.size(); ++s) {
+    Shape& shape = store.shapes[s];
+    if (!store.shapeAlive(s) || store.bodies[shape.body].type != BodyType::staticBody) continue;
     StaticEdges& e = shape.edges;
     if (e.chain) {
       // Ghost vertices: the cone at each joint is that of the two segments meeting there.
@@ -152,14 +113,14 @@ void World::updateStaticEdges() {
         if (e.cones[1].kind == EdgeCone::Kind::snap) e.cones[1].lo = e.cones[1].hi = n;
       }
       e.active = true;
-      ++edgeShapes_;
+      ++activeShapes_;
       continue;
     }
     e = StaticEdges{};
-    if (!def_.removeGhostCollisions) continue;
+    if (!removeGhostCollisions) continue;
     const Polygon* p = std::get_if<Polygon>(&shape.geometry);
     if (p == nullptr) continue;
-    const Transform xf = bodies_[shape.body].xf;
+    const Transform xf = store.bodies[shape.body].xf;
     for (int i = 0; i < p->count; ++i) {
       edges.push_back({s, i, transformPoint(xf, p->vertices[i]),
                        transformPoint(xf, p->vertices[(i + 1) % p->count]),
@@ -263,17 +224,17 @@ void World::updateStaticEdges() {
   // at each vertex an edge is covered up to, the faces of the union that meet there.
   for (std::size_t k = 0; k < edges.size(); ++k) {
     if (covered[k].empty()) continue;
-    Shape& shape = shapes_[edges[k].shape];
+    Shape& shape = store.shapes[edges[k].shape];
     StaticEdges& e = shape.edges;
     const Polygon& p = std::get<Polygon>(shape.geometry);
     if (!e.active) {
       e.active = true;
       e.cones.assign(static_cast<std::size_t>(p.count), EdgeCone{});
-      ++edgeShapes_;
+      ++activeShapes_;
     }
     for (const Interval& i : covered[k])
       e.covered.push_back({edges[k].edge, i.t0, i.t1});
-    const Rot q = bodies_[shape.body].xf.q;
+    const Rot q = store.bodies[shape.body].xf.q;
     const float len = length(edges[k].b - edges[k].a);
     // Edge i joins vertices i and i + 1.
     for (int end = 0; end < 2; ++end) {
@@ -388,10 +349,11 @@ Verdict classify(const StaticEdges& edges, const ShapeGeometry& geometry, Vec2 l
 
 }  // namespace
 
-bool World::isGhostImpact(std::uint32_t staticShape, Vec2 point, Vec2 normal) const {
-  const Shape& S = shapes_[staticShape];
-  if (!S.edges.active || bodies_[S.body].type != BodyType::staticBody) return false;
-  const Transform xs = bodies_[S.body].xf;
+bool GhostEdges::isGhostImpact(const BodyStore& store, std::uint32_t staticShape, Vec2 point,
+                               Vec2 normal) const {
+  const Shape& S = store.shapes[staticShape];
+  if (!S.edges.active || store.bodies[S.body].type != BodyType::staticBody) return false;
+  const Transform xs = store.bodies[S.body].xf;
   Vec2 target;
   Vec2 localN = invRotate(xs.q, normal);
   Verdict v = classify(S.edges, S.geometry, invTransformPoint(xs, point), localN, target);
@@ -400,16 +362,16 @@ bool World::isGhostImpact(std::uint32_t staticShape, Vec2 point, Vec2 normal) co
   return v == Verdict::correct && dot(target, localN) < 1.0f - 1e-6f;
 }
 
-void World::removeGhostContacts(Contact& c) {
+void GhostEdges::removeGhostContacts(const BodyStore& store, Contact& c) const {
   Manifold& m = c.manifold;
   if (m.pointCount == 0) return;
-  const bool staticIsA = shapes_[c.shapeA].edges.active &&
-                         bodies_[shapes_[c.shapeA].body].type == BodyType::staticBody;
-  const Shape& S = shapes_[staticIsA ? c.shapeA : c.shapeB];
-  const Shape& D = shapes_[staticIsA ? c.shapeB : c.shapeA];
-  if (!S.edges.active || bodies_[S.body].type != BodyType::staticBody) return;
-  const Transform xs = bodies_[S.body].xf;
-  const Transform xd = bodies_[D.body].xf;
+  const bool staticIsA = store.shapes[c.shapeA].edges.active &&
+                         store.bodies[store.shapes[c.shapeA].body].type == BodyType::staticBody;
+  const Shape& S = store.shapes[staticIsA ? c.shapeA : c.shapeB];
+  const Shape& D = store.shapes[staticIsA ? c.shapeB : c.shapeA];
+  if (!S.edges.active || store.bodies[S.body].type != BodyType::staticBody) return;
+  const Transform xs = store.bodies[S.body].xf;
+  const Transform xd = store.bodies[D.body].xf;
   const Vec2 nOut = staticIsA ? m.normal : -m.normal;  // out of the static shape
 
   if (S.edges.chain) {
@@ -456,8 +418,8 @@ void World::removeGhostContacts(Contact& c) {
     if (dot(proxy.points()[i], dir) > dot(proxy.points()[deepest], dir)) deepest = i;
   }
   const Vec2 support = transformPoint(xd, proxy.points()[deepest]) - proxy.radius() * nNew;
-  const Transform xa = bodies_[shapes_[c.shapeA].body].xf;
-  const Transform xb = bodies_[shapes_[c.shapeB].body].xf;
+  const Transform xa = store.bodies[store.shapes[c.shapeA].body].xf;
+  const Transform xb = store.bodies[store.shapes[c.shapeB].body].xf;
   for (int k = 0; k < m.pointCount; ++k) {
     ManifoldPoint& mp = m.points[k];
     Vec2 onStatic = mp.point - 0.5f * mp.separation * nOut;
@@ -474,6 +436,53 @@ void World::removeGhostContacts(Contact& c) {
     mp.anchorB = mp.point - xb.p;
   }
   m.normal = staticIsA ? nNew : -nNew;
+}
+
+}  // namespace quack::detail
+
+namespace quack {
+
+Result<std::vector<ShapeId>> World::createChain(BodyId bodyId, const ShapeDef& def,
+                                                std::span<const Vec2> points, bool loop) {
+  if (Status s = checkBody(bodyId, "createChain"); !s) return fail(s.message());
+  if (s_->store.bodies[bodyId.index].type != BodyType::staticBody)
+    return fail("createChain: body must be static (chains are terrain)");
+  const std::size_t n = points.size();
+  if (n < (loop ? 3u : 2u)) {
+    return fail("createChain: points: needs at least " + std::string(loop ? "3" : "2") +
+                " points, got " + std::to_string(n));
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!isFinite(points[i]))
+      return fail("createChain: points[" + std::to_string(i) + "] is not finite");
+  }
+  const std::size_t segments = loop ? n : n - 1;
+  for (std::size_t i = 0; i < segments; ++i) {
+    if (detail::near(points[i], points[(i + 1) % n])) {
+      return fail("createChain: points[" + std::to_string(i) + "] and points[" +
+                  std::to_string((i + 1) % n) + "] coincide");
+    }
+  }
+  std::vector<ShapeId> out;
+  for (std::size_t i = 0; i < segments; ++i) {
+    Result<Segment> seg = makeSegment(points[i], points[(i + 1) % n]);
+    Result<ShapeId> id =
+        seg ? createShape(bodyId, def, *seg) : Result<ShapeId>(fail(seg.error().message));
+    if (!id) {
+      for (ShapeId s : out)
+        destroyShapeNow(s.index);
+      return fail("createChain: segment " + std::to_string(i) + ": " + id.error().message);
+    }
+    detail::StaticEdges& e = s_->store.shapes[id->index].edges;
+    e.chain = true;
+    e.hasPrev = loop || i > 0;
+    e.hasNext = loop || i + 1 < segments;
+    e.prev = points[(i + n - 1) % n];
+    e.next = points[(i + 2) % n];
+    out.push_back(*id);
+  }
+  s_->edges.markDirty();
+  return out;
 }
 
 }  // namespace quack

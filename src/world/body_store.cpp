@@ -1,0 +1,142 @@
+#include "body_store.hpp"
+
+#include <algorithm>
+#include <limits>
+
+#include "quack/collision/proxy.hpp"
+#include "quack/collision/toi.hpp"
+#include "quack/geometry/bounds.hpp"
+#include "quack/geometry/mass.hpp"
+
+namespace quack::detail {
+
+Aabb shapeBox(const ShapeGeometry& g, Transform xf) {
+  return std::visit([&](const auto& s) { return computeAabb(s, xf); }, g);
+}
+
+std::uint32_t BodyStore::createBody(const BodyDef& def) {
+  const std::uint32_t index = bodyIds.allocate();
+  if (index == bodies.size()) bodies.emplace_back();
+  Body& b = bodies[index];
+  b = Body{};
+  b.type = def.type;
+  b.xf = makeTransform(def.position, def.angle);
+  b.center = def.position;
+  const bool moves = def.type != BodyType::staticBody;
+  b.v = moves ? def.linearVelocity : Vec2{};
+  b.w = moves ? def.angularVelocity : 0.0f;
+  b.linearDamping = def.linearDamping;
+  b.angularDamping = def.angularDamping;
+  b.gravityScale = def.gravityScale;
+  b.bullet = def.bullet;
+  b.userData = def.userData;
+  updateMass(index);
+  return index;
+}
+
+std::uint32_t BodyStore::createShape(std::uint32_t body, const ShapeDef& def,
+                                     const ShapeGeometry& geometry) {
+  const std::uint32_t index = shapeIds.allocate();
+  if (index == shapes.size()) shapes.emplace_back();
+  Shape& s = shapes[index];
+  s = Shape{};
+  s.body = body;
+  s.geometry = geometry;
+  s.def = def;
+  bodies[body].shapes.push_back(index);
+  updateMass(body);
+  return index;
+}
+
+void BodyStore::releaseShape(std::uint32_t index) {
+  Shape& s = shapes[index];
+  Body& body = bodies[s.body];
+  body.shapes.erase(std::find(body.shapes.begin(), body.shapes.end(), index));
+  s.pendingDestroy = false;
+  s.contacts.clear();
+  shapeIds.release(index);
+  if (bodyIds.isAlive(s.body)) updateMass(s.body);
+}
+
+void BodyStore::releaseBody(std::uint32_t index) {
+  Body& b = bodies[index];
+  b.pendingDestroy = false;
+  b.shapes.clear();
+  bodyIds.release(index);
+}
+
+void BodyStore::updateMass(std::uint32_t index) {
+  Body& b = bodies[index];
+  b.mass = b.invMass = b.inertia = b.invInertia = 0.0f;
+  b.localCenter = {};
+  if (b.type == BodyType::dynamicBody) {
+    const BodyMass m = sumMass([&](const auto& f) {
+      for (std::uint32_t s : b.shapes)
+        f(shapes[s].geometry, shapes[s].def.density);
+    });
+    if (m.mass > 0.0f) {
+      b.mass = m.mass;
+      b.invMass = 1.0f / m.mass;
+      b.localCenter = m.localCenter;
+      b.inertia = m.inertia;
+      b.invInertia = m.inertia > 0.0f ? 1.0f / m.inertia : 0.0f;
+    } else {
+      // A dynamic body with no area (segments only) or zero density still falls: unit mass,
+      // no rotation (documented in docs/world.md).
+      b.mass = 1.0f;
+      b.invMass = 1.0f;
+    }
+  }
+  // Sizes for continuous collision: the largest reach from the centre of mass, and the
+  // thinnest shape's half-thickness (a segment has none: the linear slop stands in).
+  b.maxExtent = 0.0f;
+  b.minExtent = 0.0f;
+  for (std::uint32_t s : b.shapes) {
+    const ShapeGeometry& g = shapes[s].geometry;
+    b.maxExtent = maxf(
+        b.maxExtent,
+        computeMaxExtent(std::visit([](const auto& x) { return makeProxy(x); }, g), b.localCenter));
+    float thickness = kLinearSlop;
+    if (const Circle* c = std::get_if<Circle>(&g)) thickness = c->radius;
+    if (const Capsule* c = std::get_if<Capsule>(&g)) thickness = c->radius;
+    if (const Polygon* p = std::get_if<Polygon>(&g)) {
+      float inner = std::numeric_limits<float>::max();
+      for (int i = 0; i < p->count; ++i)
+        inner = minf(inner, dot(p->normals[i], p->vertices[i] - p->centroid));
+      thickness = maxf(inner + p->radius, kLinearSlop);
+    }
+    b.minExtent = b.minExtent == 0.0f ? thickness : minf(b.minExtent, thickness);
+  }
+  // Keep the origin where it is; the centre of mass follows the shapes.
+  Vec2 oldCenter = b.center;
+  b.center = transformPoint(b.xf, b.localCenter);
+  // The velocity of the new centre, from the rigid motion about the old one.
+  b.v += cross(b.w, b.center - oldCenter);
+}
+
+bool BodyStore::shapesWithinWorld(std::uint32_t body, Transform xf) const {
+  for (std::uint32_t s : bodies[body].shapes) {
+    const Aabb box = shapeBox(shapes[s].geometry, xf);
+    // Six comparisons, all false for NaN: finite, not inverted, within the broad phase's range.
+    if (!(box.lower.x <= box.upper.x && box.lower.y <= box.upper.y &&
+          box.lower.x >= -kMaxCoordinate && box.lower.y >= -kMaxCoordinate &&
+          box.upper.x <= kMaxCoordinate && box.upper.y <= kMaxCoordinate)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+void BodyStore::updateShapeBoxes(BroadPhase& broadPhase, std::uint32_t body,
+                                 Vec2 displacement) const {
+  const Body& b = bodies[body];
+  for (std::uint32_t s : b.shapes) {
+    Aabb box = shapeBox(shapes[s].geometry, b.xf);
+    Result<bool> moved = broadPhase.moveProxy(shapes[s].proxy, box, displacement);
+    // Callers keep bodies within the world (shapesWithinWorld), so this cannot fail.
+    QUACK_ASSERT(moved.ok());
+    (void)moved;
+  }
+}
+
+}  // namespace quack::detail

@@ -1,0 +1,122 @@
+#pragma once
+// The body store: one part of the world (docs/ARCHITECTURE.md, "The world inside"). It owns
+// the records of bodies and shapes, their handles (IdPool) and their mass properties; it
+// knows nothing of contacts, the solver or events.
+
+#include <cstdint>
+#include <vector>
+
+#include "ghost_edges.hpp"
+#include "quack/broadphase/broad_phase.hpp"
+#include "quack/core/id_pool.hpp"
+#include "quack/geometry/mass.hpp"
+#include "quack/math/transform.hpp"
+#include "quack/world/types.hpp"
+
+namespace quack::detail {
+
+struct Body {
+  BodyType type = BodyType::dynamicBody;
+  bool pendingDestroy = false;
+  Transform xf;      // worldFromBody
+  Vec2 center;       // centre of mass, world frame
+  Vec2 localCenter;  // centre of mass, body frame
+  Vec2 v;            // velocity of the centre of mass
+  float w = 0.0f;
+  Vec2 force;           // applied through the next step (applyForce), then cleared
+  float torque = 0.0f;  // likewise (applyTorque)
+  float mass = 0.0f, invMass = 0.0f, inertia = 0.0f, invInertia = 0.0f;
+  float linearDamping = 0.0f, angularDamping = 0.0f, gravityScale = 1.0f;
+  bool bullet = false;
+  // Continuous collision: the body's size (from updateMass) and its motion in this step.
+  float minExtent = 0.0f;  // smallest half-thickness of its shapes, metres
+  float maxExtent = 0.0f;  // largest distance from the centre of mass to a surface, metres
+  bool fast = false;       // moved more than kCcdFastFraction of minExtent in this step
+  Vec2 startCenter;        // centre of mass at the start of the step (when fast)
+  float startAngle = 0.0f, endAngle = 0.0f;  // radians, unwrapped (when fast)
+  std::uint64_t userData = 0;
+  std::vector<std::uint32_t> shapes;  // in creation order
+};
+
+struct Shape {
+  bool pendingDestroy = false;
+  std::uint32_t body = 0;
+  ShapeGeometry geometry;
+  ShapeDef def;
+  ProxyId proxy;
+  std::vector<std::uint32_t> contacts;  // indices into the contact set
+  StaticEdges edges;
+};
+
+class BodyStore {
+ public:
+  explicit BodyStore(std::uint32_t worldId) : worldId_(worldId) {}
+
+  std::vector<Body> bodies;  // indexed by BodyId::index; live where bodyIds.isAlive
+  std::vector<Shape> shapes;
+  IdPool bodyIds, shapeIds;
+
+  std::uint32_t worldId() const noexcept { return worldId_; }
+  bool bodyAlive(std::uint32_t i) const noexcept { return bodyIds.isAlive(i); }
+  bool shapeAlive(std::uint32_t i) const noexcept { return shapeIds.isAlive(i); }
+  bool isValid(BodyId id) const noexcept {
+    return id.world == worldId_ && bodyIds.isValid(id.index, id.generation);
+  }
+  bool isValid(ShapeId id) const noexcept {
+    return id.world == worldId_ && shapeIds.isValid(id.index, id.generation);
+  }
+  BodyId bodyId(std::uint32_t i) const noexcept { return {i, bodyIds.generation(i), worldId_}; }
+  ShapeId shapeId(std::uint32_t i) const noexcept { return {i, shapeIds.generation(i), worldId_}; }
+
+  /// A new body record (checked by the caller), slot reused last-in first-out.
+  std::uint32_t createBody(const BodyDef& def);
+  /// A new shape record on `body`; its proxy is set by the caller.
+  std::uint32_t createShape(std::uint32_t body, const ShapeDef& def, const ShapeGeometry& g);
+  /// Frees the slot (the caller has removed the shape's contacts and proxy).
+  void releaseShape(std::uint32_t shape);
+  void releaseBody(std::uint32_t body);
+
+  /// Mass, centre of mass, inertia and the sizes continuous collision uses, from the shapes.
+  void updateMass(std::uint32_t body);
+  /// True when every shape of `body`, placed by `worldFromBody`, lies within the broad
+  /// phase's range (kMaxCoordinate): the edge of the world.
+  bool shapesWithinWorld(std::uint32_t body, Transform worldFromBody) const;
+  /// Moves the body's proxies to its present pose (callers keep it within the world).
+  void updateShapeBoxes(BroadPhase& broadPhase, std::uint32_t body, Vec2 displacement) const;
+
+ private:
+  std::uint32_t worldId_;
+};
+
+// The bounding box of any geometry placed by `xf`.
+Aabb shapeBox(const ShapeGeometry& g, Transform xf);
+
+// A body's mass properties from its shapes (body frame). Zero mass means none of them has
+// area and density; the caller decides what that means.
+struct BodyMass {
+  float mass = 0.0f;
+  float inertia = 0.0f;  // about localCenter
+  Vec2 localCenter;
+};
+
+// `each(f)` calls f(geometry, density) for every shape of the body.
+template <class Each>
+BodyMass sumMass(const Each& each) {
+  BodyMass out;
+  Vec2 moment;
+  each([&](const ShapeGeometry& g, float density) {
+    MassProperties m = std::visit([&](const auto& s) { return computeMass(s, density); }, g);
+    out.mass += m.mass;
+    moment += m.mass * m.centroid;
+  });
+  if (out.mass > 0.0f) {
+    out.localCenter = (1.0f / out.mass) * moment;
+    each([&](const ShapeGeometry& g, float density) {
+      MassProperties m = std::visit([&](const auto& s) { return computeMass(s, density); }, g);
+      out.inertia += m.inertia + m.mass * distanceSquared(m.centroid, out.localCenter);
+    });
+  }
+  return out;
+}
+
+}  // namespace quack::detail

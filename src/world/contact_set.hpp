@@ -1,0 +1,68 @@
+#pragma once
+// The contact set: one part of the world. It owns the contacts (pairs of shapes whose fat
+// boxes overlap), finds new ones from the broad phase's pairs, updates their manifolds and
+// touching state each step (with warm-start impulses matched by feature id), and reports
+// begin and end to the event dispatcher.
+
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "quack/broadphase/broad_phase.hpp"
+#include "quack/collision/manifold.hpp"
+
+namespace quack {
+struct WorldDef;
+}
+
+namespace quack::detail {
+
+class BodyStore;
+class EventDispatcher;
+class GhostEdges;
+
+struct Contact {
+  bool alive = false;
+  bool touching = false;
+  bool sensor = false;  // shapeA is the sensor
+  std::uint32_t shapeA = 0, shapeB = 0;
+  ManifoldFn fn = nullptr;
+  float friction = 0.0f, restitution = 0.0f;
+  Manifold manifold;
+  // Accumulated impulses of the manifold points, for warm starting (matched by id).
+  float normalImpulse[kMaxManifoldPoints] = {};
+  float tangentImpulse[kMaxManifoldPoints] = {};
+};
+
+class ContactSet {
+ public:
+  std::vector<Contact> contacts;  // live where Contact::alive
+
+  std::size_t count() const noexcept { return count_; }
+  std::size_t touchingCount() const noexcept;
+  /// The contact of a pair of shapes, if any (index into `contacts`).
+  const std::uint32_t* find(std::uint32_t shapeA, std::uint32_t shapeB) const;
+
+  /// New contacts from the broad phase's new pairs, in an order that does not depend on
+  /// the structure.
+  void findNew(BroadPhase& broadPhase, BodyStore& store);
+  /// The narrow phase: manifolds and touching state of every contact; contacts whose fat
+  /// boxes parted are destroyed. Begin and end events go to `events`.
+  void update(const WorldDef& def, const BroadPhase& broadPhase, BodyStore& store,
+              const GhostEdges& edges, EventDispatcher& events);
+  /// Removes a contact (from its shapes' lists too); a touching one reports its end to
+  /// `events` when `emitEnd`, reported in this step (`inStep`) or the next.
+  void destroy(std::uint32_t contact, BodyStore& store, EventDispatcher& events, bool emitEnd,
+               bool inStep);
+
+  /// Every contact's shapes are live and list it; the pair map agrees; counts add up.
+  Status validate(const BodyStore& store) const;
+
+ private:
+  std::vector<std::uint32_t> free_;
+  std::unordered_map<std::uint64_t, std::uint32_t> byPair_;
+  std::vector<ProxyPair> pairScratch_;
+  std::size_t count_ = 0;
+};
+
+}  // namespace quack::detail

@@ -1,0 +1,198 @@
+// World queries (ray casts, overlap tests) and inspection: read-only walks over the body
+// store through the broad phase.
+
+#include <algorithm>
+#include <cstring>
+
+#include "quack/collision/epa.hpp"
+#include "quack/collision/gjk.hpp"
+#include "quack/collision/shape_cast.hpp"
+#include "quack/geometry/raycast.hpp"
+#include "quack/world/world.hpp"
+#include "world_state.hpp"
+
+namespace quack {
+namespace {
+
+// Re-checks a geometry with the make* validators (as createShape does).
+Status validateQueryGeometry(const ShapeGeometry& g) {
+  struct Visitor {
+    Status operator()(const Circle& c) const {
+      auto r = makeCircle(c.center, c.radius);
+      return r ? Status{} : Status{fail(r.error().message)};
+    }
+    Status operator()(const Capsule& c) const {
+      auto r = makeCapsule(c.p1, c.p2, c.radius);
+      return r ? Status{} : Status{fail(r.error().message)};
+    }
+    Status operator()(const Segment& s) const {
+      auto r = makeSegment(s.p1, s.p2);
+      return r ? Status{} : Status{fail(r.error().message)};
+    }
+    Status operator()(const Polygon& p) const { return validatePolygon(p); }
+  };
+  return std::visit(Visitor{}, g);
+}
+
+}  // namespace
+
+// ---- queries -------------------------------------------------------------------------------
+
+bool World::acceptsQuery(std::uint32_t shape, const QueryFilter& filter) const {
+  const detail::Shape& s = s_->store.shapes[shape];
+  if (s.def.sensor && !filter.includeSensors) return false;
+  return (s.def.filter.category & filter.mask) != 0 && (filter.category & s.def.filter.mask) != 0;
+}
+
+namespace {
+
+// The ray in a shape's frame, clipped to `maxFraction`.
+RayHit castRay(const ShapeGeometry& g, Transform xf, Vec2 origin, Vec2 translation,
+               float maxFraction) {
+  RayCastInput in{invTransformPoint(xf, origin), invRotate(xf.q, translation), maxFraction};
+  return std::visit([&](const auto& s) { return rayCast(s, in); }, g);
+}
+
+}  // namespace
+
+std::optional<RayHitResult> World::rayCastClosest(Vec2 origin, Vec2 translation,
+                                                  QueryFilter filter) const {
+  if (!isFinite(origin) || !isFinite(translation)) return std::nullopt;
+  std::optional<RayHitResult> best;
+  float bestFraction = 1.0f;
+  s_->broadPhase.rayCast(origin, translation, [&](ProxyId, std::uint64_t user, float) -> float {
+    auto s = static_cast<std::uint32_t>(user);
+    if (!acceptsQuery(s, filter)) return -1.0f;
+    const Transform xf = s_->store.bodies[s_->store.shapes[s].body].xf;
+    RayHit h = castRay(s_->store.shapes[s].geometry, xf, origin, translation, bestFraction);
+    if (!h.hit) return -1.0f;
+    // Equal fractions: the lower shape index wins, whatever order the structure visits.
+    if (best && h.fraction == bestFraction && s > best->shape.index) return -1.0f;
+    bestFraction = h.fraction;
+    best = RayHitResult{s_->store.shapeId(s), s_->store.bodyId(s_->store.shapes[s].body),
+                        transformPoint(xf, h.point), rotate(xf.q, h.normal), h.fraction};
+    return h.fraction > 0.0f ? h.fraction : 0.0f;
+  });
+  return best;
+}
+
+std::vector<RayHitResult> World::rayCastAll(Vec2 origin, Vec2 translation,
+                                            QueryFilter filter) const {
+  std::vector<RayHitResult> hits;
+  if (!isFinite(origin) || !isFinite(translation)) return hits;
+  s_->broadPhase.rayCast(origin, translation, [&](ProxyId, std::uint64_t user, float) -> float {
+    auto s = static_cast<std::uint32_t>(user);
+    if (!acceptsQuery(s, filter)) return -1.0f;
+    const Transform xf = s_->store.bodies[s_->store.shapes[s].body].xf;
+    RayHit h = castRay(s_->store.shapes[s].geometry, xf, origin, translation, 1.0f);
+    if (h.hit) {
+      hits.push_back({s_->store.shapeId(s), s_->store.bodyId(s_->store.shapes[s].body),
+                      transformPoint(xf, h.point), rotate(xf.q, h.normal), h.fraction});
+    }
+    return 1.0f;
+  });
+  std::sort(hits.begin(), hits.end(), [](const RayHitResult& a, const RayHitResult& b) {
+    return a.fraction != b.fraction ? a.fraction < b.fraction : a.shape.index < b.shape.index;
+  });
+  return hits;
+}
+
+std::vector<ShapeId> World::overlapAabb(Aabb box, QueryFilter filter) const {
+  std::vector<ShapeId> out;
+  if (!quack::isValid(box)) return out;
+  s_->broadPhase.queryAabb(box, [&](ProxyId, std::uint64_t user) {
+    auto s = static_cast<std::uint32_t>(user);
+    if (acceptsQuery(s, filter)) out.push_back(s_->store.shapeId(s));
+    return true;
+  });
+  std::sort(out.begin(), out.end(), [](ShapeId a, ShapeId b) { return a.index < b.index; });
+  return out;
+}
+
+Result<std::vector<ShapeOverlap>> World::overlapShape(const ShapeGeometry& geometry, Transform xf,
+                                                      QueryFilter filter) const {
+  if (!isFinite(xf.p) || !isFinite(xf.q.c) || !isFinite(xf.q.s))
+    return fail("overlapShape: transform is not finite");
+  if (Status s = validateQueryGeometry(geometry); !s)
+    return fail("overlapShape: geometry: " + s.message());
+  std::vector<ShapeOverlap> out;
+  const ShapeProxy query = detail::proxyOf(geometry);
+  s_->broadPhase.queryAabb(detail::shapeBox(geometry, xf), [&](ProxyId, std::uint64_t user) {
+    auto s = static_cast<std::uint32_t>(user);
+    if (!acceptsQuery(s, filter)) return true;
+    const Transform sx = s_->store.bodies[s_->store.shapes[s].body].xf;
+    PenetrationOutput p =
+        computePenetration(query, xf, detail::proxyOf(s_->store.shapes[s].geometry), sx);
+    if (p.overlap) {
+      out.push_back({s_->store.shapeId(s), s_->store.bodyId(s_->store.shapes[s].body), p.depth,
+                     -p.depth * p.normal});
+    }
+    return true;
+  });
+  std::sort(out.begin(), out.end(), [](const ShapeOverlap& a, const ShapeOverlap& b) {
+    return a.shape.index < b.shape.index;
+  });
+  return out;
+}
+
+Result<std::optional<ShapeCastResult>> World::castShape(const ShapeGeometry& geometry, Transform xf,
+                                                        Vec2 translation,
+                                                        QueryFilter filter) const {
+  if (!isFinite(xf.p) || !isFinite(xf.q.c) || !isFinite(xf.q.s))
+    return fail("castShape: transform is not finite");
+  if (!isFinite(translation)) return fail("castShape: translation is not finite");
+  if (Status s = validateQueryGeometry(geometry); !s)
+    return fail("castShape: geometry: " + s.message());
+  const ShapeProxy cast = detail::proxyOf(geometry);
+  // Everything the swept box of the cast meets is a candidate.
+  const Aabb start = detail::shapeBox(geometry, xf);
+  const Aabb swept{minv(start.lower, start.lower + translation),
+                   maxv(start.upper, start.upper + translation)};
+  std::optional<ShapeCastResult> best;
+  s_->broadPhase.queryAabb(swept, [&](ProxyId, std::uint64_t user) {
+    auto s = static_cast<std::uint32_t>(user);
+    if (!acceptsQuery(s, filter)) return true;
+    const detail::Shape& shape = s_->store.shapes[s];
+    const Transform sx = s_->store.bodies[shape.body].xf;
+    // The shape met is A, the cast shape is B moving along the translation.
+    const ShapeCastOutput out =
+        quack::castShape(detail::proxyOf(shape.geometry), sx, cast, xf, translation);
+    if (!out.hit) return true;
+    if (best && (out.fraction > best->fraction ||
+                 (out.fraction == best->fraction && s > best->shape.index)))
+      return true;
+    best = ShapeCastResult{s_->store.shapeId(s), s_->store.bodyId(shape.body), out.point,
+                           out.normal, out.fraction};
+    return true;
+  });
+  return best;
+}
+
+// ---- inspection ------------------------------------------------------------------------------
+
+std::uint64_t World::stateHash() const noexcept {
+  // FNV-1a over the bit patterns, so that any difference at all changes the hash.
+  std::uint64_t h = 1469598103934665603ull;
+  auto mix = [&](float f) {
+    std::uint32_t bits;
+    std::memcpy(&bits, &f, sizeof bits);
+    for (int k = 0; k < 4; ++k) {
+      h ^= (bits >> (8 * k)) & 0xffu;
+      h *= 1099511628211ull;
+    }
+  };
+  for (std::uint32_t i = 0; i < s_->store.bodies.size(); ++i) {
+    if (!s_->store.bodyAlive(i)) continue;
+    const detail::Body& b = s_->store.bodies[i];
+    mix(b.xf.p.x);
+    mix(b.xf.p.y);
+    mix(b.xf.q.c);
+    mix(b.xf.q.s);
+    mix(b.v.x);
+    mix(b.v.y);
+    mix(b.w);
+  }
+  return h;
+}
+
+}  // namespace quack
