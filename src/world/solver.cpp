@@ -161,8 +161,20 @@ void Solver::solve(const WorldDef& worldDef, BodyStore& store, ContactSet& conta
     for (int j = 0; j < k.pointCount; ++j) {
       const ManifoldPoint& mp = c.manifold.points[j];
       ContactConstraint::Point& p = k.points[j];
-      p.rA = mp.point - cA;
-      p.rB = mp.point - cB;
+      if (c.recycled) {
+        // A recycled manifold (contact_set.cpp, recycle): the arms from each centre of mass
+        // to the point as they were when the manifold was computed, not turned with the
+        // bodies since. Box2D v3 does the same (its anchors stay as computed while a
+        // contact is recycled; physics_world.c and contact_solver.c, read for
+        // understanding). Arms that turn with the bodies while the normal stays put let a
+        // column's tilt move its contact forces the way that tilts it further: columns of
+        // 15 boxes or more toppled so (docs/world.md, "What made columns drift").
+        p.rA = rotate(c.cachedA.q, c.localA[j] - bodies[k.bodyA].localCenter);
+        p.rB = rotate(c.cachedB.q, c.localB[j] - bodies[k.bodyB].localCenter);
+      } else {
+        p.rA = mp.point - cA;
+        p.rB = mp.point - cB;
+      }
       p.baseSeparation = mp.separation - dot(p.rB - p.rA, n);
       p.normalImpulse = c.normalImpulse[j];
       p.tangentImpulse = c.tangentImpulse[j];
