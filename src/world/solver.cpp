@@ -109,68 +109,6 @@ void solveContacts(Constraint* constraints, std::size_t count, Body* bodies, flo
 
 }  // namespace
 
-// The order in which the contacts are solved, Box2D v3's (constraint_graph.c, read for
-// understanding; our own code). Box2D colours its constraint graph so that no body appears
-// twice in a colour, for threads and SIMD; the colours also fix a Gauss-Seidel order, and
-// that order holds stacks up better than solving a column's contacts bottom to top: the
-// contacts between two moving bodies come first, every other one of a column in one colour
-// and the rest in the next, and the contacts with static bodies (the ground) last, so each
-// pass ends with the constraints that carry the whole load. Colours are given greedily in
-// contact order each step, so the order depends only on the contacts (not on the broad
-// phase). docs/world.md, "What made columns drift", has the figures.
-namespace {
-constexpr int kColourCount = 24;                     // as Box2D v3's B2_GRAPH_COLOR_COUNT
-constexpr int kOverflowColour = kColourCount - 1;    // solved first
-constexpr int kMovingColourCount = kColourCount - 4; // colours for two moving bodies
-}  // namespace
-
-void Solver::orderByColour(const BodyStore& store) {
-  colourMask_.assign(store.bodies.size(), 0u);
-  colour_.assign(constraints_.size(), static_cast<std::uint8_t>(kOverflowColour));
-  int counts[kColourCount + 1] = {};
-  for (std::size_t i = 0; i < constraints_.size(); ++i) {
-    const ContactConstraint& k = constraints_[i];
-    const bool staticA = store.bodies[k.bodyA].type == BodyType::staticBody;
-    const bool staticB = store.bodies[k.bodyB].type == BodyType::staticBody;
-    int colour = kOverflowColour;
-    if (!staticA && !staticB) {
-      const std::uint32_t used = colourMask_[k.bodyA] | colourMask_[k.bodyB];
-      for (int c = 0; c < kMovingColourCount; ++c) {
-        if ((used & (1u << c)) != 0) continue;
-        colourMask_[k.bodyA] |= 1u << c;
-        colourMask_[k.bodyB] |= 1u << c;
-        colour = c;
-        break;
-      }
-    } else {
-      // Contacts with a static body take colours from the top down: solved after the rest.
-      const std::uint32_t body = staticA ? k.bodyB : k.bodyA;
-      for (int c = kOverflowColour - 1; c >= 1; --c) {
-        if ((colourMask_[body] & (1u << c)) != 0) continue;
-        colourMask_[body] |= 1u << c;
-        colour = c;
-        break;
-      }
-    }
-    colour_[i] = static_cast<std::uint8_t>(colour);
-    // Overflow first, then colours 0, 1, ...
-    ++counts[colour == kOverflowColour ? 0 : colour + 1];
-  }
-  // A stable counting sort by (overflow first, then colour).
-  int start[kColourCount + 1];
-  int sum = 0;
-  for (int c = 0; c <= kColourCount; ++c) {
-    start[c] = sum;
-    sum += counts[c];
-  }
-  sorted_.resize(constraints_.size());
-  for (std::size_t i = 0; i < constraints_.size(); ++i) {
-    const int c = colour_[i] == kOverflowColour ? 0 : colour_[i] + 1;
-    sorted_[static_cast<std::size_t>(start[c]++)] = constraints_[i];
-  }
-  constraints_.swap(sorted_);
-}
-
 void Solver::solve(const WorldDef& worldDef, BodyStore& store, ContactSet& contactSet,
                    BroadPhase& broadPhase, EventDispatcher& events, float dt, int substeps) {
   std::vector<Body>& bodies = store.bodies;
@@ -252,7 +190,6 @@ void Solver::solve(const WorldDef& worldDef, BodyStore& store, ContactSet& conta
     }
     constraints_.push_back(k);
   }
-  orderByColour(store);
 
   auto applyImpulse = [](SolverBody& A, SolverBody& B, Vec2 rA, Vec2 rB, Vec2 P) {
     A.v -= A.invMass * P;

@@ -64,15 +64,8 @@ class Solver {
              EventDispatcher& events, float dt, int substeps);
 
  private:
-  // Puts constraints_ in solve order (solver.cpp, orderByColour).
-  void orderByColour(const BodyStore& store);
-
   std::vector<ContactConstraint> constraints_;
   std::vector<SolverBody> solverBodies_;
-  // Scratch of orderByColour.
-  std::vector<std::uint32_t> colourMask_;
-  std::vector<std::uint8_t> colour_;
-  std::vector<ContactConstraint> sorted_;
 };
 
 }  // namespace quack::detail
