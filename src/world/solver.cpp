@@ -45,9 +45,16 @@ Rot integrateRotation(Rot q, float deltaAngle) {
 // One pass over the contact constraints. Velocities are copied into locals and written
 // back once per constraint, so the compiler need not assume every impulse aliases them.
 // (Templated on the world's private record types, which it deduces.)
+//
+// The normal impulses of a manifold's points are solved one after the other, and whichever
+// goes first takes more of the load in that pass: a box resting flat on another gets a
+// little more push under one corner than the other, the same corner every sub-step, and a
+// column turns that steady nudge into a lean (docs/world.md, "What made columns drift").
+// `lastFirst` solves the points in the opposite order; the solver alternates it between
+// sub-steps and between the solve and the relax pass, so the nudges cancel.
 template <class Constraint, class Body>
 void solveContacts(Constraint* constraints, std::size_t count, Body* bodies, float invH,
-                   float pushMax, bool useBias) {
+                   float pushMax, bool useBias, bool lastFirst) {
   for (std::size_t ci = 0; ci < count; ++ci) {
     Constraint& k = constraints[ci];
     Body& A = bodies[k.bodyA];
@@ -60,7 +67,8 @@ void solveContacts(Constraint* constraints, std::size_t count, Body* bodies, flo
     const Vec2 n = k.normal;
     const Vec2 t = rightPerp(n);
     const int pointCount = k.pointCount;
-    for (int j = 0; j < pointCount; ++j) {
+    for (int i = 0; i < pointCount; ++i) {
+      const int j = lastFirst ? pointCount - 1 - i : i;
       auto& p = k.points[j];
       // Current separation from the bodies' motion since the step began.
       const Vec2 d = dp + (rotate(qB, p.rB) - rotate(qA, p.rA));
@@ -227,7 +235,8 @@ void Solver::solve(const WorldDef& worldDef, BodyStore& store, ContactSet& conta
         applyImpulse(A, B, p.rA, p.rB, p.normalImpulse * k.normal + p.tangentImpulse * t);
       }
     }
-    solveContacts(constraints_.data(), constraints_.size(), sb.data(), invH, pushMax, true);
+    solveContacts(constraints_.data(), constraints_.size(), sb.data(), invH, pushMax, true,
+                  (stepIndex & 1) != 0);
     // Integrate positions.
     for (std::uint32_t i = 0; i < bodies.size(); ++i) {
       const Body& b = bodies[i];
@@ -242,7 +251,8 @@ void Solver::solve(const WorldDef& worldDef, BodyStore& store, ContactSet& conta
       s.dp += h * s.v;
     }
     // Relax: remove the velocity the soft push added, so it does not become bounce.
-    solveContacts(constraints_.data(), constraints_.size(), sb.data(), invH, pushMax, false);
+    solveContacts(constraints_.data(), constraints_.size(), sb.data(), invH, pushMax, false,
+                  (stepIndex & 1) == 0);
   }
 
   // Restitution: for points that approached faster than the threshold, aim the normal
