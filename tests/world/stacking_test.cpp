@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -141,6 +143,43 @@ TEST(Stacking, HeavyBoxOnALightOneSinksOnlyCentimetres) {
   EXPECT_LT(heavySink, 0.05f);  // Box2D v3: 0.0444 m
   EXPECT_LT(absf(world.position(heavy).x), kColumnDrift);
   EXPECT_LT(absf(world.angle(heavy)), kColumnAngle);
+}
+
+// Contact recycling (docs/world.md, "What made columns drift"): a resting contact keeps
+// its manifold, and its separations follow the bodies; they must agree with a manifold
+// computed afresh at the bodies' current poses.
+TEST(Stacking, RecycledManifoldAgreesWithAFreshOne) {
+  World world = World::create().value();
+  BodyId ground = addStaticBox(world, {0, -0.5f}, {20, 0.5f});
+  BodyId box = addBox(world, {0.2f, 0.5f}, {0.5f, 0.5f}, 0.01f);
+  ASSERT_TRUE(world.setLinearVelocity(box, {0.05f, 0.0f}).ok());  // slides a little
+  for (int s = 0; s < 30; ++s)
+    ASSERT_TRUE(world.step().ok());
+  const Polygon groundBox = makeBox(20, 0.5f).value();
+  const Polygon unitBox = makeBox(0.5f, 0.5f).value();
+  const Manifold fresh = collidePolygons(groundBox, world.transform(ground), unitBox,
+                                         world.transform(box));
+  int views = 0;
+  for (const World::ContactView& c : world.touchingContacts()) {
+    ++views;
+    ASSERT_EQ(c.manifold.pointCount, fresh.pointCount);
+    // (The world's contact may have the shapes the other way round.)
+    EXPECT_NEAR(absf(c.manifold.normal.x), absf(fresh.normal.x), 0.02f);
+    EXPECT_NEAR(absf(c.manifold.normal.y), absf(fresh.normal.y), 1e-3f);
+    float kept[2] = {c.manifold.points[0].separation, c.manifold.points[1].separation};
+    float anew[2] = {fresh.points[0].separation, fresh.points[1].separation};
+    std::sort(kept, kept + 2);
+    std::sort(anew, anew + 2);
+    EXPECT_NEAR(kept[0], anew[0], 1e-3f);
+    EXPECT_NEAR(kept[1], anew[1], 1e-3f);
+  }
+  EXPECT_EQ(views, 1);
+}
+
+TEST(Stacking, RecycleDistanceIsChecked) {
+  EXPECT_FALSE(World::create({.contactRecycleDistance = -1.0f}).ok());
+  EXPECT_FALSE(World::create({.contactRecycleDistance = std::nanf("")}).ok());
+  EXPECT_TRUE(World::create({.contactRecycleDistance = 0.0f}).ok());
 }
 
 }  // namespace
