@@ -19,6 +19,42 @@ std::uint64_t pairKey(std::uint32_t a, std::uint32_t b) {
   return (static_cast<std::uint64_t>(a) << 32) | b;
 }
 
+// Contact recycling, the idea of Box2D v3's b2CollideTask (physics_world.c, "contact
+// recycling", read for understanding; our own code): while the two bodies are near the
+// relative pose at which the manifold was computed, keep the manifold rather than clip a
+// new one. The normal stays as it was in the world frame and each point stays fixed on
+// each body; only the separation follows the bodies, as it does inside the sub-steps. A
+// column of boxes then keeps, step after step, the contact it was built with, instead of
+// one re-clipped from a slightly tilted pose each step (docs/world.md explains why that
+// matters). Returns false, touching nothing, when the bodies moved too far.
+bool recycle(Contact& c, Transform xa, Transform xb, const Body& ba, const Body& bb,
+             float recycleDistance) {
+  if (recycleDistance <= 0.0f) return false;
+  const float cosA = xa.q.c * c.cachedA.q.c + xa.q.s * c.cachedA.q.s;
+  const float cosB = xb.q.c * c.cachedB.q.c + xb.q.s * c.cachedB.q.s;
+  if (minf(cosA, cosB) <= kContactRecycleCosAngle) return false;
+  const Transform rel = invMul(xa, xb);
+  const Transform rel0 = invMul(c.cachedA, c.cachedB);
+  const Rot qr = invMulRot(rel.q, rel0.q);
+  const float extentA = ba.type == BodyType::staticBody ? 0.0f : ba.maxExtent;
+  const float extentB = bb.type == BodyType::staticBody ? 0.0f : bb.maxExtent;
+  // Distance plus turn times reach bounds how far any point of B moved relative to A.
+  if (distance(rel.p, rel0.p) + maxf(extentA, extentB) * absf(qr.s) >= recycleDistance)
+    return false;
+  const Vec2 n = c.manifold.normal;
+  for (int k = 0; k < c.manifold.pointCount; ++k) {
+    ManifoldPoint& mp = c.manifold.points[k];
+    const Vec2 rA = rotate(xa.q, c.localA[k]);
+    const Vec2 rB = rotate(xb.q, c.localB[k]);
+    const Vec2 d = (xb.p - xa.p) + (rB - rA);  // B's point relative to A's
+    mp.separation = c.baseSeparation[k] + dot(d, n);
+    mp.anchorA = rA + 0.5f * d;  // midway between the two, as a computed manifold has it
+    mp.anchorB = mp.anchorA + (xa.p - xb.p);
+    mp.point = xa.p + mp.anchorA;
+  }
+  return true;
+}
+
 }  // namespace
 
 std::size_t ContactSet::touchingCount() const noexcept {
@@ -114,6 +150,11 @@ void ContactSet::update(const WorldDef& def, const BroadPhase& broadPhase, BodyS
       if (!c.touching && wasTouching) events.contactEnded(store, c, true);
       continue;
     }
+    const Body& ba = store.bodies[sa.body];
+    const Body& bb = store.bodies[sb.body];
+    c.recycled = c.touching && c.recycleValid && !ba.fast && !bb.fast &&
+                 recycle(c, xa, xb, ba, bb, def.contactRecycleDistance);
+    if (c.recycled) continue;  // still touching; impulses, ids and events as they were
     Manifold old = c.manifold;
     float oldNormal[kMaxManifoldPoints], oldTangent[kMaxManifoldPoints];
     std::copy(c.normalImpulse, c.normalImpulse + kMaxManifoldPoints, oldNormal);
@@ -135,11 +176,29 @@ void ContactSet::update(const WorldDef& def, const BroadPhase& broadPhase, BodyS
         }
       }
     }
+    // The reference for recycling: where each point is fixed on A and on B, and the
+    // separation less the points' (rounding-size) offset along the normal, so that a
+    // recycled contact whose bodies have not moved has exactly this separation.
+    c.cachedA = xa;
+    c.cachedB = xb;
+    c.recycleValid = true;
+    for (int k = 0; k < c.manifold.pointCount; ++k) {
+      const ManifoldPoint& mp = c.manifold.points[k];
+      c.localA[k] = invRotate(xa.q, mp.anchorA);
+      c.localB[k] = invRotate(xb.q, mp.anchorB);
+      const Vec2 d = (xb.p - xa.p) + (rotate(xb.q, c.localB[k]) - rotate(xa.q, c.localA[k]));
+      c.baseSeparation[k] = mp.separation - dot(d, c.manifold.normal);
+    }
     c.touching = c.manifold.pointCount > 0;
     if (c.touching && !wasTouching)
       events.events.begin.push_back({store.shapeId(c.shapeA), store.shapeId(c.shapeB)});
     if (!c.touching && wasTouching) events.contactEnded(store, c, true);
   }
+}
+
+void ContactSet::forgetPoses(const BodyStore& store, std::uint32_t body) {
+  for (std::uint32_t s : store.bodies[body].shapes)
+    for (std::uint32_t c : store.shapes[s].contacts) contacts[c].recycleValid = false;
 }
 
 Status ContactSet::validate(const BodyStore& store) const {

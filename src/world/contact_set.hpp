@@ -32,6 +32,19 @@ struct Contact {
   // Accumulated impulses of the manifold points, for warm starting (matched by id).
   float normalImpulse[kMaxManifoldPoints] = {};
   float tangentImpulse[kMaxManifoldPoints] = {};
+  // Contact recycling (docs/world.md, "What made columns drift"). When the manifold was
+  // last computed: the bodies' transforms, and each point as a point fixed on A and one
+  // fixed on B (body frames, from each body's origin) with its separation then. While the
+  // bodies stay near that relative pose the manifold is kept: the normal as it was (world
+  // frame), the points where those body points have moved, the separation updated by the
+  // points' relative motion along the normal.
+  // The solver then uses the points' arms as they were when the manifold was computed
+  // (Contact::recycled), not as the bodies have turned since.
+  bool recycleValid = false;
+  bool recycled = false;  // this step's manifold is the recycled one
+  Transform cachedA, cachedB;
+  Vec2 localA[kMaxManifoldPoints], localB[kMaxManifoldPoints];
+  float baseSeparation[kMaxManifoldPoints] = {};
 };
 
 class ContactSet {
@@ -50,6 +63,12 @@ class ContactSet {
   /// boxes parted are destroyed. Begin and end events go to `events`.
   void update(const WorldDef& def, const BroadPhase& broadPhase, BodyStore& store,
               const GhostEdges& edges, EventDispatcher& events);
+  /// A body was moved by hand (setTransform): its contacts compute their manifolds anew.
+  void forgetPoses(const BodyStore& store, std::uint32_t body);
+  /// Every contact computes its manifold anew in the next update.
+  void forgetAllPoses() noexcept {
+    for (Contact& c : contacts) c.recycleValid = false;
+  }
   /// Removes a contact (from its shapes' lists too); a touching one reports its end to
   /// `events` when `emitEnd`, reported in this step (`inStep`) or the next.
   void destroy(std::uint32_t contact, BodyStore& store, EventDispatcher& events, bool emitEnd,

@@ -45,9 +45,16 @@ Rot integrateRotation(Rot q, float deltaAngle) {
 // One pass over the contact constraints. Velocities are copied into locals and written
 // back once per constraint, so the compiler need not assume every impulse aliases them.
 // (Templated on the world's private record types, which it deduces.)
+//
+// The normal impulses of a manifold's points are solved one after the other, and whichever
+// goes first takes more of the load in that pass: a box resting flat on another gets a
+// little more push under one corner than the other, the same corner every sub-step, and a
+// column turns that steady nudge into a lean (docs/world.md, "What made columns drift").
+// `lastFirst` solves the points in the opposite order; the solver alternates it between
+// sub-steps and between the solve and the relax pass, so the nudges cancel.
 template <class Constraint, class Body>
 void solveContacts(Constraint* constraints, std::size_t count, Body* bodies, float invH,
-                   float pushMax, bool useBias) {
+                   float pushMax, bool useBias, bool lastFirst) {
   for (std::size_t ci = 0; ci < count; ++ci) {
     Constraint& k = constraints[ci];
     Body& A = bodies[k.bodyA];
@@ -60,7 +67,8 @@ void solveContacts(Constraint* constraints, std::size_t count, Body* bodies, flo
     const Vec2 n = k.normal;
     const Vec2 t = rightPerp(n);
     const int pointCount = k.pointCount;
-    for (int j = 0; j < pointCount; ++j) {
+    for (int i = 0; i < pointCount; ++i) {
+      const int j = lastFirst ? pointCount - 1 - i : i;
       auto& p = k.points[j];
       // Current separation from the bodies' motion since the step began.
       const Vec2 d = dp + (rotate(qB, p.rB) - rotate(qA, p.rA));
@@ -161,8 +169,20 @@ void Solver::solve(const WorldDef& worldDef, BodyStore& store, ContactSet& conta
     for (int j = 0; j < k.pointCount; ++j) {
       const ManifoldPoint& mp = c.manifold.points[j];
       ContactConstraint::Point& p = k.points[j];
-      p.rA = mp.point - cA;
-      p.rB = mp.point - cB;
+      if (c.recycled) {
+        // A recycled manifold (contact_set.cpp, recycle): the arms from each centre of mass
+        // to the point as they were when the manifold was computed, not turned with the
+        // bodies since. Box2D v3 does the same (its anchors stay as computed while a
+        // contact is recycled; physics_world.c and contact_solver.c, read for
+        // understanding). Arms that turn with the bodies while the normal stays put let a
+        // column's tilt move its contact forces the way that tilts it further: columns of
+        // 15 boxes or more toppled so (docs/world.md, "What made columns drift").
+        p.rA = rotate(c.cachedA.q, c.localA[j] - bodies[k.bodyA].localCenter);
+        p.rB = rotate(c.cachedB.q, c.localB[j] - bodies[k.bodyB].localCenter);
+      } else {
+        p.rA = mp.point - cA;
+        p.rB = mp.point - cB;
+      }
       p.baseSeparation = mp.separation - dot(p.rB - p.rA, n);
       p.normalImpulse = c.normalImpulse[j];
       p.tangentImpulse = c.tangentImpulse[j];
@@ -215,7 +235,8 @@ void Solver::solve(const WorldDef& worldDef, BodyStore& store, ContactSet& conta
         applyImpulse(A, B, p.rA, p.rB, p.normalImpulse * k.normal + p.tangentImpulse * t);
       }
     }
-    solveContacts(constraints_.data(), constraints_.size(), sb.data(), invH, pushMax, true);
+    solveContacts(constraints_.data(), constraints_.size(), sb.data(), invH, pushMax, true,
+                  (stepIndex & 1) != 0);
     // Integrate positions.
     for (std::uint32_t i = 0; i < bodies.size(); ++i) {
       const Body& b = bodies[i];
@@ -230,7 +251,8 @@ void Solver::solve(const WorldDef& worldDef, BodyStore& store, ContactSet& conta
       s.dp += h * s.v;
     }
     // Relax: remove the velocity the soft push added, so it does not become bounce.
-    solveContacts(constraints_.data(), constraints_.size(), sb.data(), invH, pushMax, false);
+    solveContacts(constraints_.data(), constraints_.size(), sb.data(), invH, pushMax, false,
+                  (stepIndex & 1) == 0);
   }
 
   // Restitution: for points that approached faster than the threshold, aim the normal

@@ -88,7 +88,9 @@ Result<World> World::create(const WorldDef& def) {
                              std::pair{def.contactPushMaxSpeed, "WorldDef.contactPushMaxSpeed"},
                              std::pair{def.restitutionThreshold, "WorldDef.restitutionThreshold"},
                              std::pair{def.hitEventThreshold, "WorldDef.hitEventThreshold"},
-                             std::pair{def.speculativeDistance, "WorldDef.speculativeDistance"}}) {
+                             std::pair{def.speculativeDistance, "WorldDef.speculativeDistance"},
+                             std::pair{def.contactRecycleDistance,
+                                       "WorldDef.contactRecycleDistance"}}) {
     if (Status s = checkFiniteNonNegative(value, name); !s) return fail(s.message());
   }
   if (!isFinite(def.maxRotationPerSubstep) || def.maxRotationPerSubstep <= 0.0f) {
@@ -325,7 +327,12 @@ StepStatus World::step(float dt, int substeps) {
 
   // bodies -> broad phase -> contact set -> solver -> continuous phase -> events
   w.contacts.findNew(w.broadPhase, w.store);
-  if (w.edges.dirty()) w.edges.update(w.store, w.def.removeGhostCollisions);
+  if (w.edges.dirty()) {
+    w.edges.update(w.store, w.def.removeGhostCollisions);
+    // Static geometry changed: which contacts are ghosts may have too, so no manifold is
+    // recycled across the change.
+    w.contacts.forgetAllPoses();
+  }
   w.contacts.update(w.def, w.broadPhase, w.store, w.edges, w.events);
   w.solver.solve(w.def, w.store, w.contacts, w.broadPhase, w.events, dt, substeps);
   w.continuous.run(w.def, w.store, w.broadPhase, w.edges, w.events, dt);
@@ -470,6 +477,7 @@ Status World::setTransform(BodyId id, Vec2 position, float angle) {
   b.xf = xf;
   b.center = transformPoint(b.xf, b.localCenter);
   if (b.type == BodyType::staticBody) s_->edges.markDirty();
+  s_->contacts.forgetPoses(s_->store, id.index);
   s_->store.updateShapeBoxes(s_->broadPhase, id.index, Vec2{});
   return {};
 }

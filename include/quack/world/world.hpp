@@ -42,6 +42,12 @@ namespace detail {
 struct WorldState;
 }
 
+/// Default WorldDef::contactRecycleDistance: ten linear slops (5 cm), as Box2D v3.
+inline constexpr float kContactRecycleDistance = 10.0f * kLinearSlop;
+/// Contacts are recycled only while neither body has turned further than the angle with this
+/// cosine since the manifold was computed (0.98: about 11.5 degrees), as Box2D v3.
+inline constexpr float kContactRecycleCosAngle = 0.98f;
+
 /// How a world is made. Every default is documented in docs/world.md.
 struct WorldDef {
   Vec2 gravity{0.0f, -10.0f};     ///< m/s^2
@@ -72,6 +78,13 @@ struct WorldDef {
   /// into the cone of the faces that really meet there; chains (createChain) use their
   /// neighbours the same way. Costs nothing per contact when no static shape is flagged.
   bool removeGhostCollisions = true;
+  /// Contact recycling (docs/world.md, "What made columns drift"): while two touching
+  /// bodies have moved less than this (metres, plus their largest extent times the sine of
+  /// their relative turn) relative to each other since their manifold was computed, and
+  /// neither has turned more than about 11 degrees, the manifold is kept: same normal, same
+  /// points fixed on each body, separation updated from the bodies' motion. 0 recomputes
+  /// every step. Ten slops, as Box2D v3.
+  float contactRecycleDistance = kContactRecycleDistance;
 };
 
 /// Two edges of static polygons whose ends are this close (metres), running opposite ways,
