@@ -30,15 +30,15 @@ Status checkBox(Aabb b, const char* function, const char* argument) {
 
 std::string_view nameOf(BroadPhaseKind kind) noexcept {
   switch (kind) {
-    case BroadPhaseKind::kTree:
+    case BroadPhaseKind::tree:
       return "tree";
-    case BroadPhaseKind::kQuadtree:
+    case BroadPhaseKind::quadtree:
       return "quadtree";
-    case BroadPhaseKind::kSap:
+    case BroadPhaseKind::sap:
       return "sap";
-    case BroadPhaseKind::kHash:
+    case BroadPhaseKind::hash:
       return "hash";
-    case BroadPhaseKind::kBrute:
+    case BroadPhaseKind::brute:
       return "brute";
   }
   return "unknown";
@@ -68,11 +68,11 @@ Result<BroadPhase> BroadPhase::create(BroadPhaseConfig config) {
         "kMaxCoordinate)");
   }
   switch (config.kind) {
-    case BroadPhaseKind::kTree:
-    case BroadPhaseKind::kQuadtree:
-    case BroadPhaseKind::kSap:
-    case BroadPhaseKind::kHash:
-    case BroadPhaseKind::kBrute:
+    case BroadPhaseKind::tree:
+    case BroadPhaseKind::quadtree:
+    case BroadPhaseKind::sap:
+    case BroadPhaseKind::hash:
+    case BroadPhaseKind::brute:
       return BroadPhase(config);
   }
   return fail("BroadPhaseConfig.kind is not a BroadPhaseKind");
@@ -80,19 +80,19 @@ Result<BroadPhase> BroadPhase::create(BroadPhaseConfig config) {
 
 BroadPhase::BroadPhase(BroadPhaseConfig config) : config_(config) {
   switch (config.kind) {
-    case BroadPhaseKind::kTree:
+    case BroadPhaseKind::tree:
       index_.emplace<DynamicTree>();
       break;
-    case BroadPhaseKind::kQuadtree:
+    case BroadPhaseKind::quadtree:
       index_.emplace<Quadtree>(config.cellSize);
       break;
-    case BroadPhaseKind::kSap:
+    case BroadPhaseKind::sap:
       index_.emplace<SweepAndPrune>();
       break;
-    case BroadPhaseKind::kHash:
+    case BroadPhaseKind::hash:
       index_.emplace<SpatialHash>(config.cellSize);
       break;
-    case BroadPhaseKind::kBrute:
+    case BroadPhaseKind::brute:
       index_.emplace<BruteForce>();
       break;
   }
@@ -133,7 +133,7 @@ Result<ProxyId> BroadPhase::createProxy(Aabb box, std::uint64_t userData, Filter
   Record& r = records_[p];
   r.filter = filter;
   r.userData = userData;
-  flags_[p] = static_cast<std::uint8_t>(kAlive | (kind == ProxyKind::kStatic ? kStatic : 0));
+  flags_[p] = static_cast<std::uint8_t>(kAlive | (kind == ProxyKind::staticProxy ? kStatic : 0));
   tight_[p] = box;
   fat_[p] = inflate(box, config_.margin);
   std::visit([&](auto& index) { index.insert(p, fat_[p]); }, index_);

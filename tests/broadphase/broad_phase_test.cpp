@@ -80,7 +80,8 @@ void runScenario(const Scenario& sc, int steps) {
       m.tight = unit(rng) < 0.9f ? test::randomBox(rng, world, 0.05f, 0.6f)
                                  : test::randomBox(rng, world, 1.0f, 6.0f);
       m.filter = randomFilter();
-      m.kind = sc.withFilters && unit(rng) < 0.3f ? ProxyKind::kStatic : ProxyKind::kDynamic;
+      m.kind =
+          sc.withFilters && unit(rng) < 0.3f ? ProxyKind::staticProxy : ProxyKind::dynamicProxy;
       m.user = rng();
       Result<ProxyId> id = bp.createProxy(m.tight, m.user, m.filter, m.kind);
       ASSERT_TRUE(id.ok()) << id.error().message;

@@ -33,7 +33,7 @@ World makeWorld(WorldDef def = {}) {
 constexpr float kPyramidDrift = 0.05f;
 
 TEST(World, TwentyRowPyramidStandsTenSeconds) {
-  for (BroadPhaseKind kind : {BroadPhaseKind::kTree, BroadPhaseKind::kSap}) {
+  for (BroadPhaseKind kind : {BroadPhaseKind::tree, BroadPhaseKind::sap}) {
     SCOPED_TRACE(std::string(nameOf(kind)));
     World world = makeWorld({.broadPhase = kind});
     addStaticBox(world, {0, -0.5f}, {40, 0.5f});
