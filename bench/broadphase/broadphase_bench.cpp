@@ -441,7 +441,7 @@ int main(int argc, char** argv) {
         }
       };
       for (quack::BroadPhaseKind k : quack::kAllBroadPhaseKinds) {
-        const std::string name(quack::nameOf(k));
+        const std::string name(quack::toString(k));
         if (!wanted(o, name)) continue;
         // Brute force is O(N^2) a frame: skip where it would take minutes.
         if (k == quack::BroadPhaseKind::brute && n > 10000) continue;

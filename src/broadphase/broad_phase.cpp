@@ -28,7 +28,7 @@ Status checkBox(Aabb b, const char* function, const char* argument) {
 
 }  // namespace
 
-std::string_view nameOf(BroadPhaseKind kind) noexcept {
+const char* toString(BroadPhaseKind kind) noexcept {
   switch (kind) {
     case BroadPhaseKind::tree:
       return "tree";
@@ -46,7 +46,7 @@ std::string_view nameOf(BroadPhaseKind kind) noexcept {
 
 Result<BroadPhaseKind> parseBroadPhaseKind(std::string_view name) {
   for (BroadPhaseKind k : kAllBroadPhaseKinds) {
-    if (nameOf(k) == name) return k;
+    if (toString(k) == name) return k;
   }
   return fail("unknown broad phase '" + std::string(name) +
               "' (expected tree, quadtree, sap, hash or brute)");
@@ -313,7 +313,7 @@ BroadPhaseStats BroadPhase::stats() const {
 
 Status BroadPhase::validate() const {
   if (Status s = std::visit([](const auto& index) { return index.validate(); }, index_); !s) {
-    return fail(std::string(nameOf(kind())) + ": " + s.message());
+    return fail(std::string(toString(kind())) + ": " + s.message());
   }
   std::uint32_t live = 0;
   Status result;

@@ -57,7 +57,7 @@ bool vetoUser(void* context, ProxyId, std::uint64_t userA, ProxyId, std::uint64_
 
 TEST(Filter, PairsObeyTheTableStaticRuleAndUserCallbackInEveryStructure) {
   for (BroadPhaseKind kind : kAllBroadPhaseKinds) {
-    SCOPED_TRACE(std::string(nameOf(kind)));
+    SCOPED_TRACE(std::string(toString(kind)));
     for (const FilterRow& row : kRows) {
       SCOPED_TRACE(row.name);
       // kinds: dynamic/dynamic, static/dynamic, static/static; user veto on and off.

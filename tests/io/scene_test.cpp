@@ -42,7 +42,7 @@ TEST(Scene, EverySampleSceneRuns) {
 
 TEST(Scene, EveryBroadPhaseHasASampleScene) {
   for (BroadPhaseKind kind : kAllBroadPhaseKinds) {
-    fs::path file = kSource / "scenes" / ("broadphase-" + std::string(nameOf(kind)) + ".json");
+    fs::path file = kSource / "scenes" / ("broadphase-" + std::string(toString(kind)) + ".json");
     Result<Scene> scene = loadScene(file.string());
     ASSERT_TRUE(scene.ok()) << file;
     EXPECT_EQ(scene->world.broadPhase, kind);

@@ -34,7 +34,7 @@ constexpr float kPyramidDrift = 0.05f;
 
 TEST(World, TwentyRowPyramidStandsTenSeconds) {
   for (BroadPhaseKind kind : {BroadPhaseKind::tree, BroadPhaseKind::sap}) {
-    SCOPED_TRACE(std::string(nameOf(kind)));
+    SCOPED_TRACE(std::string(toString(kind)));
     World world = makeWorld({.broadPhase = kind});
     addStaticBox(world, {0, -0.5f}, {40, 0.5f});
     std::vector<BodyId> boxes = addPyramid(world, 20);
@@ -262,7 +262,7 @@ void buildMixedScene(World& world) {
 TEST(World, DeterministicStateHash) {
   std::uint64_t first = 0;
   for (BroadPhaseKind kind : kAllBroadPhaseKinds) {
-    SCOPED_TRACE(std::string(nameOf(kind)));
+    SCOPED_TRACE(std::string(toString(kind)));
     for (int run = 0; run < 2; ++run) {
       World world = makeWorld({.broadPhase = kind});
       buildMixedScene(world);
@@ -392,7 +392,7 @@ TEST(World, BadInputGetsClearErrorsAndChangesNothing) {
 
 TEST(World, EveryBroadPhaseRunsTheSameScene) {
   for (BroadPhaseKind kind : kAllBroadPhaseKinds) {
-    SCOPED_TRACE(std::string(nameOf(kind)));
+    SCOPED_TRACE(std::string(toString(kind)));
     World world = makeWorld({.broadPhase = kind});
     buildMixedScene(world);
     for (int s = 0; s < 120; ++s)

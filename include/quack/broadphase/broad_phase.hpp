@@ -67,7 +67,7 @@ inline constexpr BroadPhaseKind kAllBroadPhaseKinds[] = {
     BroadPhaseKind::brute};
 
 /// The short name of a kind ("tree", "quadtree", "sap", "hash", "brute").
-std::string_view nameOf(BroadPhaseKind kind) noexcept;
+const char* toString(BroadPhaseKind kind) noexcept;
 /// The kind with that short name, or an error listing the valid names.
 Result<BroadPhaseKind> parseBroadPhaseKind(std::string_view name);
 
