@@ -468,7 +468,7 @@ int runScene(const RunOptions& options, std::ostream& out, std::ostream& err) {
                 "steps     %llu (%.3f s simulated, dt %.6g s, %d sub-steps, broad phase %s)\n",
                 static_cast<unsigned long long>(options.steps), sw.world.time(),
                 static_cast<double>(scene->world.timeStep), scene->world.substeps,
-                std::string(nameOf(scene->world.broadPhase)).c_str());
+                toString(scene->world.broadPhase));
   out << line;
   std::snprintf(line, sizeof line,
                 "contacts  %zu touching at the end (%zu pairs with overlapping boxes)\n",

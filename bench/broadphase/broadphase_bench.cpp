@@ -441,14 +441,14 @@ int main(int argc, char** argv) {
         }
       };
       for (quack::BroadPhaseKind k : quack::kAllBroadPhaseKinds) {
-        const std::string name(quack::nameOf(k));
+        const std::string name(quack::toString(k));
         if (!wanted(o, name)) continue;
         // Brute force is O(N^2) a frame: skip where it would take minutes.
-        if (k == quack::BroadPhaseKind::kBrute && n > 10000) continue;
+        if (k == quack::BroadPhaseKind::brute && n > 10000) continue;
         report(name.c_str(), runQuack(o, scene, k, false, rays));
       }
       if (wanted(o, "tree-tight")) {
-        report("tree-tight", runQuack(o, scene, quack::BroadPhaseKind::kTree, true, rays));
+        report("tree-tight", runQuack(o, scene, quack::BroadPhaseKind::tree, true, rays));
       }
 #if defined(QUACK_BENCH_HAS_BOX2D)
       if (wanted(o, "box2d")) report("box2d", runBox2d(o, scene, rays));

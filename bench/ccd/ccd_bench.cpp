@@ -39,7 +39,7 @@ struct Case {
 };
 
 enum class Set { bullet, spinner, random };
-const char* nameOf(Set s) {
+const char* toString(Set s) {
   return s == Set::bullet ? "bullet" : s == Set::spinner ? "spinner" : "random";
 }
 
@@ -178,7 +178,7 @@ void report() {
     }
     std::printf(
         "%-8s %5zu | %6d %4d %4d %4d %6d          | %6d %4d %4d %4d %6d          | %.2e / %.2e\n",
-        nameOf(set), casesOf(set).size(), q[0], q[1], q[2], q[3], qTunnel, b[0], b[1], b[2], b[3],
+        toString(set), casesOf(set).size(), q[0], q[1], q[2], q[3], qTunnel, b[0], b[1], b[2], b[3],
         bTunnel, both > 0 ? sum / both : 0.0, worst);
   }
   std::fflush(stdout);
@@ -194,7 +194,7 @@ void BM_QuackToi(benchmark::State& state) {
     benchmark::DoNotOptimize(out);
   }
   state.SetItemsProcessed(state.iterations());
-  state.SetLabel(nameOf(static_cast<Set>(state.range(0))));
+  state.SetLabel(toString(static_cast<Set>(state.range(0))));
   state.counters["gjk_per_toi"] =
       static_cast<double>(iterations) / static_cast<double>(state.iterations());
 }
@@ -209,7 +209,7 @@ void BM_Box2dToi(benchmark::State& state) {
     benchmark::DoNotOptimize(out);
   }
   state.SetItemsProcessed(state.iterations());
-  state.SetLabel(nameOf(static_cast<Set>(state.range(0))));
+  state.SetLabel(toString(static_cast<Set>(state.range(0))));
 }
 BENCHMARK(BM_Box2dToi)->Arg(0)->Arg(1)->Arg(2);
 #endif

@@ -28,17 +28,17 @@ Status checkBox(Aabb b, const char* function, const char* argument) {
 
 }  // namespace
 
-std::string_view nameOf(BroadPhaseKind kind) noexcept {
+const char* toString(BroadPhaseKind kind) noexcept {
   switch (kind) {
-    case BroadPhaseKind::kTree:
+    case BroadPhaseKind::tree:
       return "tree";
-    case BroadPhaseKind::kQuadtree:
+    case BroadPhaseKind::quadtree:
       return "quadtree";
-    case BroadPhaseKind::kSap:
+    case BroadPhaseKind::sap:
       return "sap";
-    case BroadPhaseKind::kHash:
+    case BroadPhaseKind::hash:
       return "hash";
-    case BroadPhaseKind::kBrute:
+    case BroadPhaseKind::brute:
       return "brute";
   }
   return "unknown";
@@ -46,7 +46,7 @@ std::string_view nameOf(BroadPhaseKind kind) noexcept {
 
 Result<BroadPhaseKind> parseBroadPhaseKind(std::string_view name) {
   for (BroadPhaseKind k : kAllBroadPhaseKinds) {
-    if (nameOf(k) == name) return k;
+    if (toString(k) == name) return k;
   }
   return fail("unknown broad phase '" + std::string(name) +
               "' (expected tree, quadtree, sap, hash or brute)");
@@ -68,11 +68,11 @@ Result<BroadPhase> BroadPhase::create(BroadPhaseConfig config) {
         "kMaxCoordinate)");
   }
   switch (config.kind) {
-    case BroadPhaseKind::kTree:
-    case BroadPhaseKind::kQuadtree:
-    case BroadPhaseKind::kSap:
-    case BroadPhaseKind::kHash:
-    case BroadPhaseKind::kBrute:
+    case BroadPhaseKind::tree:
+    case BroadPhaseKind::quadtree:
+    case BroadPhaseKind::sap:
+    case BroadPhaseKind::hash:
+    case BroadPhaseKind::brute:
       return BroadPhase(config);
   }
   return fail("BroadPhaseConfig.kind is not a BroadPhaseKind");
@@ -80,19 +80,19 @@ Result<BroadPhase> BroadPhase::create(BroadPhaseConfig config) {
 
 BroadPhase::BroadPhase(BroadPhaseConfig config) : config_(config) {
   switch (config.kind) {
-    case BroadPhaseKind::kTree:
+    case BroadPhaseKind::tree:
       index_.emplace<DynamicTree>();
       break;
-    case BroadPhaseKind::kQuadtree:
+    case BroadPhaseKind::quadtree:
       index_.emplace<Quadtree>(config.cellSize);
       break;
-    case BroadPhaseKind::kSap:
+    case BroadPhaseKind::sap:
       index_.emplace<SweepAndPrune>();
       break;
-    case BroadPhaseKind::kHash:
+    case BroadPhaseKind::hash:
       index_.emplace<SpatialHash>(config.cellSize);
       break;
-    case BroadPhaseKind::kBrute:
+    case BroadPhaseKind::brute:
       index_.emplace<BruteForce>();
       break;
   }
@@ -130,7 +130,7 @@ Result<ProxyId> BroadPhase::createProxy(Aabb box, std::uint64_t userData, Filter
   Record& r = records_[p];
   r.filter = filter;
   r.userData = userData;
-  flags_[p] = static_cast<std::uint8_t>(kind == ProxyKind::kStatic ? kStatic : 0);
+  flags_[p] = static_cast<std::uint8_t>(kind == ProxyKind::staticProxy ? kStatic : 0);
   tight_[p] = box;
   fat_[p] = inflate(box, config_.margin);
   std::visit([&](auto& index) { index.insert(p, fat_[p]); }, index_);
@@ -307,7 +307,7 @@ BroadPhaseStats BroadPhase::stats() const {
 
 Status BroadPhase::validate() const {
   if (Status s = std::visit([](const auto& index) { return index.validate(); }, index_); !s) {
-    return fail(std::string(nameOf(kind())) + ": " + s.message());
+    return fail(std::string(toString(kind())) + ": " + s.message());
   }
   std::uint32_t live = 0;
   Status result;

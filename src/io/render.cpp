@@ -120,18 +120,6 @@ Outline roundedOutline(const Vec2* v, const Vec2* n, int count, float r, float m
   return o;
 }
 
-const char* kindName(BodyType t) {
-  switch (t) {
-    case BodyType::staticBody:
-      return "static";
-    case BodyType::kinematicBody:
-      return "kinematic";
-    case BodyType::dynamicBody:
-      return "dynamic";
-  }
-  return "dynamic";
-}
-
 Aabb worldBounds(const SceneWorld& scene) {
   Aabb b{{1e30f, 1e30f}, {-1e30f, -1e30f}};
   for (BodyId body : scene.bodies) {
@@ -308,7 +296,7 @@ ReplayRecorder::ReplayRecorder(const SceneWorld& scene, std::uint64_t totalSteps
         reach_[static_cast<std::size_t>(moving)] =
             maxf(reach_[static_cast<std::size_t>(moving)], reach);
       std::string entry = shapesDrawn_ > 0 ? "," : "";
-      entry += "{\"b\":" + std::to_string(moving) + ",\"k\":\"" + kindName(type) +
+      entry += "{\"b\":" + std::to_string(moving) + ",\"k\":\"" + toString(type) +
                "\",\"s\":" + (scene.world.shapeDef(s).sensor ? "1" : "0") +
                ",\"c\":" + (o.closed ? "1" : "0") + ",\"n\":" + jsonString(scene.names[i]) +
                ",\"x\":[";

@@ -8,6 +8,22 @@
 #include "quack/geometry/bounds.hpp"
 #include "quack/geometry/mass.hpp"
 
+namespace quack {
+
+const char* toString(BodyType type) noexcept {
+  switch (type) {
+    case BodyType::staticBody:
+      return "static";
+    case BodyType::kinematicBody:
+      return "kinematic";
+    case BodyType::dynamicBody:
+      return "dynamic";
+  }
+  return "unknown";
+}
+
+}  // namespace quack
+
 namespace quack::detail {
 
 Aabb shapeBox(const ShapeGeometry& g, Transform xf) {

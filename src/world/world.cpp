@@ -270,7 +270,7 @@ Result<ShapeId> World::createShape(BodyId bodyId, const ShapeDef& def,
   const Aabb box = detail::shapeBox(geometry, body.xf);
   const std::uint32_t index = store.shapeIds.nextIndex();
   const ProxyKind kind =
-      body.type == BodyType::staticBody ? ProxyKind::kStatic : ProxyKind::kDynamic;
+      body.type == BodyType::staticBody ? ProxyKind::staticProxy : ProxyKind::dynamicProxy;
   Result<ProxyId> proxy = s_->broadPhase.createProxy(box, index, def.filter, kind);
   if (!proxy) return fail("createShape: " + proxy.error().message);
   const std::uint32_t created = store.createShape(bodyId.index, def, geometry);
@@ -605,7 +605,8 @@ Status World::setBodyType(BodyId id, BodyType type) {
   }
   b.force = {};
   b.torque = 0.0f;
-  const ProxyKind kind = type == BodyType::staticBody ? ProxyKind::kStatic : ProxyKind::kDynamic;
+  const ProxyKind kind =
+      type == BodyType::staticBody ? ProxyKind::staticProxy : ProxyKind::dynamicProxy;
   for (std::uint32_t s : b.shapes) {
     Shape& shape = store.shapes[s];
     Status st = s_->broadPhase.destroyProxy(shape.proxy);

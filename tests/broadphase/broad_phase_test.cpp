@@ -23,7 +23,7 @@ struct Scenario {
 };
 
 std::string describe(const Scenario& s) {
-  return std::string(nameOf(s.kind)) + " seed=" + std::to_string(s.seed) +
+  return std::string(toString(s.kind)) + " seed=" + std::to_string(s.seed) +
          (s.checkTight ? " tight" : "") + (s.withFilters ? " filters" : "");
 }
 
@@ -80,7 +80,8 @@ void runScenario(const Scenario& sc, int steps) {
       m.tight = unit(rng) < 0.9f ? test::randomBox(rng, world, 0.05f, 0.6f)
                                  : test::randomBox(rng, world, 1.0f, 6.0f);
       m.filter = randomFilter();
-      m.kind = sc.withFilters && unit(rng) < 0.3f ? ProxyKind::kStatic : ProxyKind::kDynamic;
+      m.kind =
+          sc.withFilters && unit(rng) < 0.3f ? ProxyKind::staticProxy : ProxyKind::dynamicProxy;
       m.user = rng();
       Result<ProxyId> id = bp.createProxy(m.tight, m.user, m.filter, m.kind);
       ASSERT_TRUE(id.ok()) << id.error().message;
@@ -267,12 +268,12 @@ TEST_P(EveryStructure, FarApartAndHugeBoxesNeedNoWorldBounds) {
 
 INSTANTIATE_TEST_SUITE_P(BroadPhase, EveryStructure, ::testing::ValuesIn(kAllBroadPhaseKinds),
                          [](const ::testing::TestParamInfo<BroadPhaseKind>& param) {
-                           return std::string(nameOf(param.param));
+                           return std::string(toString(param.param));
                          });
 
 TEST(BroadPhaseNames, RoundTripAndRejectUnknown) {
   for (BroadPhaseKind k : kAllBroadPhaseKinds) {
-    Result<BroadPhaseKind> parsed = parseBroadPhaseKind(nameOf(k));
+    Result<BroadPhaseKind> parsed = parseBroadPhaseKind(toString(k));
     ASSERT_TRUE(parsed.ok());
     EXPECT_EQ(parsed.value(), k);
   }
@@ -298,7 +299,7 @@ TEST(BroadPhaseInput, BadBoxesAndIdsAreRejectedAndChangeNothing) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const float inf = std::numeric_limits<float>::infinity();
   for (BroadPhaseKind k : kAllBroadPhaseKinds) {
-    SCOPED_TRACE(std::string(nameOf(k)));
+    SCOPED_TRACE(std::string(toString(k)));
     BroadPhaseConfig config;
     config.kind = k;
     BroadPhase bp = BroadPhase::create(config).value();

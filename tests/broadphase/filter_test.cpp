@@ -57,7 +57,7 @@ bool vetoUser(void* context, ProxyId, std::uint64_t userA, ProxyId, std::uint64_
 
 TEST(Filter, PairsObeyTheTableStaticRuleAndUserCallbackInEveryStructure) {
   for (BroadPhaseKind kind : kAllBroadPhaseKinds) {
-    SCOPED_TRACE(std::string(nameOf(kind)));
+    SCOPED_TRACE(std::string(toString(kind)));
     for (const FilterRow& row : kRows) {
       SCOPED_TRACE(row.name);
       // kinds: dynamic/dynamic, static/dynamic, static/static; user veto on and off.
@@ -68,8 +68,8 @@ TEST(Filter, PairsObeyTheTableStaticRuleAndUserCallbackInEveryStructure) {
           BroadPhase bp = BroadPhase::create(config).value();
           UserVeto user{veto ? std::uint64_t{2} : std::uint64_t{99}, 0};
           bp.setPairFilter(vetoUser, &user);
-          const ProxyKind ka = kinds == 2 ? ProxyKind::kStatic : ProxyKind::kDynamic;
-          const ProxyKind kb = kinds >= 1 ? ProxyKind::kStatic : ProxyKind::kDynamic;
+          const ProxyKind ka = kinds == 2 ? ProxyKind::staticProxy : ProxyKind::dynamicProxy;
+          const ProxyKind kb = kinds >= 1 ? ProxyKind::staticProxy : ProxyKind::dynamicProxy;
           bp.createProxy({{0, 0}, {1, 1}}, 1, row.a, ka).value();
           bp.createProxy({{0.5f, 0.5f}, {2, 2}}, 2, row.b, kb).value();
           std::vector<ProxyPair> pairs;

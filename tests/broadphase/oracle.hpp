@@ -19,7 +19,7 @@ struct ModelProxy {
   Aabb tight;
   Aabb fat;
   Filter filter;
-  ProxyKind kind = ProxyKind::kDynamic;
+  ProxyKind kind = ProxyKind::dynamicProxy;
   std::uint64_t user = 0;
 };
 
@@ -55,7 +55,7 @@ std::vector<IndexPair> expectedPairs(const std::map<std::uint32_t, ModelProxy>& 
       const bool moved = buffered[a->first] || buffered[b->first];
       if (!moved) continue;
       if (!overlaps(pa.fat, pb.fat)) continue;
-      if (pa.kind == ProxyKind::kStatic && pb.kind == ProxyKind::kStatic) continue;
+      if (pa.kind == ProxyKind::staticProxy && pb.kind == ProxyKind::staticProxy) continue;
       if (!modelCollide(pa.filter, pb.filter)) continue;
       if (tight && !overlaps(pa.tight, pb.tight)) continue;
       if (!user(a->first, b->first)) continue;

@@ -309,12 +309,12 @@ TEST_P(BroadPhaseHardening, ExtremeCellSizesAreRefusedOrAnswerExactly) {
 
 INSTANTIATE_TEST_SUITE_P(BroadPhase, BroadPhaseHardening, ::testing::ValuesIn(kAllBroadPhaseKinds),
                          [](const ::testing::TestParamInfo<BroadPhaseKind>& param) {
-                           return std::string(nameOf(param.param));
+                           return std::string(toString(param.param));
                          });
 
 INSTANTIATE_TEST_SUITE_P(BroadPhase, Queries, ::testing::ValuesIn(kAllBroadPhaseKinds),
                          [](const ::testing::TestParamInfo<BroadPhaseKind>& param) {
-                           return std::string(nameOf(param.param));
+                           return std::string(toString(param.param));
                          });
 
 }  // namespace

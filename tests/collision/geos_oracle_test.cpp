@@ -136,8 +136,8 @@ void runCombination(Kind ka, Kind kb, unsigned seed, Stats& stats) {
     double err = std::abs(mine - core);
     stats.maxError = std::max(stats.maxError, err / s);
     ++stats.compared;
-    ASSERT_LE(err, tol) << "seed " << seed << " pair " << k << " (" << testing::kindName(ka) << ", "
-                        << testing::kindName(kb) << "): quack " << mine << " geos " << core
+    ASSERT_LE(err, tol) << "seed " << seed << " pair " << k << " (" << testing::toString(ka) << ", "
+                        << testing::toString(kb) << "): quack " << mine << " geos " << core
                         << "\n  A: " << sa.describe() << " at (" << xa.p.x << "," << xa.p.y << ","
                         << xa.q.angle() << ")\n  B: " << sb.describe() << " at (" << xb.p.x << ","
                         << xb.p.y << "," << xb.q.angle() << ")";
@@ -167,7 +167,7 @@ TEST_P(GeosOracle, DistanceAndOverlapAgree) {
   std::printf(
       "  %s-%s: %d pairs, max |quack - geos| / S = %.3g, overlap checked on %d, %d "
       "within tolerance of touching\n",
-      testing::kindName(ka), testing::kindName(kb), stats.compared, stats.maxError,
+      testing::toString(ka), testing::toString(kb), stats.compared, stats.maxError,
       stats.overlapChecked, stats.touching);
 }
 
@@ -182,8 +182,8 @@ std::vector<std::pair<Kind, Kind>> allCombinations() {
 
 INSTANTIATE_TEST_SUITE_P(AllKinds, GeosOracle, ::testing::ValuesIn(allCombinations()),
                          [](const auto& param) {
-                           return std::string(testing::kindName(param.param.first)) + "_" +
-                                  testing::kindName(param.param.second);
+                           return std::string(testing::toString(param.param.first)) + "_" +
+                                  testing::toString(param.param.second);
                          });
 
 }  // namespace

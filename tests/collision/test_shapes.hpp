@@ -13,7 +13,7 @@
 namespace quack::testing {
 
 enum class Kind { circle, capsule, segment, polygon };
-inline const char* kindName(Kind k) {
+inline const char* toString(Kind k) {
   switch (k) {
     case Kind::circle:
       return "circle";
@@ -67,7 +67,7 @@ struct AnyShape {
   std::string describe() const {
     char buf[256];
     ShapeProxy p = proxy();
-    std::string s = kindName(kind);
+    std::string s = toString(kind);
     std::snprintf(buf, sizeof buf, " r=%.9g pts:", static_cast<double>(p.radius()));
     s += buf;
     for (int i = 0; i < p.count(); ++i) {

@@ -42,7 +42,7 @@ TEST(Scene, EverySampleSceneRuns) {
 
 TEST(Scene, EveryBroadPhaseHasASampleScene) {
   for (BroadPhaseKind kind : kAllBroadPhaseKinds) {
-    fs::path file = kSource / "scenes" / ("broadphase-" + std::string(nameOf(kind)) + ".json");
+    fs::path file = kSource / "scenes" / ("broadphase-" + std::string(toString(kind)) + ".json");
     Result<Scene> scene = loadScene(file.string());
     ASSERT_TRUE(scene.ok()) << file;
     EXPECT_EQ(scene->world.broadPhase, kind);
@@ -206,7 +206,7 @@ TEST(Scene, DefaultsAndExplicitValues) {
   const Scene& scene = s.value();
   EXPECT_EQ(scene.world.gravity, (Vec2{0, -10}));
   EXPECT_EQ(scene.world.substeps, 4);
-  EXPECT_EQ(scene.world.broadPhase, BroadPhaseKind::kTree);
+  EXPECT_EQ(scene.world.broadPhase, BroadPhaseKind::tree);
   ASSERT_EQ(scene.bodies.size(), 2u);
   const SceneBody& a = scene.bodies[0];
   EXPECT_EQ(a.name, "body0");

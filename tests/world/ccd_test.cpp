@@ -238,10 +238,10 @@ TEST(Ccd, DeterministicAcrossRunsAndBroadPhases) {
       EXPECT_TRUE(testing::stepAndValidate(world));
     return world.stateHash();
   };
-  const std::uint64_t first = run(BroadPhaseKind::kTree);
-  EXPECT_EQ(run(BroadPhaseKind::kTree), first);
-  for (BroadPhaseKind kind : {BroadPhaseKind::kQuadtree, BroadPhaseKind::kSap,
-                              BroadPhaseKind::kHash, BroadPhaseKind::kBrute}) {
+  const std::uint64_t first = run(BroadPhaseKind::tree);
+  EXPECT_EQ(run(BroadPhaseKind::tree), first);
+  for (BroadPhaseKind kind : {BroadPhaseKind::quadtree, BroadPhaseKind::sap, BroadPhaseKind::hash,
+                              BroadPhaseKind::brute}) {
     EXPECT_EQ(run(kind), first) << "broad phase " << static_cast<int>(kind);
   }
 }

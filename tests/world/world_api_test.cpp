@@ -21,6 +21,12 @@ using testing::addStaticBox;
 using testing::stepAndValidate;
 using testing::valid;
 
+TEST(WorldApi, BodyTypeNamesAreTheSceneFileNames) {
+  EXPECT_STREQ(toString(BodyType::staticBody), "static");
+  EXPECT_STREQ(toString(BodyType::kinematicBody), "kinematic");
+  EXPECT_STREQ(toString(BodyType::dynamicBody), "dynamic");
+}
+
 TEST(WorldApi, HandleFromAnotherWorldIsRefused) {
   World a = World::create({}).value();
   World b = World::create({}).value();

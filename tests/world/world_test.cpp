@@ -33,8 +33,8 @@ World makeWorld(WorldDef def = {}) {
 constexpr float kPyramidDrift = 0.05f;
 
 TEST(World, TwentyRowPyramidStandsTenSeconds) {
-  for (BroadPhaseKind kind : {BroadPhaseKind::kTree, BroadPhaseKind::kSap}) {
-    SCOPED_TRACE(std::string(nameOf(kind)));
+  for (BroadPhaseKind kind : {BroadPhaseKind::tree, BroadPhaseKind::sap}) {
+    SCOPED_TRACE(std::string(toString(kind)));
     World world = makeWorld({.broadPhase = kind});
     addStaticBox(world, {0, -0.5f}, {40, 0.5f});
     std::vector<BodyId> boxes = addPyramid(world, 20);
@@ -226,12 +226,110 @@ TEST(World, CallbacksByCategoryAndRemovalInsideThem) {
   EXPECT_TRUE(world.isValid(spawned));
   EXPECT_TRUE(world.isValid(crate));
   EXPECT_FALSE(world.destroyBody(shot).ok());  // stale
-  // step() from inside a callback is refused.
-  world.onContactBegin(~0ull, ~0ull,
-                       [&](World& w, ShapeId, ShapeId) { EXPECT_FALSE(w.step().ok()); });
+  // step() from inside a callback is refused. The only new contact: the ball dropped on the
+  // ground (the crate and the spawned body settled long ago, nothing bounces).
+  int refused = 0;
+  world.onContactBegin(~0ull, ~0ull, [&](World& w, ShapeId, ShapeId) {
+    EXPECT_FALSE(w.step().ok());
+    ++refused;
+  });
   addBall(world, {5, 1}, 0.25f);
   for (int s = 0; s < 60; ++s)
     ASSERT_TRUE(testing::stepAndValidate(world));
+  EXPECT_EQ(refused, 1);
+}
+
+// Callbacks of each kind, counted after the steps. A ball (category 2) dropped 4.5 m onto
+// the ground (category 1), left to rest, then lifted: one begin, one hit at the free-fall
+// speed sqrt(2 g h), one end. Callbacks whose masks match no pair are never called.
+TEST(World, ContactBeginHitAndEndCallbacksOfABallLandedAndLifted) {
+  const std::uint64_t terrain = 1, ballCategory = 2, nobody = 8;
+  World world = makeWorld();
+  addStaticBox(world, {0, -0.5f}, {10, 0.5f}, 0, {.filter = {terrain, ~0ull, 0}});
+  BodyId ball = addBall(world, {0, 5}, 0.5f, {.filter = {ballCategory, ~0ull, 0}});
+  const ShapeId ballShape = world.shapes(ball)[0];
+  int begins = 0, hits = 0, ends = 0, unmatched = 0;
+  float approach = 0.0f;
+  world.onContactBegin(ballCategory, terrain, [&](World&, ShapeId a, ShapeId) {
+    EXPECT_EQ(a, ballShape);  // passed in the asked order
+    ++begins;
+  });
+  world.onHit(ballCategory, terrain, [&](World&, const ContactHitEvent& hit, bool swapped) {
+    EXPECT_EQ(swapped ? hit.shapeB : hit.shapeA, ballShape);
+    approach = hit.approachSpeed;
+    ++hits;
+  });
+  world.onContactEnd(ballCategory, terrain, [&](World&, ShapeId a, ShapeId) {
+    EXPECT_EQ(a, ballShape);
+    ++ends;
+  });
+  // Masks that must not match: a category no shape has, and terrain with terrain.
+  world.onContactBegin(nobody, ~0ull, [&](World&, ShapeId, ShapeId) { ++unmatched; });
+  world.onContactBegin(terrain, terrain, [&](World&, ShapeId, ShapeId) { ++unmatched; });
+  world.onHit(nobody, ~0ull, [&](World&, const ContactHitEvent&, bool) { ++unmatched; });
+  world.onHit(ballCategory, ballCategory,
+              [&](World&, const ContactHitEvent&, bool) { ++unmatched; });
+  world.onContactEnd(nobody, ~0ull, [&](World&, ShapeId, ShapeId) { ++unmatched; });
+  world.onContactEnd(terrain, terrain, [&](World&, ShapeId, ShapeId) { ++unmatched; });
+  for (int s = 0; s < 120; ++s)
+    ASSERT_TRUE(testing::stepAndValidate(world));
+  EXPECT_EQ(begins, 1);
+  EXPECT_EQ(hits, 1);
+  EXPECT_EQ(ends, 0);
+  // Free fall of 4.5 m: sqrt(2 g h) = 9.49 m/s, to within a step of gravity.
+  EXPECT_NEAR(approach, std::sqrt(2.0f * 10.0f * 4.5f), 0.3f);
+  ASSERT_TRUE(world.setTransform(ball, {0, 8}, 0).ok());
+  ASSERT_TRUE(testing::stepAndValidate(world));
+  EXPECT_EQ(ends, 1);
+  for (int s = 0; s < 10; ++s)
+    ASSERT_TRUE(testing::stepAndValidate(world));
+  EXPECT_EQ(begins, 1);  // still in the air
+  EXPECT_EQ(hits, 1);
+  EXPECT_EQ(ends, 1);
+  EXPECT_EQ(unmatched, 0);
+}
+
+// A ball falling through a sensor band: one sensor begin then one sensor end, each with the
+// sensor passed first; callbacks whose masks exclude the pair are never called.
+TEST(World, SensorCallbacksOfABallFallingThroughASensor) {
+  const std::uint64_t terrain = 1, ballCategory = 2, zoneCategory = 4;
+  World world = makeWorld();
+  addStaticBox(world, {0, -0.5f}, {10, 0.5f}, 0, {.filter = {terrain, ~0ull, 0}});
+  BodyId zone = world.createBody({.type = BodyType::staticBody, .position = {0, 3}}).value();
+  const ShapeId sensor =
+      world
+          .createShape(zone, {.sensor = true, .filter = {zoneCategory, ~0ull, 0}},
+                       makeBox(2, 0.5f).value())
+          .value();
+  BodyId ball = addBall(world, {0, 5}, 0.5f, {.filter = {ballCategory, ~0ull, 0}});
+  const ShapeId ballShape = world.shapes(ball)[0];
+  int begins = 0, ends = 0, unmatched = 0;
+  std::uint64_t beganAt = 0, endedAt = 0;
+  world.onSensorBegin(zoneCategory, ballCategory, [&](World& w, ShapeId s, ShapeId v) {
+    EXPECT_EQ(s, sensor);
+    EXPECT_EQ(v, ballShape);
+    beganAt = w.stepCount();
+    ++begins;
+  });
+  world.onSensorEnd(zoneCategory, ballCategory, [&](World& w, ShapeId s, ShapeId v) {
+    EXPECT_EQ(s, sensor);
+    EXPECT_EQ(v, ballShape);
+    endedAt = w.stepCount();
+    ++ends;
+  });
+  // The roles swapped (the ball is no sensor), a visitor mask without the ball, and a
+  // category nobody has.
+  world.onSensorBegin(ballCategory, zoneCategory, [&](World&, ShapeId, ShapeId) { ++unmatched; });
+  world.onSensorBegin(zoneCategory, ~ballCategory, [&](World&, ShapeId, ShapeId) { ++unmatched; });
+  world.onSensorEnd(ballCategory, zoneCategory, [&](World&, ShapeId, ShapeId) { ++unmatched; });
+  world.onSensorEnd(8, ~0ull, [&](World&, ShapeId, ShapeId) { ++unmatched; });
+  for (int s = 0; s < 120; ++s)
+    ASSERT_TRUE(testing::stepAndValidate(world));
+  EXPECT_EQ(begins, 1);
+  EXPECT_EQ(ends, 1);
+  EXPECT_LT(beganAt, endedAt);
+  EXPECT_EQ(unmatched, 0);
+  EXPECT_NEAR(world.position(ball).y, 0.5f, 0.05f);  // it went on through to the ground
 }
 
 void buildMixedScene(World& world) {
@@ -262,7 +360,7 @@ void buildMixedScene(World& world) {
 TEST(World, DeterministicStateHash) {
   std::uint64_t first = 0;
   for (BroadPhaseKind kind : kAllBroadPhaseKinds) {
-    SCOPED_TRACE(std::string(nameOf(kind)));
+    SCOPED_TRACE(std::string(toString(kind)));
     for (int run = 0; run < 2; ++run) {
       World world = makeWorld({.broadPhase = kind});
       buildMixedScene(world);
@@ -392,7 +490,7 @@ TEST(World, BadInputGetsClearErrorsAndChangesNothing) {
 
 TEST(World, EveryBroadPhaseRunsTheSameScene) {
   for (BroadPhaseKind kind : kAllBroadPhaseKinds) {
-    SCOPED_TRACE(std::string(nameOf(kind)));
+    SCOPED_TRACE(std::string(toString(kind)));
     World world = makeWorld({.broadPhase = kind});
     buildMixedScene(world);
     for (int s = 0; s < 120; ++s)

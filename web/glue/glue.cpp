@@ -460,7 +460,7 @@ EMSCRIPTEN_KEEPALIVE const char* qk_world_state() {
                  {"treeBoxes", treeBoxes},
                  {"contacts", contacts},
                  {"broadPhase",
-                  {{"kind", std::string(nameOf(bp.kind()))},
+                  {{"kind", std::string(toString(bp.kind()))},
                    {"proxies", stats.proxyCount},
                    {"height", stats.height},
                    {"areaRatio", stats.areaRatio},

@@ -3,7 +3,7 @@
 /// pair finding, filters and queries that the world, the tests and the benchmarks share.
 ///
 /// ```
-/// Result<BroadPhase> made = BroadPhase::create({.kind = BroadPhaseKind::kTree});
+/// Result<BroadPhase> made = BroadPhase::create({.kind = BroadPhaseKind::tree});
 /// BroadPhase& bp = made.value();
 /// ProxyId a = bp.createProxy(box, shapeIndex).value();
 /// ... each step: bp.moveProxy(a, newBox, displacement);
@@ -60,15 +60,15 @@
 namespace quack {
 
 /// The five structures, named `tree`, `quadtree`, `sap`, `hash`, `brute`.
-enum class BroadPhaseKind : std::uint8_t { kTree, kQuadtree, kSap, kHash, kBrute };
+enum class BroadPhaseKind : std::uint8_t { tree, quadtree, sap, hash, brute };
 
 /// Every kind, in declaration order (for tests and benchmarks that try them all).
 inline constexpr BroadPhaseKind kAllBroadPhaseKinds[] = {
-    BroadPhaseKind::kTree, BroadPhaseKind::kQuadtree, BroadPhaseKind::kSap, BroadPhaseKind::kHash,
-    BroadPhaseKind::kBrute};
+    BroadPhaseKind::tree, BroadPhaseKind::quadtree, BroadPhaseKind::sap, BroadPhaseKind::hash,
+    BroadPhaseKind::brute};
 
 /// The short name of a kind ("tree", "quadtree", "sap", "hash", "brute").
-std::string_view nameOf(BroadPhaseKind kind) noexcept;
+const char* toString(BroadPhaseKind kind) noexcept;
 /// The kind with that short name, or an error listing the valid names.
 Result<BroadPhaseKind> parseBroadPhaseKind(std::string_view name);
 
@@ -83,7 +83,7 @@ inline constexpr float kMinCellSize = 1e-6f;
 
 /// How a `BroadPhase` is made. Every field has a default that suits boxes of about 1 m.
 struct BroadPhaseConfig {
-  BroadPhaseKind kind = BroadPhaseKind::kTree;
+  BroadPhaseKind kind = BroadPhaseKind::tree;
   /// Metres added to every side of a tight box to make its fat box (>= 0). Larger means fewer
   /// re-insertions but more candidate pairs. 0.1 m is Box2D's value for metre-sized bodies.
   float margin = 0.1f;
@@ -139,7 +139,7 @@ class BroadPhase {
   /// hits. The new proxy is in the move buffer: its pairs come out of the next
   /// `updatePairs`. Fails on an invalid or out-of-range box.
   Result<ProxyId> createProxy(Aabb box, std::uint64_t userData = 0, Filter filter = {},
-                              ProxyKind kind = ProxyKind::kDynamic);
+                              ProxyKind kind = ProxyKind::dynamicProxy);
   /// Removes a proxy. Fails on a null, unknown or stale id.
   Status destroyProxy(ProxyId id);
   /// Gives a proxy its new tight box (world frame) and the displacement since the last

@@ -25,8 +25,8 @@ struct ProxyId {
 
 /// Whether a proxy can move. Pairs of two static proxies are never reported (the seeds'
 /// proximity phase): static geometry cannot start touching other static geometry. Kinematic
-/// bodies are `kDynamic` at this layer; the world applies body-type rules on top.
-enum class ProxyKind : std::uint8_t { kDynamic, kStatic };
+/// bodies are `dynamicProxy` at this layer; the world applies body-type rules on top.
+enum class ProxyKind : std::uint8_t { dynamicProxy, staticProxy };
 
 /// Collision filter of a proxy (the seeds' proximity phase), 64 categories wide.
 struct Filter {

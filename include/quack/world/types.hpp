@@ -32,6 +32,9 @@ struct ShapeId {
 /// not pushed; dynamic bodies are moved by gravity, forces and contacts.
 enum class BodyType : std::uint8_t { staticBody, kinematicBody, dynamicBody };
 
+/// The scene-file name of a body type ("static", "kinematic", "dynamic").
+const char* toString(BodyType type) noexcept;
+
 /// A new body. World frame, SI units.
 struct BodyDef {
   BodyType type = BodyType::dynamicBody;

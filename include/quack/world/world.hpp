@@ -53,7 +53,7 @@ struct WorldDef {
   Vec2 gravity{0.0f, -10.0f};     ///< m/s^2
   float timeStep = 1.0f / 60.0f;  ///< seconds per step() without arguments, > 0
   int substeps = 4;               ///< solver sub-steps per step, 1..64
-  BroadPhaseKind broadPhase = BroadPhaseKind::kTree;
+  BroadPhaseKind broadPhase = BroadPhaseKind::tree;
   /// Stiffness of contacts, Hz (capped at a quarter of the sub-step rate): how fast overlap
   /// is pushed out. 30 Hz, as Box2D v3.
   float contactHertz = 30.0f;
