@@ -163,6 +163,11 @@ bool isLengthOption(const json& v) {
 
 QueryAnswer answerParsed(const json& q);
 
+// True for a shape of type "concave" (a parsed shape: an object with a string "type").
+bool isConcave(const json& shape) {
+  return shape.is_object() && shape.contains("type") && shape.at("type") == "concave";
+}
+
 std::string firstNonFinitePath(const json& j, const std::string& path) {
   if (j.is_number_float()) return std::isfinite(j.get<double>()) ? "" : path;
   if (j.is_array()) {
@@ -258,9 +263,9 @@ QueryAnswer answerParsed(const json& q) {
   }
   if (!q.contains("a")) return rejected(id, "a: missing");
   if (!q.contains("b")) return rejected(id, "b: missing");
-  Result<ParsedShape> a = parseShape(q.at("a"), "a");
+  Result<std::vector<ShapeGeometry>> a = parseShapePieces(q.at("a"), "a");
   if (!a) return rejected(id, a.error().message);
-  Result<ParsedShape> b = parseShape(q.at("b"), "b");
+  Result<std::vector<ShapeGeometry>> b = parseShapePieces(q.at("b"), "b");
   if (!b) return rejected(id, b.error().message);
   Result<Transform> pa =
       q.contains("pa") ? parsePose(q.at("pa"), "pa") : Result<Transform>(Transform{});
@@ -270,20 +275,22 @@ QueryAnswer answerParsed(const json& q) {
   if (!pb) return rejected(id, pb.error().message);
 
   json out = {{"id", id}};
-  if (a->concave || b->concave) {
+  const bool concaveA = isConcave(q.at("a"));
+  const bool concaveB = isConcave(q.at("b"));
+  if (concaveA || concaveB) {
     // A concave shape is its convex pieces: overlap, distance and penetration are answered
     // over every pair of pieces (docs/concave.md); the other ops want one convex shape.
-    const char* which = a->concave ? "a" : "b";
+    const char* which = concaveA ? "a" : "b";
     if (op != "overlap" && op != "distance" && op != "penetration") {
       return rejected(id, std::string(which) + ": a concave shape supports ops overlap, " +
                               "distance and penetration only, not " + op);
     }
-    const std::vector<ShapeProxy> piecesA = a->proxies();
-    const std::vector<ShapeProxy> piecesB = b->proxies();
+    const std::vector<ShapeGeometry>& piecesA = *a;
+    const std::vector<ShapeGeometry>& piecesB = *b;
     if (op == "overlap") {
       bool any = false;
-      for (const ShapeProxy& x : piecesA)
-        for (const ShapeProxy& y : piecesB)
+      for (const ShapeGeometry& x : piecesA)
+        for (const ShapeGeometry& y : piecesB)
           any = any || testOverlap(x, *pa, y, *pb);
       out["overlap"] = any;
       return finished(id, out);
@@ -314,8 +321,8 @@ QueryAnswer answerParsed(const json& q) {
       return finished(id, out);
     }
     PenetrationOutput best = computePenetration(piecesA[bestA], *pa, piecesB[bestB], *pb);
-    for (const ShapeProxy& x : piecesA) {
-      for (const ShapeProxy& y : piecesB) {
+    for (const ShapeGeometry& x : piecesA) {
+      for (const ShapeGeometry& y : piecesB) {
         PenetrationOutput p = computePenetration(x, *pa, y, *pb);
         if (p.overlap && (!best.overlap || p.depth > best.depth)) best = p;
       }
@@ -329,13 +336,13 @@ QueryAnswer answerParsed(const json& q) {
     out["status"] = toString(best.status);
     return finished(id, out);
   }
-  ShapeProxy proxyA = a->proxy();
-  ShapeProxy proxyB = b->proxy();
+  const ShapeGeometry& shapeA = a->front();
+  const ShapeGeometry& shapeB = b->front();
   if (op == "shapecast") {
     if (!q.contains("translation")) return rejected(id, "translation: missing");
     Result<Vec2> translation = parsePosition(q.at("translation"), "translation");
     if (!translation) return rejected(id, translation.error().message);
-    ShapeCastOutput c = castShape(proxyA, *pa, proxyB, *pb, *translation);
+    ShapeCastOutput c = castShape(shapeA, *pa, shapeB, *pb, *translation);
     out["hit"] = c.hit;
     out["fraction"] = c.fraction;
     out["point"] = toJson(c.point);
@@ -347,7 +354,7 @@ QueryAnswer answerParsed(const json& q) {
   if (op == "toi") {
     // A sweep is {"from": POSE, "to": POSE}; the shape turns about its centre (the centre
     // of mass of a one-shape body), the short way round.
-    auto parseSweep = [&](const char* key, const ShapeProxy& proxy) -> Result<Sweep> {
+    auto parseSweep = [&](const char* key, const ShapeGeometry& shape) -> Result<Sweep> {
       if (!q.contains(key)) return fail(std::string(key) + ": missing");
       const json& j = q.at(key);
       if (!j.is_object()) return fail(std::string(key) + ": must be an object {\"from\", \"to\"}");
@@ -361,11 +368,11 @@ QueryAnswer answerParsed(const json& q) {
       if (!from) return fail(from.error().message);
       Result<Transform> to = parsePose(j.at("to"), std::string(key) + ".to");
       if (!to) return fail(to.error().message);
-      return makeSweep(proxy.center(), *from, *to);
+      return makeSweep(makeProxy(shape).center(), *from, *to);
     };
-    Result<Sweep> sweepA = parseSweep("sweepA", proxyA);
+    Result<Sweep> sweepA = parseSweep("sweepA", shapeA);
     if (!sweepA) return rejected(id, sweepA.error().message);
-    Result<Sweep> sweepB = parseSweep("sweepB", proxyB);
+    Result<Sweep> sweepB = parseSweep("sweepB", shapeB);
     if (!sweepB) return rejected(id, sweepB.error().message);
     float target = kToiTargetSeparation;
     if (q.contains("target")) {
@@ -375,15 +382,15 @@ QueryAnswer answerParsed(const json& q) {
       }
       target = v.get<float>();
     }
-    ToiOutput t = computeToi(proxyA, *sweepA, proxyB, *sweepB, 1.0f, target);
+    ToiOutput t = computeToi(shapeA, *sweepA, shapeB, *sweepB, 1.0f, target);
     out["status"] = toString(t.status);
     out["t"] = t.t;
     return finished(id, out);
   }
   if (op == "overlap") {
-    out["overlap"] = testOverlap(proxyA, *pa, proxyB, *pb);
+    out["overlap"] = testOverlap(shapeA, *pa, shapeB, *pb);
   } else if (op == "distance") {
-    DistanceOutput d = computeDistance(proxyA, *pa, proxyB, *pb);
+    DistanceOutput d = computeDistance(shapeA, *pa, shapeB, *pb);
     out["distance"] = d.distance;
     out["pointA"] = toJson(d.pointA);
     out["pointB"] = toJson(d.pointB);
@@ -391,7 +398,7 @@ QueryAnswer answerParsed(const json& q) {
     out["iterations"] = d.iterations;
     out["status"] = toString(d.status);
   } else if (op == "manifold") {
-    Manifold m = collide(a->ref(), *pa, b->ref(), *pb, speculative);
+    Manifold m = collide(shapeA, *pa, shapeB, *pb, speculative);
     out["normal"] = toJson(m.pointCount > 0 ? m.normal : Vec2{});
     json points = json::array();
     for (int i = 0; i < m.pointCount; ++i) {
@@ -401,7 +408,7 @@ QueryAnswer answerParsed(const json& q) {
     }
     out["points"] = points;
   } else {
-    PenetrationOutput p = computePenetration(proxyA, *pa, proxyB, *pb);
+    PenetrationOutput p = computePenetration(shapeA, *pa, shapeB, *pb);
     out["overlap"] = p.overlap;
     out["depth"] = p.depth;
     out["normal"] = toJson(p.normal);

@@ -73,5 +73,11 @@ struct PenetrationOutput {
 /// computeDistance. No allocation (the polytope is a fixed array on the stack).
 PenetrationOutput computePenetration(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
                                      Transform worldFromB, GjkCache* cache = nullptr) noexcept;
+/// The same for shapes of any kind, through their proxies.
+inline PenetrationOutput computePenetration(const ShapeGeometry& a, Transform worldFromA,
+                                            const ShapeGeometry& b, Transform worldFromB,
+                                            GjkCache* cache = nullptr) noexcept {
+  return computePenetration(makeProxy(a), worldFromA, makeProxy(b), worldFromB, cache);
+}
 
 }  // namespace quack
