@@ -14,6 +14,8 @@
 #include "quack/collision/manifold.hpp"
 #include "quack/collision/shape_cast.hpp"
 #include "quack/collision/toi.hpp"
+#include "quack/geometry/bounds.hpp"
+#include "quack/geometry/raycast.hpp"
 #include "quack/io/shape_json.hpp"
 
 namespace quack::app {
@@ -219,6 +221,48 @@ QueryAnswer finished(const json& id, const json& out) {
   return {dumpLine(out), true};
 }
 
+// op raycast: the ray {"origin", "translation"} (world frame) against shape `pieces` placed
+// by worldFromA. The answer is the geometry layer's rayCast in A's frame, carried to the
+// world frame; a concave shape gives its nearest piece's hit, and none when the ray starts
+// inside a piece (as a ray starting inside a convex shape is not entering it).
+QueryAnswer answerRayCast(const json& id, const std::vector<ShapeGeometry>& pieces,
+                          Transform worldFromA, const json& q) {
+  if (!q.contains("ray")) return rejected(id, "ray: missing");
+  const json& ray = q.at("ray");
+  if (!ray.is_object()) return rejected(id, "ray: must be an object {\"origin\", \"translation\"}");
+  for (const auto& item : ray.items()) {
+    if (item.key() != "origin" && item.key() != "translation")
+      return rejected(id, "ray." + item.key() + ": unknown key");
+  }
+  if (!ray.contains("origin")) return rejected(id, "ray.origin: missing");
+  if (!ray.contains("translation")) return rejected(id, "ray.translation: missing");
+  Result<Vec2> origin = parsePosition(ray.at("origin"), "ray.origin");
+  if (!origin) return rejected(id, origin.error().message);
+  Result<Vec2> translation = parsePosition(ray.at("translation"), "ray.translation");
+  if (!translation) return rejected(id, translation.error().message);
+  const RayCastInput input{invTransformPoint(worldFromA, *origin),
+                           invRotate(worldFromA.q, *translation), 1.0f};
+  bool inside = false;
+  if (pieces.size() > 1) {
+    for (const ShapeGeometry& piece : pieces)
+      inside = inside || containsPoint(piece, input.origin);
+  }
+  RayHit best;
+  if (!inside) {
+    // The nearest entry; on a tie, the first piece's.
+    for (const ShapeGeometry& piece : pieces) {
+      RayHit h = rayCast(piece, input);
+      if (h.hit && (!best.hit || h.fraction < best.fraction)) best = h;
+    }
+  }
+  json out = {{"id", id}};
+  out["hit"] = best.hit;
+  out["fraction"] = best.fraction;
+  out["point"] = toJson(best.hit ? transformPoint(worldFromA, best.point) : Vec2{});
+  out["normal"] = toJson(best.hit ? rotate(worldFromA.q, best.normal) : Vec2{});
+  return finished(id, out);
+}
+
 QueryAnswer answerParsed(const json& q) {
   if (!q.is_object()) return rejected(nullptr, "line must be a JSON object");
   json id = q.contains("id") ? q.at("id") : json(nullptr);
@@ -226,7 +270,7 @@ QueryAnswer answerParsed(const json& q) {
     const std::string& k = item.key();
     if (k != "id" && k != "op" && k != "a" && k != "pa" && k != "b" && k != "pb" &&
         k != "speculative" && k != "translation" && k != "sweepA" && k != "sweepB" &&
-        k != "target") {
+        k != "target" && k != "ray") {
       return rejected(id, k + ": unknown key");
     }
   }
@@ -234,14 +278,21 @@ QueryAnswer answerParsed(const json& q) {
   if (!q.at("op").is_string()) return rejected(id, "op: must be a string");
   const std::string op = q.at("op").get<std::string>();
   if (op != "overlap" && op != "distance" && op != "penetration" && op != "manifold" &&
-      op != "shapecast" && op != "toi") {
-    return rejected(id,
-                    "op: unknown op \"" + op +
-                        "\" (expected overlap, distance, penetration, manifold, shapecast, toi)");
+      op != "raycast" && op != "shapecast" && op != "toi") {
+    return rejected(id, "op: unknown op \"" + op +
+                            "\" (expected overlap, distance, penetration, manifold, raycast, "
+                            "shapecast, toi)");
   }
   // Keys that belong to one op only.
   if (q.contains("translation") && op != "shapecast")
     return rejected(id, "translation: only for op shapecast");
+  if (q.contains("ray") && op != "raycast") return rejected(id, "ray: only for op raycast");
+  if (op == "raycast") {
+    for (const char* key : {"b", "pb"}) {
+      if (q.contains(key))
+        return rejected(id, std::string(key) + ": not used by op raycast (the ray meets a only)");
+    }
+  }
   for (const char* key : {"sweepA", "sweepB", "target"}) {
     if (q.contains(key) && op != "toi") return rejected(id, std::string(key) + ": only for op toi");
   }
@@ -262,6 +313,14 @@ QueryAnswer answerParsed(const json& q) {
     speculative = v.get<float>();
   }
   if (!q.contains("a")) return rejected(id, "a: missing");
+  if (op == "raycast") {
+    Result<std::vector<ShapeGeometry>> a = parseShapePieces(q.at("a"), "a");
+    if (!a) return rejected(id, a.error().message);
+    Result<Transform> pa =
+        q.contains("pa") ? parsePose(q.at("pa"), "pa") : Result<Transform>(Transform{});
+    if (!pa) return rejected(id, pa.error().message);
+    return answerRayCast(id, *a, *pa, q);
+  }
   if (!q.contains("b")) return rejected(id, "b: missing");
   Result<std::vector<ShapeGeometry>> a = parseShapePieces(q.at("a"), "a");
   if (!a) return rejected(id, a.error().message);
