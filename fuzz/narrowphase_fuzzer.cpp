@@ -45,45 +45,24 @@ struct Reader {
   }
 };
 
-struct Shape {
-  int kind = -1;
-  Circle circle;
-  Capsule capsule;
-  Segment segment;
-  Polygon polygon;
-  ShapeProxy proxy() const {
-    switch (kind) {
-      case 0:
-        return makeProxy(circle);
-      case 1:
-        return makeProxy(capsule);
-      case 2:
-        return makeProxy(segment);
-      default:
-        return makeProxy(polygon);
-    }
-  }
-};
-
-bool readShape(Reader& r, Shape& s) {
-  s.kind = r.byte() % 4;
-  switch (s.kind) {
+bool readShape(Reader& r, ShapeGeometry& s) {
+  switch (r.byte() % 4) {
     case 0: {
       auto c = makeCircle({r.next(), r.next()}, std::fabs(r.next()));
       if (!c) return false;
-      s.circle = *c;
+      s = *c;
       return true;
     }
     case 1: {
       auto c = makeCapsule({r.next(), r.next()}, {r.next(), r.next()}, std::fabs(r.next()));
       if (!c) return false;
-      s.capsule = *c;
+      s = *c;
       return true;
     }
     case 2: {
       auto c = makeSegment({r.next(), r.next()}, {r.next(), r.next()});
       if (!c) return false;
-      s.segment = *c;
+      s = *c;
       return true;
     }
     default: {
@@ -94,7 +73,7 @@ bool readShape(Reader& r, Shape& s) {
       auto p =
           makePolygon(std::span<const Vec2>(pts, static_cast<std::size_t>(n)), std::fabs(r.next()));
       if (!p) return false;
-      s.polygon = *p;
+      s = *p;
       return true;
     }
   }
@@ -125,22 +104,23 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;
   }
   Reader r{data, size};
-  Shape a, b;
+  ShapeGeometry a, b;
   if (!readShape(r, a) || !readShape(r, b)) return 0;
   Transform xa = makeTransform({r.next(), r.next()}, r.next());
   Transform xb = makeTransform({r.next(), r.next()}, r.next());
-  ShapeProxy pa = a.proxy(), pb = b.proxy();
   GjkCache cache;
-  DistanceOutput d = computeDistance(pa, xa, pb, xb, &cache);
+  DistanceOutput d = computeDistance(a, xa, b, xb, &cache);
   check(std::isfinite(d.distance) && isFinite(d.pointA) && isFinite(d.pointB) &&
         isFinite(d.normal) && d.iterations <= kGjkMaxIterations);
-  DistanceOutput warm = computeDistance(pa, xa, pb, xb, &cache);
+  DistanceOutput warm = computeDistance(a, xa, b, xb, &cache);
   check(std::isfinite(warm.distance));
-  (void)testOverlap(pa, xa, pb, xb);
-  PenetrationOutput p = computePenetration(pa, xa, pb, xb);
+  (void)testOverlap(a, xa, b, xb);
+  PenetrationOutput p = computePenetration(a, xa, b, xb);
   check(std::isfinite(p.depth) && isFinite(p.pointA) && isFinite(p.pointB) && isFinite(p.normal));
-  if (a.kind == 3 && b.kind == 3) {
-    SatOutput s = computeSat(a.polygon, xa, b.polygon, xb);
+  const Polygon* polygonA = std::get_if<Polygon>(&a);
+  const Polygon* polygonB = std::get_if<Polygon>(&b);
+  if (polygonA != nullptr && polygonB != nullptr) {
+    SatOutput s = computeSat(*polygonA, xa, *polygonB, xb);
     check(std::isfinite(s.separation) && isFinite(s.normal));
   }
   return 0;

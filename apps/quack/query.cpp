@@ -14,6 +14,8 @@
 #include "quack/collision/manifold.hpp"
 #include "quack/collision/shape_cast.hpp"
 #include "quack/collision/toi.hpp"
+#include "quack/geometry/bounds.hpp"
+#include "quack/geometry/raycast.hpp"
 #include "quack/io/shape_json.hpp"
 
 namespace quack::app {
@@ -163,6 +165,11 @@ bool isLengthOption(const json& v) {
 
 QueryAnswer answerParsed(const json& q);
 
+// True for a shape of type "concave" (a parsed shape: an object with a string "type").
+bool isConcave(const json& shape) {
+  return shape.is_object() && shape.contains("type") && shape.at("type") == "concave";
+}
+
 std::string firstNonFinitePath(const json& j, const std::string& path) {
   if (j.is_number_float()) return std::isfinite(j.get<double>()) ? "" : path;
   if (j.is_array()) {
@@ -214,6 +221,48 @@ QueryAnswer finished(const json& id, const json& out) {
   return {dumpLine(out), true};
 }
 
+// op raycast: the ray {"origin", "translation"} (world frame) against shape `pieces` placed
+// by worldFromA. The answer is the geometry layer's rayCast in A's frame, carried to the
+// world frame; a concave shape gives its nearest piece's hit, and none when the ray starts
+// inside a piece (as a ray starting inside a convex shape is not entering it).
+QueryAnswer answerRayCast(const json& id, const std::vector<ShapeGeometry>& pieces,
+                          Transform worldFromA, const json& q) {
+  if (!q.contains("ray")) return rejected(id, "ray: missing");
+  const json& ray = q.at("ray");
+  if (!ray.is_object()) return rejected(id, "ray: must be an object {\"origin\", \"translation\"}");
+  for (const auto& item : ray.items()) {
+    if (item.key() != "origin" && item.key() != "translation")
+      return rejected(id, "ray." + item.key() + ": unknown key");
+  }
+  if (!ray.contains("origin")) return rejected(id, "ray.origin: missing");
+  if (!ray.contains("translation")) return rejected(id, "ray.translation: missing");
+  Result<Vec2> origin = parsePosition(ray.at("origin"), "ray.origin");
+  if (!origin) return rejected(id, origin.error().message);
+  Result<Vec2> translation = parsePosition(ray.at("translation"), "ray.translation");
+  if (!translation) return rejected(id, translation.error().message);
+  const RayCastInput input{invTransformPoint(worldFromA, *origin),
+                           invRotate(worldFromA.q, *translation), 1.0f};
+  bool inside = false;
+  if (pieces.size() > 1) {
+    for (const ShapeGeometry& piece : pieces)
+      inside = inside || containsPoint(piece, input.origin);
+  }
+  RayHit best;
+  if (!inside) {
+    // The nearest entry; on a tie, the first piece's.
+    for (const ShapeGeometry& piece : pieces) {
+      RayHit h = rayCast(piece, input);
+      if (h.hit && (!best.hit || h.fraction < best.fraction)) best = h;
+    }
+  }
+  json out = {{"id", id}};
+  out["hit"] = best.hit;
+  out["fraction"] = best.fraction;
+  out["point"] = toJson(best.hit ? transformPoint(worldFromA, best.point) : Vec2{});
+  out["normal"] = toJson(best.hit ? rotate(worldFromA.q, best.normal) : Vec2{});
+  return finished(id, out);
+}
+
 QueryAnswer answerParsed(const json& q) {
   if (!q.is_object()) return rejected(nullptr, "line must be a JSON object");
   json id = q.contains("id") ? q.at("id") : json(nullptr);
@@ -221,7 +270,7 @@ QueryAnswer answerParsed(const json& q) {
     const std::string& k = item.key();
     if (k != "id" && k != "op" && k != "a" && k != "pa" && k != "b" && k != "pb" &&
         k != "speculative" && k != "translation" && k != "sweepA" && k != "sweepB" &&
-        k != "target") {
+        k != "target" && k != "ray") {
       return rejected(id, k + ": unknown key");
     }
   }
@@ -229,14 +278,21 @@ QueryAnswer answerParsed(const json& q) {
   if (!q.at("op").is_string()) return rejected(id, "op: must be a string");
   const std::string op = q.at("op").get<std::string>();
   if (op != "overlap" && op != "distance" && op != "penetration" && op != "manifold" &&
-      op != "shapecast" && op != "toi") {
-    return rejected(id,
-                    "op: unknown op \"" + op +
-                        "\" (expected overlap, distance, penetration, manifold, shapecast, toi)");
+      op != "raycast" && op != "shapecast" && op != "toi") {
+    return rejected(id, "op: unknown op \"" + op +
+                            "\" (expected overlap, distance, penetration, manifold, raycast, "
+                            "shapecast, toi)");
   }
   // Keys that belong to one op only.
   if (q.contains("translation") && op != "shapecast")
     return rejected(id, "translation: only for op shapecast");
+  if (q.contains("ray") && op != "raycast") return rejected(id, "ray: only for op raycast");
+  if (op == "raycast") {
+    for (const char* key : {"b", "pb"}) {
+      if (q.contains(key))
+        return rejected(id, std::string(key) + ": not used by op raycast (the ray meets a only)");
+    }
+  }
   for (const char* key : {"sweepA", "sweepB", "target"}) {
     if (q.contains(key) && op != "toi") return rejected(id, std::string(key) + ": only for op toi");
   }
@@ -257,10 +313,18 @@ QueryAnswer answerParsed(const json& q) {
     speculative = v.get<float>();
   }
   if (!q.contains("a")) return rejected(id, "a: missing");
+  if (op == "raycast") {
+    Result<std::vector<ShapeGeometry>> a = parseShapePieces(q.at("a"), "a");
+    if (!a) return rejected(id, a.error().message);
+    Result<Transform> pa =
+        q.contains("pa") ? parsePose(q.at("pa"), "pa") : Result<Transform>(Transform{});
+    if (!pa) return rejected(id, pa.error().message);
+    return answerRayCast(id, *a, *pa, q);
+  }
   if (!q.contains("b")) return rejected(id, "b: missing");
-  Result<ParsedShape> a = parseShape(q.at("a"), "a");
+  Result<std::vector<ShapeGeometry>> a = parseShapePieces(q.at("a"), "a");
   if (!a) return rejected(id, a.error().message);
-  Result<ParsedShape> b = parseShape(q.at("b"), "b");
+  Result<std::vector<ShapeGeometry>> b = parseShapePieces(q.at("b"), "b");
   if (!b) return rejected(id, b.error().message);
   Result<Transform> pa =
       q.contains("pa") ? parsePose(q.at("pa"), "pa") : Result<Transform>(Transform{});
@@ -270,20 +334,22 @@ QueryAnswer answerParsed(const json& q) {
   if (!pb) return rejected(id, pb.error().message);
 
   json out = {{"id", id}};
-  if (a->concave || b->concave) {
+  const bool concaveA = isConcave(q.at("a"));
+  const bool concaveB = isConcave(q.at("b"));
+  if (concaveA || concaveB) {
     // A concave shape is its convex pieces: overlap, distance and penetration are answered
     // over every pair of pieces (docs/concave.md); the other ops want one convex shape.
-    const char* which = a->concave ? "a" : "b";
+    const char* which = concaveA ? "a" : "b";
     if (op != "overlap" && op != "distance" && op != "penetration") {
       return rejected(id, std::string(which) + ": a concave shape supports ops overlap, " +
                               "distance and penetration only, not " + op);
     }
-    const std::vector<ShapeProxy> piecesA = a->proxies();
-    const std::vector<ShapeProxy> piecesB = b->proxies();
+    const std::vector<ShapeGeometry>& piecesA = *a;
+    const std::vector<ShapeGeometry>& piecesB = *b;
     if (op == "overlap") {
       bool any = false;
-      for (const ShapeProxy& x : piecesA)
-        for (const ShapeProxy& y : piecesB)
+      for (const ShapeGeometry& x : piecesA)
+        for (const ShapeGeometry& y : piecesB)
           any = any || testOverlap(x, *pa, y, *pb);
       out["overlap"] = any;
       return finished(id, out);
@@ -314,8 +380,8 @@ QueryAnswer answerParsed(const json& q) {
       return finished(id, out);
     }
     PenetrationOutput best = computePenetration(piecesA[bestA], *pa, piecesB[bestB], *pb);
-    for (const ShapeProxy& x : piecesA) {
-      for (const ShapeProxy& y : piecesB) {
+    for (const ShapeGeometry& x : piecesA) {
+      for (const ShapeGeometry& y : piecesB) {
         PenetrationOutput p = computePenetration(x, *pa, y, *pb);
         if (p.overlap && (!best.overlap || p.depth > best.depth)) best = p;
       }
@@ -329,13 +395,13 @@ QueryAnswer answerParsed(const json& q) {
     out["status"] = toString(best.status);
     return finished(id, out);
   }
-  ShapeProxy proxyA = a->proxy();
-  ShapeProxy proxyB = b->proxy();
+  const ShapeGeometry& shapeA = a->front();
+  const ShapeGeometry& shapeB = b->front();
   if (op == "shapecast") {
     if (!q.contains("translation")) return rejected(id, "translation: missing");
     Result<Vec2> translation = parsePosition(q.at("translation"), "translation");
     if (!translation) return rejected(id, translation.error().message);
-    ShapeCastOutput c = castShape(proxyA, *pa, proxyB, *pb, *translation);
+    ShapeCastOutput c = castShape(shapeA, *pa, shapeB, *pb, *translation);
     out["hit"] = c.hit;
     out["fraction"] = c.fraction;
     out["point"] = toJson(c.point);
@@ -347,7 +413,7 @@ QueryAnswer answerParsed(const json& q) {
   if (op == "toi") {
     // A sweep is {"from": POSE, "to": POSE}; the shape turns about its centre (the centre
     // of mass of a one-shape body), the short way round.
-    auto parseSweep = [&](const char* key, const ShapeProxy& proxy) -> Result<Sweep> {
+    auto parseSweep = [&](const char* key, const ShapeGeometry& shape) -> Result<Sweep> {
       if (!q.contains(key)) return fail(std::string(key) + ": missing");
       const json& j = q.at(key);
       if (!j.is_object()) return fail(std::string(key) + ": must be an object {\"from\", \"to\"}");
@@ -361,11 +427,11 @@ QueryAnswer answerParsed(const json& q) {
       if (!from) return fail(from.error().message);
       Result<Transform> to = parsePose(j.at("to"), std::string(key) + ".to");
       if (!to) return fail(to.error().message);
-      return makeSweep(proxy.center(), *from, *to);
+      return makeSweep(makeProxy(shape).center(), *from, *to);
     };
-    Result<Sweep> sweepA = parseSweep("sweepA", proxyA);
+    Result<Sweep> sweepA = parseSweep("sweepA", shapeA);
     if (!sweepA) return rejected(id, sweepA.error().message);
-    Result<Sweep> sweepB = parseSweep("sweepB", proxyB);
+    Result<Sweep> sweepB = parseSweep("sweepB", shapeB);
     if (!sweepB) return rejected(id, sweepB.error().message);
     float target = kToiTargetSeparation;
     if (q.contains("target")) {
@@ -375,15 +441,15 @@ QueryAnswer answerParsed(const json& q) {
       }
       target = v.get<float>();
     }
-    ToiOutput t = computeToi(proxyA, *sweepA, proxyB, *sweepB, 1.0f, target);
+    ToiOutput t = computeToi(shapeA, *sweepA, shapeB, *sweepB, 1.0f, target);
     out["status"] = toString(t.status);
     out["t"] = t.t;
     return finished(id, out);
   }
   if (op == "overlap") {
-    out["overlap"] = testOverlap(proxyA, *pa, proxyB, *pb);
+    out["overlap"] = testOverlap(shapeA, *pa, shapeB, *pb);
   } else if (op == "distance") {
-    DistanceOutput d = computeDistance(proxyA, *pa, proxyB, *pb);
+    DistanceOutput d = computeDistance(shapeA, *pa, shapeB, *pb);
     out["distance"] = d.distance;
     out["pointA"] = toJson(d.pointA);
     out["pointB"] = toJson(d.pointB);
@@ -391,7 +457,7 @@ QueryAnswer answerParsed(const json& q) {
     out["iterations"] = d.iterations;
     out["status"] = toString(d.status);
   } else if (op == "manifold") {
-    Manifold m = collide(a->ref(), *pa, b->ref(), *pb, speculative);
+    Manifold m = collide(shapeA, *pa, shapeB, *pb, speculative);
     out["normal"] = toJson(m.pointCount > 0 ? m.normal : Vec2{});
     json points = json::array();
     for (int i = 0; i < m.pointCount; ++i) {
@@ -401,7 +467,7 @@ QueryAnswer answerParsed(const json& q) {
     }
     out["points"] = points;
   } else {
-    PenetrationOutput p = computePenetration(proxyA, *pa, proxyB, *pb);
+    PenetrationOutput p = computePenetration(shapeA, *pa, shapeB, *pb);
     out["overlap"] = p.overlap;
     out["depth"] = p.depth;
     out["normal"] = toJson(p.normal);

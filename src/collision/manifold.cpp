@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 #include <new>
+#include <variant>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -12,6 +13,7 @@
 
 #include "quack/collision/epa.hpp"
 #include "quack/collision/gjk.hpp"
+#include "quack/core/assert.hpp"
 
 namespace quack {
 namespace {
@@ -481,21 +483,28 @@ void flipManifold(Manifold& m) {
   }
 }
 
+// The shape of type S that `g` holds; the table entry was chosen by the types, so the
+// check is an assertion (std::get_if checks the index, std::get would throw).
+template <class S>
+const S& held(const ShapeGeometry& g) noexcept {
+  const S* s = std::get_if<S>(&g);
+  QUACK_ASSERT(s != nullptr);
+  return *s;
+}
+
 template <class A, class B,
           Manifold (*Fn)(const A&, Transform, const B&, Transform, float) noexcept>
-Manifold callDirect(const void* a, Transform worldFromA, const void* b, Transform worldFromB,
-                    float speculativeDistance) noexcept {
-  return Fn(*static_cast<const A*>(a), worldFromA, *static_cast<const B*>(b), worldFromB,
-            speculativeDistance);
+Manifold callDirect(const ShapeGeometry& a, Transform worldFromA, const ShapeGeometry& b,
+                    Transform worldFromB, float speculativeDistance) noexcept {
+  return Fn(held<A>(a), worldFromA, held<B>(b), worldFromB, speculativeDistance);
 }
 
 // B-versus-A through the A-versus-B routine: same points and ids, normal flipped.
 template <class A, class B,
           Manifold (*Fn)(const A&, Transform, const B&, Transform, float) noexcept>
-Manifold callFlipped(const void* b, Transform worldFromB, const void* a, Transform worldFromA,
-                     float speculativeDistance) noexcept {
-  Manifold m = Fn(*static_cast<const A*>(a), worldFromA, *static_cast<const B*>(b), worldFromB,
-                  speculativeDistance);
+Manifold callFlipped(const ShapeGeometry& b, Transform worldFromB, const ShapeGeometry& a,
+                     Transform worldFromA, float speculativeDistance) noexcept {
+  Manifold m = Fn(held<A>(a), worldFromA, held<B>(b), worldFromB, speculativeDistance);
   flipManifold(m);
   return m;
 }
@@ -606,10 +615,10 @@ ManifoldFn findManifoldFn(ShapeType a, ShapeType b) noexcept {
   return kManifoldTable[static_cast<int>(a)][static_cast<int>(b)];
 }
 
-Manifold collide(ShapeRef a, Transform worldFromA, ShapeRef b, Transform worldFromB,
-                 float speculativeDistance) noexcept {
-  return findManifoldFn(a.type, b.type)(a.shape, worldFromA, b.shape, worldFromB,
-                                        speculativeDistance);
+Manifold collide(const ShapeGeometry& a, Transform worldFromA, const ShapeGeometry& b,
+                 Transform worldFromB, float speculativeDistance) noexcept {
+  return findManifoldFn(shapeType(a), shapeType(b))(a, worldFromA, b, worldFromB,
+                                                    speculativeDistance);
 }
 
 Manifold collideGeneral(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,

@@ -43,4 +43,8 @@ ShapeProxy makeProxy(const Polygon& polygon) noexcept {
   return ShapeProxy::fromPoints(polygon.vertices, polygon.count, polygon.radius, polygon.centroid);
 }
 
+ShapeProxy makeProxy(const ShapeGeometry& geometry) noexcept {
+  return std::visit([](const auto& shape) { return makeProxy(shape); }, geometry);
+}
+
 }  // namespace quack

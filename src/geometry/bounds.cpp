@@ -69,4 +69,13 @@ bool containsPoint(const Polygon& polygon, Vec2 point) noexcept {
   return false;
 }
 
+Aabb computeAabb(const ShapeGeometry& geometry, Transform worldFromShape) noexcept {
+  return std::visit([&](const auto& shape) { return computeAabb(shape, worldFromShape); },
+                    geometry);
+}
+
+bool containsPoint(const ShapeGeometry& geometry, Vec2 point) noexcept {
+  return std::visit([&](const auto& shape) { return containsPoint(shape, point); }, geometry);
+}
+
 }  // namespace quack

@@ -123,4 +123,8 @@ MassProperties computeMass(const Polygon& polygon, float density) {
   return sum.finish(density);
 }
 
+MassProperties computeMass(const ShapeGeometry& geometry, float density) {
+  return std::visit([&](const auto& shape) { return computeMass(shape, density); }, geometry);
+}
+
 }  // namespace quack

@@ -133,4 +133,8 @@ RayHit rayCast(const Polygon& polygon, const RayCastInput& ray) noexcept {
   return rayCastRounded(polygon.vertices, polygon.normals, polygon.count, polygon.radius, ray);
 }
 
+RayHit rayCast(const ShapeGeometry& geometry, const RayCastInput& ray) noexcept {
+  return std::visit([&](const auto& shape) { return rayCast(shape, ray); }, geometry);
+}
+
 }  // namespace quack

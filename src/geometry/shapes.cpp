@@ -1,6 +1,7 @@
 #include "quack/geometry/shapes.hpp"
 
 #include <string>
+#include <type_traits>
 
 #include "format.hpp"
 
@@ -217,6 +218,35 @@ Status validatePolygon(const Polygon& polygon) {
     }
   }
   return {};
+}
+
+namespace {
+
+template <ShapeType type, class Shape>
+constexpr bool kHeldAt =
+    std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(type), ShapeGeometry>,
+                   Shape>;
+static_assert(kHeldAt<ShapeType::circle, Circle> && kHeldAt<ShapeType::capsule, Capsule> &&
+                  kHeldAt<ShapeType::segment, Segment> && kHeldAt<ShapeType::polygon, Polygon>,
+              "ShapeGeometry's alternatives are in ShapeType order (shapeType relies on it)");
+
+template <class T>
+Status statusOf(const Result<T>& made) {
+  return made ? Status{} : Status{made.error()};
+}
+
+}  // namespace
+
+Status validateShape(const ShapeGeometry& geometry) {
+  struct Visitor {
+    Status operator()(const Circle& c) const { return statusOf(makeCircle(c.center, c.radius)); }
+    Status operator()(const Capsule& c) const {
+      return statusOf(makeCapsule(c.p1, c.p2, c.radius));
+    }
+    Status operator()(const Segment& s) const { return statusOf(makeSegment(s.p1, s.p2)); }
+    Status operator()(const Polygon& p) const { return validatePolygon(p); }
+  };
+  return std::visit(Visitor{}, geometry);
 }
 
 }  // namespace quack

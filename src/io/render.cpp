@@ -125,9 +125,7 @@ Aabb worldBounds(const SceneWorld& scene) {
   for (BodyId body : scene.bodies) {
     if (!scene.world.isValid(body)) continue;
     for (ShapeId s : scene.world.shapes(body)) {
-      b = merge(
-          b, std::visit([&](const auto& g) { return computeAabb(g, scene.world.transform(body)); },
-                        scene.world.geometry(s)));
+      b = merge(b, computeAabb(scene.world.geometry(s), scene.world.transform(body)));
     }
   }
   if (b.lower.x > b.upper.x) b = {{-1, -1}, {1, 1}};
@@ -313,8 +311,7 @@ ReplayRecorder::ReplayRecorder(const SceneWorld& scene, std::uint64_t totalSteps
       shapes += entry;
       ++shapesDrawn_;
       if (type == BodyType::staticBody)
-        bounds_ = merge(bounds_, std::visit([&](const auto& g) { return computeAabb(g, xf); },
-                                            scene.world.geometry(s)));
+        bounds_ = merge(bounds_, computeAabb(scene.world.geometry(s), xf));
     }
   }
   shapes_ = shapes + "]";

@@ -194,13 +194,13 @@ Result<ShapeDef> parseMaterial(const Parser& p, const json& j, const std::string
 // One shape of the file; a concave one becomes its convex pieces, with one material.
 Result<std::vector<SceneShape>> parseSceneShape(const Parser& p, const json& j,
                                                 const std::string& path) {
-  Result<ParsedShape> shape =
-      parseShape(j, path, {"density", "friction", "restitution", "sensor", "filter"});
-  if (!shape) return shape.error();
+  Result<std::vector<ShapeGeometry>> pieces =
+      parseShapePieces(j, path, {"density", "friction", "restitution", "sensor", "filter"});
+  if (!pieces) return pieces.error();
   Result<ShapeDef> def = parseMaterial(p, j, path);
   if (!def) return def.error();
   std::vector<SceneShape> out;
-  for (ShapeGeometry& g : shape->geometries())
+  for (ShapeGeometry& g : *pieces)
     out.push_back({std::move(g), *def, path});
   return out;
 }
@@ -269,13 +269,12 @@ Status checkBodyShapes(const SceneBody& b) {
   const Transform xf = makeTransform(b.def.position, b.def.angle);
   double mass = 0.0, inertia = 0.0;
   for (const SceneShape& shape : b.shapes) {
-    Aabb box = std::visit([&](const auto& g) { return computeAabb(g, xf); }, shape.geometry);
+    Aabb box = computeAabb(shape.geometry, xf);
     if (!withinCoordinateLimit(box.lower) || !withinCoordinateLimit(box.upper)) {
       return fail(shapeWhere(b, shape.path) + ": reaches " + show(box.lower) + ".." +
                   show(box.upper) + ", beyond " + coordinateLimitText());
     }
-    MassProperties m = std::visit([&](const auto& g) { return computeMass(g, shape.def.density); },
-                                  shape.geometry);
+    MassProperties m = computeMass(shape.geometry, shape.def.density);
     double c2 = static_cast<double>(m.centroid.x) * static_cast<double>(m.centroid.x) +
                 static_cast<double>(m.centroid.y) * static_cast<double>(m.centroid.y);
     double shapeInertia = static_cast<double>(m.inertia) + static_cast<double>(m.mass) * c2;

@@ -100,61 +100,6 @@ Error located(const std::string& path, const Error& e) {
 
 }  // namespace
 
-ShapeProxy ParsedShape::proxy() const noexcept {
-  switch (type) {
-    case ShapeType::circle:
-      return makeProxy(circle);
-    case ShapeType::capsule:
-      return makeProxy(capsule);
-    case ShapeType::segment:
-      return makeProxy(segment);
-    case ShapeType::polygon:
-      return makeProxy(polygon);
-  }
-  return {};
-}
-
-ShapeRef ParsedShape::ref() const noexcept {
-  switch (type) {
-    case ShapeType::circle:
-      return circle;
-    case ShapeType::capsule:
-      return capsule;
-    case ShapeType::segment:
-      return segment;
-    case ShapeType::polygon:
-      return polygon;
-  }
-  return {};
-}
-
-std::vector<ShapeGeometry> ParsedShape::geometries() const {
-  if (!concave) return {geometry()};
-  return std::vector<ShapeGeometry>(pieces.begin(), pieces.end());
-}
-
-std::vector<ShapeProxy> ParsedShape::proxies() const {
-  if (!concave) return {proxy()};
-  std::vector<ShapeProxy> out;
-  for (const Polygon& p : pieces)
-    out.push_back(makeProxy(p));
-  return out;
-}
-
-ShapeGeometry ParsedShape::geometry() const {
-  switch (type) {
-    case ShapeType::circle:
-      return circle;
-    case ShapeType::capsule:
-      return capsule;
-    case ShapeType::segment:
-      return segment;
-    case ShapeType::polygon:
-      return polygon;
-  }
-  return circle;
-}
-
 Result<Vec2> parseVec2(const json& j, const std::string& path) {
   if (!j.is_array() || j.size() != 2) return fail(path + ": must be [x, y]");
   Result<float> x = parseNumber(j[0], path + "[0]");
@@ -182,13 +127,19 @@ Result<Transform> parsePose(const json& j, const std::string& path) {
   return makeTransform(*pos, *angle);
 }
 
-Result<ParsedShape> parseShape(const json& j, const std::string& path,
-                               std::initializer_list<const char*> extraKeys) {
+namespace {
+
+// The "type" of a shape object, or the error for a value that is not one.
+Result<std::string> typeOf(const json& j, const std::string& path) {
   if (!j.is_object()) return fail(path + ": must be an object with a \"type\"");
   if (!j.contains("type")) return fail(path + ".type: missing");
   if (!j.at("type").is_string()) return fail(path + ".type: must be a string");
-  const std::string type = j.at("type").get<std::string>();
-  ParsedShape out;
+  return j.at("type").get<std::string>();
+}
+
+// A shape of a convex kind (every kind but "concave"), or the unknown-type error.
+Result<ShapeGeometry> parseConvex(const json& j, const std::string& path, const std::string& type,
+                                  std::initializer_list<const char*> extraKeys) {
   if (type == "circle") {
     if (Status s = checkKeys(j, path, {"type", "center", "radius"}, extraKeys); !s)
       return fail(s.message());
@@ -197,11 +148,9 @@ Result<ParsedShape> parseShape(const json& j, const std::string& path,
     Result<float> r = requiredLength(j, "radius", path);
     if (!r) return r.error();
     if (*r <= 0.0f) return fail(path + ".radius: must be > 0");
-    out.type = ShapeType::circle;
     Result<Circle> s = makeCircle(*c, *r);
     if (!s) return located(path, s.error());
-    out.circle = *s;
-    return out;
+    return ShapeGeometry{*s};
   }
   if (type == "capsule" || type == "segment") {
     bool capsule = type == "capsule";
@@ -215,18 +164,14 @@ Result<ParsedShape> parseShape(const json& j, const std::string& path,
     if (!capsule) {
       Result<Segment> s = makeSegment(*p1, *p2);
       if (!s) return located(path, s.error());
-      out.type = ShapeType::segment;
-      out.segment = *s;
-      return out;
+      return ShapeGeometry{*s};
     }
     Result<float> r = requiredLength(j, "radius", path);
     if (!r) return r.error();
     if (*r <= 0.0f) return fail(path + ".radius: must be > 0");
     Result<Capsule> s = makeCapsule(*p1, *p2, *r);
     if (!s) return located(path, s.error());
-    out.type = ShapeType::capsule;
-    out.capsule = *s;
-    return out;
+    return ShapeGeometry{*s};
   }
   if (type == "box") {
     if (Status s = checkKeys(j, path, {"type", "half", "center", "angle", "radius"}, extraKeys);
@@ -245,9 +190,7 @@ Result<ParsedShape> parseShape(const json& j, const std::string& path,
     if (*r < 0.0f) return fail(path + ".radius: must be >= 0");
     Result<Polygon> s = makeBox(half->x, half->y, *c, *angle, *r);
     if (!s) return located(path, s.error());
-    out.type = ShapeType::polygon;
-    out.polygon = *s;
-    return out;
+    return ShapeGeometry{*s};
   }
   if (type == "polygon") {
     if (Status s = checkKeys(j, path, {"type", "points", "radius"}, extraKeys); !s)
@@ -259,42 +202,62 @@ Result<ParsedShape> parseShape(const json& j, const std::string& path,
     if (*r < 0.0f) return fail(path + ".radius: must be >= 0");
     Result<Polygon> s = makePolygon(*points, *r);
     if (!s) return located(path, s.error());
-    out.type = ShapeType::polygon;
-    out.polygon = *s;
-    return out;
-  }
-  if (type == "concave") {
-    if (Status s = checkKeys(j, path, {"type", "points", "holes"}, extraKeys); !s)
-      return fail(s.message());
-    Result<std::vector<Vec2>> points = parsePoints(j, "points", path);
-    if (!points) return points.error();
-    std::vector<std::vector<Vec2>> holes;
-    if (j.contains("holes")) {
-      const json& hs = j.at("holes");
-      if (!hs.is_array()) return fail(path + ".holes: must be an array of point arrays");
-      for (std::size_t i = 0; i < hs.size(); ++i) {
-        Result<std::vector<Vec2>> h =
-            parsePointArray(hs[i], path + ".holes[" + std::to_string(i) + "]");
-        if (!h) return h.error();
-        holes.push_back(std::move(*h));
-      }
-    }
-    Result<ConvexDecomposition> d = decomposePolygon(*points, holes);
-    if (!d) {
-      // "decomposePolygon: edges 0 and 2 cross" -> "a: edges 0 and 2 cross"
-      std::string message = d.error().message;
-      const std::string prefix = "decomposePolygon: ";
-      if (message.rfind(prefix, 0) == 0) message = message.substr(prefix.size());
-      return fail(path + ": " + message);
-    }
-    out.type = ShapeType::polygon;
-    out.concave = true;
-    out.pieces = std::move(d->pieces);
-    out.polygon = out.pieces.front();
-    return out;
+    return ShapeGeometry{*s};
   }
   return fail(path + ".type: unknown shape type \"" + type +
               "\" (expected circle, capsule, segment, box, polygon, concave)");
+}
+
+// A "concave" shape: its convex pieces, from decomposePolygon.
+Result<std::vector<ShapeGeometry>> parseConcave(const json& j, const std::string& path,
+                                                std::initializer_list<const char*> extraKeys) {
+  if (Status s = checkKeys(j, path, {"type", "points", "holes"}, extraKeys); !s)
+    return fail(s.message());
+  Result<std::vector<Vec2>> points = parsePoints(j, "points", path);
+  if (!points) return points.error();
+  std::vector<std::vector<Vec2>> holes;
+  if (j.contains("holes")) {
+    const json& hs = j.at("holes");
+    if (!hs.is_array()) return fail(path + ".holes: must be an array of point arrays");
+    for (std::size_t i = 0; i < hs.size(); ++i) {
+      Result<std::vector<Vec2>> h =
+          parsePointArray(hs[i], path + ".holes[" + std::to_string(i) + "]");
+      if (!h) return h.error();
+      holes.push_back(std::move(*h));
+    }
+  }
+  Result<ConvexDecomposition> d = decomposePolygon(*points, holes);
+  if (!d) {
+    // "decomposePolygon: edges 0 and 2 cross" -> "a: edges 0 and 2 cross"
+    std::string message = d.error().message;
+    const std::string prefix = "decomposePolygon: ";
+    if (message.rfind(prefix, 0) == 0) message = message.substr(prefix.size());
+    return fail(path + ": " + message);
+  }
+  return std::vector<ShapeGeometry>(d->pieces.begin(), d->pieces.end());
+}
+
+}  // namespace
+
+Result<ShapeGeometry> parseShape(const json& j, const std::string& path,
+                                 std::initializer_list<const char*> extraKeys) {
+  Result<std::string> type = typeOf(j, path);
+  if (!type) return type.error();
+  if (*type == "concave") {
+    return fail(path +
+                ".type: a concave shape is several convex pieces; read it with parseShapePieces");
+  }
+  return parseConvex(j, path, *type, extraKeys);
+}
+
+Result<std::vector<ShapeGeometry>> parseShapePieces(const json& j, const std::string& path,
+                                                    std::initializer_list<const char*> extraKeys) {
+  Result<std::string> type = typeOf(j, path);
+  if (!type) return type.error();
+  if (*type == "concave") return parseConcave(j, path, extraKeys);
+  Result<ShapeGeometry> convex = parseConvex(j, path, *type, extraKeys);
+  if (!convex) return convex.error();
+  return std::vector<ShapeGeometry>{std::move(*convex)};
 }
 
 }  // namespace quack

@@ -26,10 +26,6 @@ const char* toString(BodyType type) noexcept {
 
 namespace quack::detail {
 
-Aabb shapeBox(const ShapeGeometry& g, Transform xf) {
-  return std::visit([&](const auto& s) { return computeAabb(s, xf); }, g);
-}
-
 std::uint32_t BodyStore::createBody(const BodyDef& def) {
   const std::uint32_t index = bodyIds.allocate();
   if (index == bodies.size()) bodies.emplace_back();
@@ -109,9 +105,7 @@ void BodyStore::updateMass(std::uint32_t index) {
   b.minExtent = 0.0f;
   for (std::uint32_t s : b.shapes) {
     const ShapeGeometry& g = shapes[s].geometry;
-    b.maxExtent = maxf(
-        b.maxExtent,
-        computeMaxExtent(std::visit([](const auto& x) { return makeProxy(x); }, g), b.localCenter));
+    b.maxExtent = maxf(b.maxExtent, computeMaxExtent(makeProxy(g), b.localCenter));
     float thickness = kLinearSlop;
     if (const Circle* c = std::get_if<Circle>(&g)) thickness = c->radius;
     if (const Capsule* c = std::get_if<Capsule>(&g)) thickness = c->radius;
@@ -132,7 +126,7 @@ void BodyStore::updateMass(std::uint32_t index) {
 
 bool BodyStore::shapesWithinWorld(std::uint32_t body, Transform xf) const {
   for (std::uint32_t s : bodies[body].shapes) {
-    const Aabb box = shapeBox(shapes[s].geometry, xf);
+    const Aabb box = computeAabb(shapes[s].geometry, xf);
     // Six comparisons, all false for NaN: finite, not inverted, within the broad phase's range.
     if (!(box.lower.x <= box.upper.x && box.lower.y <= box.upper.y &&
           box.lower.x >= -kMaxCoordinate && box.lower.y >= -kMaxCoordinate &&
@@ -147,7 +141,7 @@ void BodyStore::updateShapeBoxes(BroadPhase& broadPhase, std::uint32_t body,
                                  Vec2 displacement) const {
   const Body& b = bodies[body];
   for (std::uint32_t s : b.shapes) {
-    Aabb box = shapeBox(shapes[s].geometry, b.xf);
+    Aabb box = computeAabb(shapes[s].geometry, b.xf);
     Result<bool> moved = broadPhase.moveProxy(shapes[s].proxy, box, displacement);
     // Callers keep bodies within the world (shapesWithinWorld), so this cannot fail.
     QUACK_ASSERT(moved.ok());

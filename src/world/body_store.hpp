@@ -88,9 +88,6 @@ class BodyStore {
   std::uint32_t worldId_;
 };
 
-// The bounding box of any geometry placed by `xf`.
-Aabb shapeBox(const ShapeGeometry& g, Transform xf);
-
 // A body's mass properties from its shapes (body frame). Zero mass means none of them has
 // area and density; the caller decides what that means.
 struct BodyMass {
@@ -105,14 +102,14 @@ BodyMass sumMass(const Each& each) {
   BodyMass out;
   Vec2 moment;
   each([&](const ShapeGeometry& g, float density) {
-    MassProperties m = std::visit([&](const auto& s) { return computeMass(s, density); }, g);
+    MassProperties m = computeMass(g, density);
     out.mass += m.mass;
     moment += m.mass * m.centroid;
   });
   if (out.mass > 0.0f) {
     out.localCenter = (1.0f / out.mass) * moment;
     each([&](const ShapeGeometry& g, float density) {
-      MassProperties m = std::visit([&](const auto& s) { return computeMass(s, density); }, g);
+      MassProperties m = computeMass(g, density);
       out.inertia += m.inertia + m.mass * distanceSquared(m.centroid, out.localCenter);
     });
   }

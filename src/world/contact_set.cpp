@@ -119,7 +119,7 @@ void ContactSet::findNew(BroadPhase& broadPhase, BodyStore& store) {
     c.sensor = store.shapes[sa].def.sensor;
     const ShapeGeometry& ga = store.shapes[sa].geometry;
     const ShapeGeometry& gb = store.shapes[sb].geometry;
-    c.fn = findManifoldFn(static_cast<ShapeType>(ga.index()), static_cast<ShapeType>(gb.index()));
+    c.fn = findManifoldFn(shapeType(ga), shapeType(gb));
     c.friction = std::sqrt(store.shapes[sa].def.friction * store.shapes[sb].def.friction);
     c.restitution = maxf(store.shapes[sa].def.restitution, store.shapes[sb].def.restitution);
     byPair_.emplace(pairKey(sa, sb), index);
@@ -144,7 +144,7 @@ void ContactSet::update(const WorldDef& def, const BroadPhase& broadPhase, BodyS
     const Transform xb = store.bodies[sb.body].xf;
     bool wasTouching = c.touching;
     if (c.sensor) {
-      c.touching = testOverlap(proxyOf(sa.geometry), xa, proxyOf(sb.geometry), xb);
+      c.touching = testOverlap(sa.geometry, xa, sb.geometry, xb);
       if (c.touching && !wasTouching)
         events.events.sensorBegin.push_back({store.shapeId(c.shapeA), store.shapeId(c.shapeB)});
       if (!c.touching && wasTouching) events.contactEnded(store, c, true);
@@ -159,8 +159,7 @@ void ContactSet::update(const WorldDef& def, const BroadPhase& broadPhase, BodyS
     float oldNormal[kMaxManifoldPoints], oldTangent[kMaxManifoldPoints];
     std::copy(c.normalImpulse, c.normalImpulse + kMaxManifoldPoints, oldNormal);
     std::copy(c.tangentImpulse, c.tangentImpulse + kMaxManifoldPoints, oldTangent);
-    c.manifold =
-        c.fn(refOf(sa.geometry).shape, xa, refOf(sb.geometry).shape, xb, def.speculativeDistance);
+    c.manifold = c.fn(sa.geometry, xa, sb.geometry, xb, def.speculativeDistance);
     // Ghost collisions: only contacts with flagged static shapes pay for the check.
     if (edges.activeShapes() != 0 && (sa.edges.active || sb.edges.active))
       edges.removeGhostContacts(store, c);

@@ -18,10 +18,6 @@
 namespace quack::detail {
 namespace {
 
-Aabb geometryBox(const ShapeGeometry& g, Transform xf) {
-  return std::visit([&](const auto& s) { return computeAabb(s, xf); }, g);
-}
-
 // Earliest first; ties by the shapes' indices, so the order never depends on the broad
 // phase (determinism across structures).
 template <class Candidate>
@@ -43,8 +39,8 @@ Aabb ContinuousPhase::sweptBox(const BodyStore& store, const FastBody& f) const 
     const Transform start = transformAt(f.sweep, 0.0f), end = transformAt(f.sweep, 1.0f);
     bool first = true;
     for (std::uint32_t s : b.shapes) {
-      Aabb u = merge(geometryBox(store.shapes[s].geometry, start),
-                     geometryBox(store.shapes[s].geometry, end));
+      Aabb u = merge(computeAabb(store.shapes[s].geometry, start),
+                     computeAabb(store.shapes[s].geometry, end));
       box = first ? u : merge(box, u);
       first = false;
     }
@@ -82,14 +78,14 @@ bool ContinuousPhase::findImpact(const BodyStore& store, const BroadPhase& broad
   for (std::uint32_t own : body.shapes) {
     const Shape& shape = store.shapes[own];
     if (shape.def.sensor) continue;
-    const ShapeProxy proxy = proxyOf(shape.geometry);
+    const ShapeProxy proxy = makeProxy(shape.geometry);
     for (std::uint32_t s : candidates_) {
       const Shape& other = store.shapes[s];
       if (!shouldCollide(shape.def.filter, other.def.filter)) continue;
       const Body& ob = store.bodies[other.body];
       const float angle = ob.xf.q.angle();
       const Sweep still{ob.localCenter, ob.center, ob.center, angle, angle};
-      const ShapeProxy otherProxy = proxyOf(other.geometry);
+      const ShapeProxy otherProxy = makeProxy(other.geometry);
       ToiOutput toi = computeToi(proxy, f.sweep, otherProxy, still);
       bool stop = false;
       if ((toi.status == ToiStatus::hit || toi.status == ToiStatus::failed) && toi.t == 0.0f) {
@@ -192,9 +188,8 @@ void ContinuousPhase::run(const WorldDef& def, BodyStore& store, BroadPhase& bro
     Vec2 hitPoint = e.point;
     const Transform xfAt = {c - rotate(Rot::fromAngle(angle), b.localCenter),
                             Rot::fromAngle(angle)};
-    const Manifold m =
-        quack::collide(refOf(store.shapes[e.shapeA].geometry), xfAt, refOf(other.geometry), ob.xf,
-                       kToiTargetSeparation + 2.0f * kToiTolerance);
+    const Manifold m = quack::collide(store.shapes[e.shapeA].geometry, xfAt, other.geometry, ob.xf,
+                                      kToiTargetSeparation + 2.0f * kToiTolerance);
     if (m.pointCount > 0) {
       n = m.normal;
       hitPoint = m.points[0].point;

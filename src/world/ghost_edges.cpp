@@ -377,7 +377,7 @@ void GhostEdges::removeGhostContacts(const BodyStore& store, Contact& c) const {
   if (S.edges.chain) {
     // One-sided: a body whose centre is behind the segment passes through it.
     const Segment& seg = std::get<Segment>(S.geometry);
-    Vec2 center = invTransformPoint(xs, transformPoint(xd, proxyOf(D.geometry).center()));
+    Vec2 center = invTransformPoint(xs, transformPoint(xd, makeProxy(D.geometry).center()));
     if (dot(center - seg.p1, rightPerp(seg.p2 - seg.p1)) < 0.0f) {
       m.pointCount = 0;
       return;
@@ -411,7 +411,7 @@ void GhostEdges::removeGhostContacts(const BodyStore& store, Contact& c) const {
   // Measure again along the new normal: the separation of the dynamic shape from the face
   // through the static point, using its deepest point along the normal where that is deeper
   // than the point the routine found (a circle's lowest point, not its diagonal one).
-  const ShapeProxy proxy = proxyOf(D.geometry);
+  const ShapeProxy proxy = makeProxy(D.geometry);
   const Vec2 dir = invRotate(xd.q, -nNew);
   int deepest = 0;
   for (int i = 1; i < proxy.count(); ++i) {

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <string>
 
+#include "quack/geometry/bounds.hpp"
 #include "world_state.hpp"
 
 namespace quack {
@@ -26,27 +27,6 @@ Status checkFiniteNonNegative(float x, const char* name) {
   if (!isFinite(x) || x < 0.0f)
     return fail(std::string(name) + " must be finite and >= 0, got " + std::to_string(x));
   return {};
-}
-
-// Re-checks a geometry with the make* validators, so a hand-built struct cannot smuggle a
-// NaN or a concave polygon into the world.
-Status validateGeometry(const ShapeGeometry& g) {
-  struct Visitor {
-    Status operator()(const Circle& c) const {
-      auto r = makeCircle(c.center, c.radius);
-      return r ? Status{} : Status{fail(r.error().message)};
-    }
-    Status operator()(const Capsule& c) const {
-      auto r = makeCapsule(c.p1, c.p2, c.radius);
-      return r ? Status{} : Status{fail(r.error().message)};
-    }
-    Status operator()(const Segment& s) const {
-      auto r = makeSegment(s.p1, s.p2);
-      return r ? Status{} : Status{fail(r.error().message)};
-    }
-    Status operator()(const Polygon& p) const { return validatePolygon(p); }
-  };
-  return std::visit(Visitor{}, g);
 }
 
 std::string describe(Vec2 v) {
@@ -246,8 +226,7 @@ Result<ShapeId> World::createShape(BodyId bodyId, const ShapeDef& def,
   if (def.restitution > kMaxRestitution)
     return fail("createShape: ShapeDef.restitution " + std::to_string(def.restitution) +
                 " is above kMaxRestitution (10)");
-  if (Status s = validateGeometry(geometry); !s)
-    return fail("createShape: geometry: " + s.message());
+  if (Status s = validateShape(geometry); !s) return fail("createShape: geometry: " + s.message());
   detail::BodyStore& store = s_->store;
   const Body& body = store.bodies[bodyId.index];
   if (body.type == BodyType::dynamicBody) {
@@ -267,7 +246,7 @@ Result<ShapeId> World::createShape(BodyId bodyId, const ShapeDef& def,
       return fail("createShape: ShapeDef.density " + std::to_string(def.density) +
                   " makes the body's mass too small to invert");
   }
-  const Aabb box = detail::shapeBox(geometry, body.xf);
+  const Aabb box = computeAabb(geometry, body.xf);
   const std::uint32_t index = store.shapeIds.nextIndex();
   const ProxyKind kind =
       body.type == BodyType::staticBody ? ProxyKind::staticProxy : ProxyKind::dynamicProxy;
@@ -612,8 +591,8 @@ Status World::setBodyType(BodyId id, BodyType type) {
     Status st = s_->broadPhase.destroyProxy(shape.proxy);
     QUACK_ASSERT(st.ok());
     (void)st;
-    Result<ProxyId> proxy = s_->broadPhase.createProxy(detail::shapeBox(shape.geometry, b.xf), s,
-                                                       shape.def.filter, kind);
+    Result<ProxyId> proxy =
+        s_->broadPhase.createProxy(computeAabb(shape.geometry, b.xf), s, shape.def.filter, kind);
     // The box was accepted a moment ago under the old kind.
     QUACK_ASSERT(proxy.ok());
     shape.proxy = proxy.valueOr(ProxyId{});
@@ -660,7 +639,7 @@ Status World::validate() const {
     if (!s_->broadPhase.isValid(s.proxy)) return fail(name + ": its proxy is not live");
     if (s_->broadPhase.userData(s.proxy) != i)
       return fail(name + ": its proxy carries another shape's index");
-    const Aabb box = detail::shapeBox(s.geometry, store.bodies[s.body].xf);
+    const Aabb box = computeAabb(s.geometry, store.bodies[s.body].xf);
     if (!contains(s_->broadPhase.fatBox(s.proxy), box))
       return fail(name + ": its broad-phase box does not hold it");
     for (std::uint32_t c : s.contacts) {

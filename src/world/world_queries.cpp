@@ -7,35 +7,12 @@
 #include "quack/collision/epa.hpp"
 #include "quack/collision/gjk.hpp"
 #include "quack/collision/shape_cast.hpp"
+#include "quack/geometry/bounds.hpp"
 #include "quack/geometry/raycast.hpp"
 #include "quack/world/world.hpp"
 #include "world_state.hpp"
 
 namespace quack {
-namespace {
-
-// Re-checks a geometry with the make* validators (as createShape does).
-Status validateQueryGeometry(const ShapeGeometry& g) {
-  struct Visitor {
-    Status operator()(const Circle& c) const {
-      auto r = makeCircle(c.center, c.radius);
-      return r ? Status{} : Status{fail(r.error().message)};
-    }
-    Status operator()(const Capsule& c) const {
-      auto r = makeCapsule(c.p1, c.p2, c.radius);
-      return r ? Status{} : Status{fail(r.error().message)};
-    }
-    Status operator()(const Segment& s) const {
-      auto r = makeSegment(s.p1, s.p2);
-      return r ? Status{} : Status{fail(r.error().message)};
-    }
-    Status operator()(const Polygon& p) const { return validatePolygon(p); }
-  };
-  return std::visit(Visitor{}, g);
-}
-
-}  // namespace
-
 // ---- queries -------------------------------------------------------------------------------
 
 bool World::acceptsQuery(std::uint32_t shape, const QueryFilter& filter) const {
@@ -50,7 +27,7 @@ namespace {
 RayHit castRay(const ShapeGeometry& g, Transform xf, Vec2 origin, Vec2 translation,
                float maxFraction) {
   RayCastInput in{invTransformPoint(xf, origin), invRotate(xf.q, translation), maxFraction};
-  return std::visit([&](const auto& s) { return rayCast(s, in); }, g);
+  return rayCast(g, in);
 }
 
 }  // namespace
@@ -113,16 +90,15 @@ Result<std::vector<ShapeOverlap>> World::overlapShape(const ShapeGeometry& geome
                                                       QueryFilter filter) const {
   if (!isFinite(xf.p) || !isFinite(xf.q.c) || !isFinite(xf.q.s))
     return fail("overlapShape: transform is not finite");
-  if (Status s = validateQueryGeometry(geometry); !s)
-    return fail("overlapShape: geometry: " + s.message());
+  if (Status s = validateShape(geometry); !s) return fail("overlapShape: geometry: " + s.message());
   std::vector<ShapeOverlap> out;
-  const ShapeProxy query = detail::proxyOf(geometry);
-  s_->broadPhase.queryAabb(detail::shapeBox(geometry, xf), [&](ProxyId, std::uint64_t user) {
+  const ShapeProxy query = makeProxy(geometry);
+  s_->broadPhase.queryAabb(computeAabb(geometry, xf), [&](ProxyId, std::uint64_t user) {
     auto s = static_cast<std::uint32_t>(user);
     if (!acceptsQuery(s, filter)) return true;
     const Transform sx = s_->store.bodies[s_->store.shapes[s].body].xf;
     PenetrationOutput p =
-        computePenetration(query, xf, detail::proxyOf(s_->store.shapes[s].geometry), sx);
+        computePenetration(query, xf, makeProxy(s_->store.shapes[s].geometry), sx);
     if (p.overlap) {
       out.push_back({s_->store.shapeId(s), s_->store.bodyId(s_->store.shapes[s].body), p.depth,
                      -p.depth * p.normal});
@@ -141,11 +117,10 @@ Result<std::optional<ShapeCastResult>> World::castShape(const ShapeGeometry& geo
   if (!isFinite(xf.p) || !isFinite(xf.q.c) || !isFinite(xf.q.s))
     return fail("castShape: transform is not finite");
   if (!isFinite(translation)) return fail("castShape: translation is not finite");
-  if (Status s = validateQueryGeometry(geometry); !s)
-    return fail("castShape: geometry: " + s.message());
-  const ShapeProxy cast = detail::proxyOf(geometry);
+  if (Status s = validateShape(geometry); !s) return fail("castShape: geometry: " + s.message());
+  const ShapeProxy cast = makeProxy(geometry);
   // Everything the swept box of the cast meets is a candidate.
-  const Aabb start = detail::shapeBox(geometry, xf);
+  const Aabb start = computeAabb(geometry, xf);
   const Aabb swept{minv(start.lower, start.lower + translation),
                    maxv(start.upper, start.upper + translation)};
   std::optional<ShapeCastResult> best;
@@ -156,7 +131,7 @@ Result<std::optional<ShapeCastResult>> World::castShape(const ShapeGeometry& geo
     const Transform sx = s_->store.bodies[shape.body].xf;
     // The shape met is A, the cast shape is B moving along the translation.
     const ShapeCastOutput out =
-        quack::castShape(detail::proxyOf(shape.geometry), sx, cast, xf, translation);
+        quack::castShape(makeProxy(shape.geometry), sx, cast, xf, translation);
     if (!out.hit) return true;
     if (best && (out.fraction > best->fraction ||
                  (out.fraction == best->fraction && s > best->shape.index)))

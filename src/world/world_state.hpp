@@ -39,12 +39,4 @@ struct WorldState {
   bool inCallbacks = false;
 };
 
-// The support proxy of any geometry (views a polygon: keep the geometry alive and still).
-inline ShapeProxy proxyOf(const ShapeGeometry& g) {
-  return std::visit([](const auto& s) { return makeProxy(s); }, g);
-}
-inline ShapeRef refOf(const ShapeGeometry& g) {
-  return std::visit([](const auto& s) { return ShapeRef(s); }, g);
-}
-
 }  // namespace quack::detail

@@ -14,9 +14,9 @@ namespace quack::testing {
 
 struct AdversarialCase {
   const char* name;
-  AnyShape a;
+  ShapeGeometry a;
   Transform xa;
-  AnyShape b;
+  ShapeGeometry b;
   Transform xb;
 };
 
@@ -31,46 +31,48 @@ inline std::vector<AdversarialCase> adversarialCorpus() {
   std::vector<AdversarialCase> c;
   Transform id{};
   auto at = [](float x, float y, float a = 0.0f) { return makeTransform({x, y}, a); };
-  c.push_back({"identical boxes", makeAny(box(1, 1)), id, makeAny(box(1, 1)), id});
-  c.push_back({"identical circles", makeAny(makeCircle({}, 1).value()), id,
-               makeAny(makeCircle({}, 1).value()), id});
-  c.push_back({"concentric circle in box", makeAny(box(2, 2)), id,
-               makeAny(makeCircle({}, 0.5f).value()), id});
-  c.push_back({"concentric rotated squares", makeAny(box(1, 1)), id, makeAny(box(1, 1)),
+  c.push_back({"identical boxes", ShapeGeometry(box(1, 1)), id, ShapeGeometry(box(1, 1)), id});
+  c.push_back({"identical circles", ShapeGeometry(makeCircle({}, 1).value()), id,
+               ShapeGeometry(makeCircle({}, 1).value()), id});
+  c.push_back({"concentric circle in box", ShapeGeometry(box(2, 2)), id,
+               ShapeGeometry(makeCircle({}, 0.5f).value()), id});
+  c.push_back({"concentric rotated squares", ShapeGeometry(box(1, 1)), id, ShapeGeometry(box(1, 1)),
                at(0, 0, kPi / 4)});
-  c.push_back({"identical segments", makeAny(makeSegment({-1, 0}, {1, 0}).value()), id,
-               makeAny(makeSegment({-1, 0}, {1, 0}).value()), id});
-  c.push_back({"collinear capsules", makeAny(makeCapsule({-1, 0}, {1, 0}, 0.1f).value()), id,
-               makeAny(makeCapsule({-1, 0}, {1, 0}, 0.1f).value()), at(0.5f, 0)});
-  c.push_back({"edge on edge", makeAny(box(1, 1)), id, makeAny(box(1, 1)), at(2, 0)});
-  c.push_back({"edge on edge shifted", makeAny(box(1, 1)), id, makeAny(box(1, 1)), at(2, 1.3f)});
-  c.push_back({"vertex on vertex", makeAny(box(1, 1)), id, makeAny(box(1, 1)), at(2, 2)});
-  c.push_back({"vertex on edge", makeAny(box(1, 1)), id, makeAny(box(1, 1)),
-               at(1 + std::sqrt(2.0f), 0, kPi / 4)});
-  c.push_back({"sliver triangles", makeAny(poly({{0, 0}, {10, 0}, {5, 1e-3f}})), id,
-               makeAny(poly({{0, 0}, {10, 0}, {5, 1e-3f}})), at(0.5f, 5e-4f)});
-  c.push_back({"crossing slivers", makeAny(poly({{-5, 0}, {5, 0}, {0, 1e-3f}})), id,
-               makeAny(poly({{-5, 0}, {5, 0}, {0, 1e-3f}})), at(0, 0, 1e-3f)});
-  c.push_back({"huge aspect box", makeAny(box(1e3f, 1e-3f)), id, makeAny(box(1e3f, 1e-3f)),
-               at(0, 1.5e-3f, 1e-4f)});
-  c.push_back({"needle vs circle", makeAny(makeCapsule({-1e3f, 0}, {1e3f, 0}, 1e-3f).value()), id,
-               makeAny(makeCircle({}, 1e-3f).value()), at(500, 1.9e-3f)});
-  c.push_back({"tiny boxes", makeAny(box(1e-3f, 1e-3f)), id, makeAny(box(1e-3f, 1e-3f)),
-               at(1.5e-3f, 1e-4f)});
+  c.push_back({"identical segments", ShapeGeometry(makeSegment({-1, 0}, {1, 0}).value()), id,
+               ShapeGeometry(makeSegment({-1, 0}, {1, 0}).value()), id});
+  c.push_back({"collinear capsules", ShapeGeometry(makeCapsule({-1, 0}, {1, 0}, 0.1f).value()), id,
+               ShapeGeometry(makeCapsule({-1, 0}, {1, 0}, 0.1f).value()), at(0.5f, 0)});
+  c.push_back({"edge on edge", ShapeGeometry(box(1, 1)), id, ShapeGeometry(box(1, 1)), at(2, 0)});
+  c.push_back({"edge on edge shifted", ShapeGeometry(box(1, 1)), id, ShapeGeometry(box(1, 1)),
+               at(2, 1.3f)});
   c.push_back(
-      {"huge boxes", makeAny(box(1e3f, 1e3f)), id, makeAny(box(1e3f, 1e3f)), at(1.5e3f, 10)});
-  c.push_back({"tiny far from origin", makeAny(box(1e-3f, 1e-3f)), at(1e4f, 1e4f),
-               makeAny(box(1e-3f, 1e-3f)), at(1e4f + 1.5e-3f, 1e4f)});
-  c.push_back({"huge vs tiny", makeAny(box(1e3f, 1e3f)), id, makeAny(makeCircle({}, 1e-3f).value()),
-               at(1e3f, 0)});
-  c.push_back({"rounded boxes touching cores", makeAny(box(1, 1, 0.5f)), id,
-               makeAny(box(1, 1, 0.5f)), at(2, 0)});
-  c.push_back({"point-like polygon", makeAny(poly({{0, 0}, {1e-4f, 0}, {0, 1e-4f}})), id,
-               makeAny(poly({{0, 0}, {1e-4f, 0}, {0, 1e-4f}})), at(0, 0, kPi)});
-  c.push_back({"segment on polygon edge", makeAny(box(1, 1)), id,
-               makeAny(makeSegment({-3, 1}, {3, 1}).value()), id});
-  c.push_back({"64-gons concentric", makeAny(makeBox(1, 1).value()), id,
-               makeAny(makeBox(1, 1).value()), at(0, 0, kPi / 2)});
+      {"vertex on vertex", ShapeGeometry(box(1, 1)), id, ShapeGeometry(box(1, 1)), at(2, 2)});
+  c.push_back({"vertex on edge", ShapeGeometry(box(1, 1)), id, ShapeGeometry(box(1, 1)),
+               at(1 + std::sqrt(2.0f), 0, kPi / 4)});
+  c.push_back({"sliver triangles", ShapeGeometry(poly({{0, 0}, {10, 0}, {5, 1e-3f}})), id,
+               ShapeGeometry(poly({{0, 0}, {10, 0}, {5, 1e-3f}})), at(0.5f, 5e-4f)});
+  c.push_back({"crossing slivers", ShapeGeometry(poly({{-5, 0}, {5, 0}, {0, 1e-3f}})), id,
+               ShapeGeometry(poly({{-5, 0}, {5, 0}, {0, 1e-3f}})), at(0, 0, 1e-3f)});
+  c.push_back({"huge aspect box", ShapeGeometry(box(1e3f, 1e-3f)), id,
+               ShapeGeometry(box(1e3f, 1e-3f)), at(0, 1.5e-3f, 1e-4f)});
+  c.push_back({"needle vs circle", ShapeGeometry(makeCapsule({-1e3f, 0}, {1e3f, 0}, 1e-3f).value()),
+               id, ShapeGeometry(makeCircle({}, 1e-3f).value()), at(500, 1.9e-3f)});
+  c.push_back({"tiny boxes", ShapeGeometry(box(1e-3f, 1e-3f)), id, ShapeGeometry(box(1e-3f, 1e-3f)),
+               at(1.5e-3f, 1e-4f)});
+  c.push_back({"huge boxes", ShapeGeometry(box(1e3f, 1e3f)), id, ShapeGeometry(box(1e3f, 1e3f)),
+               at(1.5e3f, 10)});
+  c.push_back({"tiny far from origin", ShapeGeometry(box(1e-3f, 1e-3f)), at(1e4f, 1e4f),
+               ShapeGeometry(box(1e-3f, 1e-3f)), at(1e4f + 1.5e-3f, 1e4f)});
+  c.push_back({"huge vs tiny", ShapeGeometry(box(1e3f, 1e3f)), id,
+               ShapeGeometry(makeCircle({}, 1e-3f).value()), at(1e3f, 0)});
+  c.push_back({"rounded boxes touching cores", ShapeGeometry(box(1, 1, 0.5f)), id,
+               ShapeGeometry(box(1, 1, 0.5f)), at(2, 0)});
+  c.push_back({"point-like polygon", ShapeGeometry(poly({{0, 0}, {1e-4f, 0}, {0, 1e-4f}})), id,
+               ShapeGeometry(poly({{0, 0}, {1e-4f, 0}, {0, 1e-4f}})), at(0, 0, kPi)});
+  c.push_back({"segment on polygon edge", ShapeGeometry(box(1, 1)), id,
+               ShapeGeometry(makeSegment({-3, 1}, {3, 1}).value()), id});
+  c.push_back({"64-gons concentric", ShapeGeometry(makeBox(1, 1).value()), id,
+               ShapeGeometry(makeBox(1, 1).value()), at(0, 0, kPi / 2)});
   // A 64-gon circle approximation, concentric with itself rotated.
   std::vector<Vec2> ring;
   for (int i = 0; i < kMaxPolygonVertices; ++i) {
@@ -78,8 +80,11 @@ inline std::vector<AdversarialCase> adversarialCorpus() {
     ring.push_back({std::cos(a), std::sin(a)});
   }
   Polygon big = makePolygon(ring).value();
-  c.push_back(
-      {"64-gon vs itself rotated", makeAny(big), {}, makeAny(big), makeTransform({0, 0}, 0.01f)});
+  c.push_back({"64-gon vs itself rotated",
+               ShapeGeometry(big),
+               {},
+               ShapeGeometry(big),
+               makeTransform({0, 0}, 0.01f)});
   return c;
 }
 

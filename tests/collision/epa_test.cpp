@@ -14,9 +14,6 @@
 namespace quack {
 namespace {
 
-using testing::AnyShape;
-using testing::Kind;
-
 constexpr float kTol = 1e-5f;
 
 Polygon box(float hx, float hy, Vec2 c = {}, float angle = 0.0f, float r = 0.0f) {
@@ -270,17 +267,18 @@ TEST(Epa, AgreesWithSatAndBruteForceOnRandomPolygons) {
 TEST(Epa, SwapAndRigidMotionInvariance) {
   const unsigned seed = 4242;
   std::mt19937 rng(seed);
-  const Kind kinds[4] = {Kind::circle, Kind::capsule, Kind::segment, Kind::polygon};
+  const ShapeType kinds[4] = {ShapeType::circle, ShapeType::capsule, ShapeType::segment,
+                              ShapeType::polygon};
   for (int k = 0; k < 4000; ++k) {
-    AnyShape sa = testing::randomShape(rng, kinds[k % 4], 1.0f);
-    AnyShape sb = testing::randomShape(rng, kinds[(k / 4) % 4], 1.0f);
+    ShapeGeometry sa = testing::randomShape(rng, kinds[k % 4], 1.0f);
+    ShapeGeometry sb = testing::randomShape(rng, kinds[(k / 4) % 4], 1.0f);
     Transform xa = testing::randomTransform(rng, 0.7f);
     Transform xb = testing::randomTransform(rng, 0.7f);
-    ShapeProxy pa = sa.proxy(), pb = sb.proxy();
+    ShapeProxy pa = makeProxy(sa), pb = makeProxy(sb);
     PenetrationOutput ab = computePenetration(pa, xa, pb, xb);
     PenetrationOutput ba = computePenetration(pb, xb, pa, xa);
     SCOPED_TRACE("seed " + std::to_string(seed) + " pair " + std::to_string(k) + ": " +
-                 sa.describe() + " | " + sb.describe());
+                 testing::describe(sa) + " | " + testing::describe(sb));
     const float tol = 2e-4f;
     EXPECT_EQ(ab.overlap, ba.overlap);
     EXPECT_NEAR(ab.depth, ba.depth, tol);

@@ -27,9 +27,6 @@
 namespace quack {
 namespace {
 
-using testing::AnyShape;
-using testing::Kind;
-
 constexpr double kOracleRelativeTolerance = 1e-6;
 
 int pairsPerCombination() {
@@ -106,7 +103,7 @@ struct Stats {
   int compared = 0, overlapChecked = 0, touching = 0;
 };
 
-void runCombination(Kind ka, Kind kb, unsigned seed, Stats& stats) {
+void runCombination(ShapeType ka, ShapeType kb, unsigned seed, Stats& stats) {
   std::mt19937 rng(seed);
   Geos geos;
   const int pairs = pairsPerCombination();
@@ -114,9 +111,9 @@ void runCombination(Kind ka, Kind kb, unsigned seed, Stats& stats) {
     float scale = logUniform(rng, 1e-3f, 1e3f);
     float sizeA = scale * logUniform(rng, 0.2f, 5.0f);
     float sizeB = scale * logUniform(rng, 0.2f, 5.0f);
-    AnyShape sa = testing::randomShape(rng, ka, sizeA);
-    AnyShape sb = testing::randomShape(rng, kb, sizeB);
-    ShapeProxy pa = sa.proxy(), pb = sb.proxy();
+    ShapeGeometry sa = testing::randomShape(rng, ka, sizeA);
+    ShapeGeometry sb = testing::randomShape(rng, kb, sizeB);
+    ShapeProxy pa = makeProxy(sa), pb = makeProxy(sb);
     Transform xa = testing::randomTransform(rng, sizeA);
     float angle = testing::uniform(rng, -kPi, kPi);
     float reach = testing::uniform(rng, 0.0f, 2.0f) * (sizeA + sizeB);
@@ -138,9 +135,9 @@ void runCombination(Kind ka, Kind kb, unsigned seed, Stats& stats) {
     ++stats.compared;
     ASSERT_LE(err, tol) << "seed " << seed << " pair " << k << " (" << testing::toString(ka) << ", "
                         << testing::toString(kb) << "): quack " << mine << " geos " << core
-                        << "\n  A: " << sa.describe() << " at (" << xa.p.x << "," << xa.p.y << ","
-                        << xa.q.angle() << ")\n  B: " << sb.describe() << " at (" << xb.p.x << ","
-                        << xb.p.y << "," << xb.q.angle() << ")";
+                        << "\n  A: " << testing::describe(sa) << " at (" << xa.p.x << "," << xa.p.y
+                        << "," << xa.q.angle() << ")\n  B: " << testing::describe(sb) << " at ("
+                        << xb.p.x << "," << xb.p.y << "," << xb.q.angle() << ")";
     double radii = double(pa.radius()) + double(pb.radius());
     if (std::abs(core - radii) > tol) {
       ++stats.overlapChecked;
@@ -157,7 +154,7 @@ void runCombination(Kind ka, Kind kb, unsigned seed, Stats& stats) {
   }
 }
 
-class GeosOracle : public ::testing::TestWithParam<std::pair<Kind, Kind>> {};
+class GeosOracle : public ::testing::TestWithParam<std::pair<ShapeType, ShapeType>> {};
 
 TEST_P(GeosOracle, DistanceAndOverlapAgree) {
   auto [ka, kb] = GetParam();
@@ -171,9 +168,10 @@ TEST_P(GeosOracle, DistanceAndOverlapAgree) {
       stats.overlapChecked, stats.touching);
 }
 
-std::vector<std::pair<Kind, Kind>> allCombinations() {
-  const Kind kinds[4] = {Kind::circle, Kind::capsule, Kind::segment, Kind::polygon};
-  std::vector<std::pair<Kind, Kind>> out;
+std::vector<std::pair<ShapeType, ShapeType>> allCombinations() {
+  const ShapeType kinds[4] = {ShapeType::circle, ShapeType::capsule, ShapeType::segment,
+                              ShapeType::polygon};
+  std::vector<std::pair<ShapeType, ShapeType>> out;
   for (int i = 0; i < 4; ++i)
     for (int j = i; j < 4; ++j)
       out.emplace_back(kinds[i], kinds[j]);

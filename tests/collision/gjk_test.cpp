@@ -9,9 +9,6 @@
 namespace quack {
 namespace {
 
-using testing::AnyShape;
-using testing::Kind;
-
 constexpr float kTol = 1e-5f;
 
 Polygon box(float hx, float hy, Vec2 c = {}, float angle = 0.0f, float r = 0.0f) {
@@ -188,17 +185,18 @@ TEST(Gjk, StaleCacheIsIgnored) {
 TEST(Gjk, SwapAndRigidMotionInvariance) {
   const unsigned seed = 20240601;
   std::mt19937 rng(seed);
-  const Kind kinds[4] = {Kind::circle, Kind::capsule, Kind::segment, Kind::polygon};
+  const ShapeType kinds[4] = {ShapeType::circle, ShapeType::capsule, ShapeType::segment,
+                              ShapeType::polygon};
   for (int k = 0; k < 4000; ++k) {
-    AnyShape sa = testing::randomShape(rng, kinds[k % 4], 1.0f);
-    AnyShape sb = testing::randomShape(rng, kinds[(k / 4) % 4], 1.0f);
+    ShapeGeometry sa = testing::randomShape(rng, kinds[k % 4], 1.0f);
+    ShapeGeometry sb = testing::randomShape(rng, kinds[(k / 4) % 4], 1.0f);
     Transform xa = testing::randomTransform(rng, 2.0f);
     Transform xb = testing::randomTransform(rng, 2.0f);
-    ShapeProxy pa = sa.proxy(), pb = sb.proxy();
+    ShapeProxy pa = makeProxy(sa), pb = makeProxy(sb);
     DistanceOutput ab = computeDistance(pa, xa, pb, xb);
     DistanceOutput ba = computeDistance(pb, xb, pa, xa);
     SCOPED_TRACE("seed " + std::to_string(seed) + " pair " + std::to_string(k) + ": " +
-                 sa.describe() + " | " + sb.describe());
+                 testing::describe(sa) + " | " + testing::describe(sb));
     const float tol = 2e-4f;
     EXPECT_NEAR(ab.distance, ba.distance, tol);
     // The normal is v / |v| with v good to a few ulps of the shapes' size, so its error

@@ -15,8 +15,6 @@
 namespace quack {
 namespace {
 
-using testing::AnyShape;
-using testing::Kind;
 using testing::uniform;
 
 void expectNear(Vec2 a, Vec2 b, float tol, const char* what = "") {
@@ -32,14 +30,15 @@ const ManifoldPoint* findId(const Manifold& m, std::uint32_t id) {
 
 // How far B must move along unit n (world) to stop overlapping A: the support of A along n
 // plus the support of B along -n, radii included.
-float supportValue(const AnyShape& s, Transform xf, Vec2 n) {
-  ShapeProxy p = s.proxy();
+float supportValue(const ShapeGeometry& s, Transform xf, Vec2 n) {
+  ShapeProxy p = makeProxy(s);
   float best = -1e30f;
   for (int i = 0; i < p.count(); ++i)
     best = maxf(best, dot(transformPoint(xf, p.points()[i]), n));
   return best + p.radius();
 }
-float depthAlong(const AnyShape& a, Transform xa, const AnyShape& b, Transform xb, Vec2 n) {
+float depthAlong(const ShapeGeometry& a, Transform xa, const ShapeGeometry& b, Transform xb,
+                 Vec2 n) {
   return supportValue(a, xa, n) + supportValue(b, xb, -n);
 }
 
@@ -170,11 +169,11 @@ TEST(Manifold, DispatchTableCoversEveryPair) {
   Capsule capsule = makeCapsule({-0.5f, 0}, {0.5f, 0}, 0.25f).value();
   Segment segment = makeSegment({-0.5f, 0}, {0.5f, 0}).value();
   Polygon box = makeBox(0.5f, 0.5f).value();
-  const ShapeRef shapes[4] = {circle, capsule, segment, box};
+  const ShapeGeometry shapes[4] = {circle, capsule, segment, box};
   for (int i = 0; i < 4; ++i) {
     for (int j = 0; j < 4; ++j) {
       SCOPED_TRACE(::testing::Message() << "pair " << i << ", " << j);
-      ASSERT_NE(findManifoldFn(shapes[i].type, shapes[j].type), nullptr);
+      ASSERT_NE(findManifoldFn(shapeType(shapes[i]), shapeType(shapes[j])), nullptr);
       Manifold m = collide(shapes[i], Transform{}, shapes[j], makeTransform({0.1f, 0.2f}, 0));
       if (i == 2 && j == 2) {
         EXPECT_EQ(m.pointCount, 0);  // parallel segments 0.2 apart
@@ -193,21 +192,23 @@ TEST(Manifold, DispatchTableCoversEveryPair) {
 TEST(Manifold, SwapAndRigidMotionSymmetry) {
   const unsigned seed = 2718;
   std::mt19937 rng(seed);
-  const Kind kinds[4] = {Kind::circle, Kind::capsule, Kind::segment, Kind::polygon};
+  const ShapeType kinds[4] = {ShapeType::circle, ShapeType::capsule, ShapeType::segment,
+                              ShapeType::polygon};
   int withPoints = 0;
   int nearTies = 0;
   for (int trial = 0; trial < 4000; ++trial) {
     SCOPED_TRACE(::testing::Message() << "seed " << seed << " trial " << trial);
-    AnyShape a = testing::randomShape(rng, kinds[rng() % 4], 1.0f);
-    AnyShape b = testing::randomShape(rng, kinds[rng() % 4], 1.0f);
+    ShapeGeometry a = testing::randomShape(rng, kinds[rng() % 4], 1.0f);
+    ShapeGeometry b = testing::randomShape(rng, kinds[rng() % 4], 1.0f);
     Transform xa = testing::randomTransform(rng, 0.5f);
     Transform xb = testing::randomTransform(rng, 0.5f);
-    Manifold ab = collide(a.ref(), xa, b.ref(), xb);
-    Manifold ba = collide(b.ref(), xb, a.ref(), xa);
-    ASSERT_EQ(ab.pointCount, ba.pointCount) << a.describe() << " | " << b.describe();
+    Manifold ab = collide(a, xa, b, xb);
+    Manifold ba = collide(b, xb, a, xa);
+    ASSERT_EQ(ab.pointCount, ba.pointCount)
+        << testing::describe(a) << " | " << testing::describe(b);
     if (ab.pointCount == 0) continue;
     ++withPoints;
-    if (a.kind != b.kind) {
+    if (shapeType(a) != shapeType(b)) {
       // Different kinds: the table runs the same routine both ways, so the answers are
       // identical but for the normal's sign and the anchors' order.
       EXPECT_EQ(ab.normal, -ba.normal);
@@ -231,7 +232,7 @@ TEST(Manifold, SwapAndRigidMotionSymmetry) {
       expectNear(ab.normal, -ba.normal, 1e-5f, "normal");
       for (int k = 0; k < ab.pointCount; ++k) {
         const ManifoldPoint* q = findId(ba, ab.points[k].id ^ kManifoldIdReferenceOnB);
-        if (a.kind == Kind::circle) q = findId(ba, ab.points[k].id);  // no faces: id 0
+        if (shapeType(a) == ShapeType::circle) q = findId(ba, ab.points[k].id);  // no faces: id 0
         ASSERT_NE(q, nullptr) << "id " << ab.points[k].id;
         expectNear(ab.points[k].point, q->point, 1e-5f, "point");
         EXPECT_NEAR(ab.points[k].separation, q->separation, 1e-5f);
@@ -239,7 +240,7 @@ TEST(Manifold, SwapAndRigidMotionSymmetry) {
       }
     }
     Transform motion = testing::randomTransform(rng, 100.0f);
-    Manifold moved = collide(a.ref(), motion * xa, b.ref(), motion * xb);
+    Manifold moved = collide(a, motion * xa, b, motion * xb);
     // Rounding at |p| ~ 100 m: a few float ulps of 100.
     if (moved.pointCount != ab.pointCount) {
       // Only a point at the speculative boundary may appear or vanish.
@@ -293,20 +294,22 @@ TEST(Manifold, IdsStableUnderSmallMotionsAndChangeWithFeatures) {
 TEST(Manifold, DepthAgreesWithSatEpaAndGjk) {
   const unsigned seed = 31415;
   std::mt19937 rng(seed);
-  const Kind kinds[4] = {Kind::circle, Kind::capsule, Kind::segment, Kind::polygon};
+  const ShapeType kinds[4] = {ShapeType::circle, ShapeType::capsule, ShapeType::segment,
+                              ShapeType::polygon};
   int compared = 0;
   int otherNormal = 0;
   for (int trial = 0; trial < 5000; ++trial) {
     SCOPED_TRACE(::testing::Message() << "seed " << seed << " trial " << trial);
-    AnyShape a = testing::randomShape(rng, kinds[rng() % 4], 1.0f);
-    AnyShape b = testing::randomShape(rng, kinds[rng() % 4], 1.0f);
-    if (a.kind == Kind::segment && b.kind == Kind::segment) continue;  // no interior
+    ShapeGeometry a = testing::randomShape(rng, kinds[rng() % 4], 1.0f);
+    ShapeGeometry b = testing::randomShape(rng, kinds[rng() % 4], 1.0f);
+    if (shapeType(a) == ShapeType::segment && shapeType(b) == ShapeType::segment)
+      continue;  // no interior
     Transform xa = testing::randomTransform(rng, 0.6f);
     Transform xb = testing::randomTransform(rng, 0.6f);
-    Manifold m = collide(a.ref(), xa, b.ref(), xb);
-    PenetrationOutput pen = computePenetration(a.proxy(), xa, b.proxy(), xb);
+    Manifold m = collide(a, xa, b, xb);
+    PenetrationOutput pen = computePenetration(makeProxy(a), xa, makeProxy(b), xb);
     if (!pen.overlap) {
-      DistanceOutput d = computeDistance(a.proxy(), xa, b.proxy(), xb);
+      DistanceOutput d = computeDistance(makeProxy(a), xa, makeProxy(b), xb);
       if (d.distance > kSpeculativeDistance + 1e-4f) {
         EXPECT_EQ(m.pointCount, 0) << "reported at distance " << d.distance;
       } else if (d.distance < kSpeculativeDistance - 1e-4f) {
@@ -317,12 +320,12 @@ TEST(Manifold, DepthAgreesWithSatEpaAndGjk) {
       }
       continue;
     }
-    ASSERT_GE(m.pointCount, 1) << a.describe() << " | " << b.describe();
+    ASSERT_GE(m.pointCount, 1) << testing::describe(a) << " | " << testing::describe(b);
     ++compared;
     float depth = -deepestPoint(m).separation;
-    EXPECT_NEAR(depth, pen.depth, 2e-3f) << a.describe() << " | " << b.describe();
-    if (a.kind == Kind::polygon && b.kind == Kind::polygon) {
-      SatOutput sat = computeSat(a.polygon, xa, b.polygon, xb);
+    EXPECT_NEAR(depth, pen.depth, 2e-3f) << testing::describe(a) << " | " << testing::describe(b);
+    if (shapeType(a) == ShapeType::polygon && shapeType(b) == ShapeType::polygon) {
+      SatOutput sat = computeSat(std::get<Polygon>(a), xa, std::get<Polygon>(b), xb);
       EXPECT_NEAR(depth, -sat.separation, 2e-3f);
     }
     // The manifold's normal is a least-depth direction: pushing B along it by EPA's depth
@@ -345,23 +348,25 @@ TEST(Manifold, DepthAgreesWithSatEpaAndGjk) {
 TEST(Manifold, GeneralPathAgreesWithSpecialRoutines) {
   const unsigned seed = 1618;
   std::mt19937 rng(seed);
-  const Kind kinds[4] = {Kind::circle, Kind::capsule, Kind::segment, Kind::polygon};
+  const ShapeType kinds[4] = {ShapeType::circle, ShapeType::capsule, ShapeType::segment,
+                              ShapeType::polygon};
   int compared = 0;
   int disagreements = 0;
   for (int trial = 0; trial < 3000; ++trial) {
     SCOPED_TRACE(::testing::Message() << "seed " << seed << " trial " << trial);
-    AnyShape a = testing::randomShape(rng, kinds[rng() % 4], 1.0f);
-    AnyShape b = testing::randomShape(rng, kinds[rng() % 4], 1.0f);
-    if (a.kind == Kind::segment && b.kind == Kind::segment) continue;
+    ShapeGeometry a = testing::randomShape(rng, kinds[rng() % 4], 1.0f);
+    ShapeGeometry b = testing::randomShape(rng, kinds[rng() % 4], 1.0f);
+    if (shapeType(a) == ShapeType::segment && shapeType(b) == ShapeType::segment) continue;
     Transform xa = testing::randomTransform(rng, 0.6f);
     Transform xb = testing::randomTransform(rng, 0.6f);
-    Manifold special = collide(a.ref(), xa, b.ref(), xb);
-    Manifold general = collideGeneral(a.proxy(), xa, b.proxy(), xb);
+    Manifold special = collide(a, xa, b, xb);
+    Manifold general = collideGeneral(makeProxy(a), xa, makeProxy(b), xb);
     if ((general.pointCount == 0) != (special.pointCount == 0)) {
       ++disagreements;
-      const float d = computeDistance(a.proxy(), xa, b.proxy(), xb).distance;
+      const float d = computeDistance(makeProxy(a), xa, makeProxy(b), xb).distance;
       // Neither path reports a pair clearly inside the margin as apart.
-      EXPECT_GT(d, kSpeculativeDistance - 1e-4f) << a.describe() << " | " << b.describe();
+      EXPECT_GT(d, kSpeculativeDistance - 1e-4f)
+          << testing::describe(a) << " | " << testing::describe(b);
       const Manifold& reported = general.pointCount > 0 ? general : special;
       const float separation = deepestPoint(reported).separation;
       EXPECT_LT(separation, kSpeculativeDistance);
@@ -376,7 +381,7 @@ TEST(Manifold, GeneralPathAgreesWithSpecialRoutines) {
     if (general.pointCount == 0) continue;
     ++compared;
     EXPECT_NEAR(deepestPoint(general).separation, deepestPoint(special).separation, 2e-3f)
-        << a.describe() << " | " << b.describe();
+        << testing::describe(a) << " | " << testing::describe(b);
   }
   EXPECT_GT(compared, 1000);
   EXPECT_LT(disagreements, compared / 100);

@@ -20,9 +20,6 @@
 namespace quack {
 namespace {
 
-using testing::AnyShape;
-using testing::Kind;
-
 // The same bits: NaN matches itself, -0 does not match +0.
 ::testing::AssertionResult sameBits(float x, float y) {
   if (std::bit_cast<std::uint32_t>(x) == std::bit_cast<std::uint32_t>(y)) {
@@ -223,13 +220,13 @@ TEST(Observer, FinalRecordIsTheAnswerOnTheAdversarialCorpus) {
     for (float turn : testing::kAdversarialTurns) {
       Transform spin = makeTransform({0.0f, 0.0f}, turn);
       for (int swap = 0; swap < 2; ++swap) {
-        const AnyShape& sa = swap ? c.b : c.a;
-        const AnyShape& sb = swap ? c.a : c.b;
+        const ShapeGeometry& sa = swap ? c.b : c.a;
+        const ShapeGeometry& sb = swap ? c.a : c.b;
         Transform xa = spin * (swap ? c.xb : c.xa);
         Transform xb = spin * (swap ? c.xa : c.xb);
         SCOPED_TRACE(std::string(c.name) + " turn " + std::to_string(turn) +
                      (swap ? " swapped" : ""));
-        checkPair(sa.proxy(), xa, sb.proxy(), xb, nullptr, buffers);
+        checkPair(makeProxy(sa), xa, makeProxy(sb), xb, nullptr, buffers);
       }
     }
   }
@@ -238,16 +235,17 @@ TEST(Observer, FinalRecordIsTheAnswerOnTheAdversarialCorpus) {
 TEST(Observer, FinalRecordIsTheAnswerOnRandomPairs) {
   const unsigned seed = 777;
   std::mt19937 rng(seed);
-  const Kind kinds[4] = {Kind::circle, Kind::capsule, Kind::segment, Kind::polygon};
+  const ShapeType kinds[4] = {ShapeType::circle, ShapeType::capsule, ShapeType::segment,
+                              ShapeType::polygon};
   Buffers buffers;
   for (int k = 0; k < 2000; ++k) {
-    AnyShape sa = testing::randomShape(rng, kinds[k % 4], 1.0f);
-    AnyShape sb = testing::randomShape(rng, kinds[(k / 4) % 4], 1.0f);
+    ShapeGeometry sa = testing::randomShape(rng, kinds[k % 4], 1.0f);
+    ShapeGeometry sb = testing::randomShape(rng, kinds[(k / 4) % 4], 1.0f);
     Transform xa = testing::randomTransform(rng, 1.0f);
     Transform xb = testing::randomTransform(rng, 1.0f);
-    ShapeProxy pa = sa.proxy(), pb = sb.proxy();
+    ShapeProxy pa = makeProxy(sa), pb = makeProxy(sb);
     SCOPED_TRACE("seed " + std::to_string(seed) + " pair " + std::to_string(k) + ": " +
-                 sa.describe() + " | " + sb.describe());
+                 testing::describe(sa) + " | " + testing::describe(sb));
     checkPair(pa, xa, pb, xb, nullptr, buffers);
     // Warm-started from the simplex of a nearby pose, as the narrow phase runs it.
     GjkCache cache;

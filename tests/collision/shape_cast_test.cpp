@@ -15,9 +15,6 @@
 namespace quack {
 namespace {
 
-using testing::AnyShape;
-using testing::Kind;
-
 TEST(ShapeCast, CircleOntoCircle) {
   ShapeProxy a = makeProxy(makeCircle({}, 1.0f).value());
   ShapeProxy b = makeProxy(makeCircle({}, 0.5f).value());
@@ -105,13 +102,14 @@ TEST(ShapeCast, BadInputIsReportedNotGuessed) {
 TEST(ShapeCast, AgreesWithDenseSampling) {
   const unsigned seed = 7001;
   std::mt19937 rng(seed);
-  const Kind kinds[] = {Kind::circle, Kind::capsule, Kind::segment, Kind::polygon};
+  const ShapeType kinds[] = {ShapeType::circle, ShapeType::capsule, ShapeType::segment,
+                             ShapeType::polygon};
   constexpr int kSamples = 1000;
   int hits = 0, misses = 0, overlaps = 0;
   for (int trial = 0; trial < 400; ++trial) {
-    AnyShape sa = testing::randomShape(rng, kinds[trial % 4], 1.0f);
-    AnyShape sb = testing::randomShape(rng, kinds[(trial / 4) % 4], 1.0f);
-    ShapeProxy a = sa.proxy(), b = sb.proxy();
+    ShapeGeometry sa = testing::randomShape(rng, kinds[trial % 4], 1.0f);
+    ShapeGeometry sb = testing::randomShape(rng, kinds[(trial / 4) % 4], 1.0f);
+    ShapeProxy a = makeProxy(sa), b = makeProxy(sb);
     Transform xa = testing::randomTransform(rng, 1.0f);
     Transform xb = testing::randomTransform(rng, 4.0f);
     // Aim roughly at A most of the time, so that hits are common.
@@ -168,12 +166,13 @@ TEST(ShapeCast, AgreesWithDenseSampling) {
 TEST(ShapeCast, SwapAndRigidMotion) {
   const unsigned seed = 7002;
   std::mt19937 rng(seed);
-  const Kind kinds[] = {Kind::circle, Kind::capsule, Kind::segment, Kind::polygon};
+  const ShapeType kinds[] = {ShapeType::circle, ShapeType::capsule, ShapeType::segment,
+                             ShapeType::polygon};
   for (int trial = 0; trial < 300; ++trial) {
     SCOPED_TRACE("seed " + std::to_string(seed) + " trial " + std::to_string(trial));
-    AnyShape sa = testing::randomShape(rng, kinds[trial % 4], 1.0f);
-    AnyShape sb = testing::randomShape(rng, kinds[(trial / 4) % 4], 1.0f);
-    ShapeProxy a = sa.proxy(), b = sb.proxy();
+    ShapeGeometry sa = testing::randomShape(rng, kinds[trial % 4], 1.0f);
+    ShapeGeometry sb = testing::randomShape(rng, kinds[(trial / 4) % 4], 1.0f);
+    ShapeProxy a = makeProxy(sa), b = makeProxy(sb);
     Transform xa = testing::randomTransform(rng, 1.0f);
     Transform xb = testing::randomTransform(rng, 4.0f);
     Vec2 translation =

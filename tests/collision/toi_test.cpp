@@ -15,9 +15,6 @@
 namespace quack {
 namespace {
 
-using testing::AnyShape;
-using testing::Kind;
-
 Sweep still(Vec2 position, float angle) {
   return {{}, position, position, angle, angle};
 }
@@ -176,14 +173,15 @@ TEST(Toi, ThinFastSpinningRodNeverPassesAThinWall) {
 TEST(Toi, AgreesWithDenseSampling) {
   const unsigned seed = 7005;
   std::mt19937 rng(seed);
-  const Kind kinds[] = {Kind::circle, Kind::capsule, Kind::segment, Kind::polygon};
+  const ShapeType kinds[] = {ShapeType::circle, ShapeType::capsule, ShapeType::segment,
+                             ShapeType::polygon};
   constexpr int kSamples = 1000;
   int counts[5] = {};
   for (int trial = 0; trial < 600; ++trial) {
     SCOPED_TRACE("seed " + std::to_string(seed) + " trial " + std::to_string(trial));
-    AnyShape sa = testing::randomShape(rng, kinds[trial % 4], 1.0f);
-    AnyShape sb = testing::randomShape(rng, kinds[(trial / 4) % 4], 1.0f);
-    ShapeProxy a = sa.proxy(), b = sb.proxy();
+    ShapeGeometry sa = testing::randomShape(rng, kinds[trial % 4], 1.0f);
+    ShapeGeometry sb = testing::randomShape(rng, kinds[(trial / 4) % 4], 1.0f);
+    ShapeProxy a = makeProxy(sa), b = makeProxy(sb);
     auto randomSweep = [&](float extent) {
       Vec2 c1{testing::uniform(rng, -extent, extent), testing::uniform(rng, -extent, extent)};
       Vec2 c2{testing::uniform(rng, -extent, extent), testing::uniform(rng, -extent, extent)};
@@ -232,12 +230,13 @@ TEST(Toi, AgreesWithDenseSampling) {
 TEST(Toi, SwapAndRigidMotion) {
   const unsigned seed = 7006;
   std::mt19937 rng(seed);
-  const Kind kinds[] = {Kind::circle, Kind::capsule, Kind::segment, Kind::polygon};
+  const ShapeType kinds[] = {ShapeType::circle, ShapeType::capsule, ShapeType::segment,
+                             ShapeType::polygon};
   for (int trial = 0; trial < 300; ++trial) {
     SCOPED_TRACE("seed " + std::to_string(seed) + " trial " + std::to_string(trial));
-    AnyShape sa = testing::randomShape(rng, kinds[trial % 4], 1.0f);
-    AnyShape sb = testing::randomShape(rng, kinds[(trial / 4) % 4], 1.0f);
-    ShapeProxy a = sa.proxy(), b = sb.proxy();
+    ShapeGeometry sa = testing::randomShape(rng, kinds[trial % 4], 1.0f);
+    ShapeGeometry sb = testing::randomShape(rng, kinds[(trial / 4) % 4], 1.0f);
+    ShapeProxy a = makeProxy(sa), b = makeProxy(sb);
     Sweep sweepA = moving({0, 0}, 0.3f, {0.5f, 0.2f}, 0.3f + testing::uniform(rng, -1, 1));
     Vec2 c1{testing::uniform(rng, -6, -3), testing::uniform(rng, -2, 2)};
     Sweep sweepB =

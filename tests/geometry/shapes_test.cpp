@@ -7,6 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "quack/geometry/bounds.hpp"
+#include "quack/geometry/mass.hpp"
+#include "quack/geometry/raycast.hpp"
 #include "support/random_shapes.hpp"
 
 namespace quack {
@@ -161,6 +164,53 @@ TEST(Shapes, RandomPolygonsValidate) {
     Polygon p = testing::randomPolygon(rng, n, size, {size * 5, -size * 3});
     EXPECT_TRUE(validatePolygon(p).ok()) << validatePolygon(p).message();
   }
+}
+
+TEST(ShapeGeometry, ShapeTypeNamesTheHeldShape) {
+  EXPECT_EQ(shapeType(ShapeGeometry{makeCircle({}, 1).value()}), ShapeType::circle);
+  EXPECT_EQ(shapeType(ShapeGeometry{makeCapsule({-1, 0}, {1, 0}, 0.5f).value()}),
+            ShapeType::capsule);
+  EXPECT_EQ(shapeType(ShapeGeometry{makeSegment({-1, 0}, {1, 0}).value()}), ShapeType::segment);
+  EXPECT_EQ(shapeType(ShapeGeometry{makeBox(1, 2).value()}), ShapeType::polygon);
+}
+
+TEST(ShapeGeometry, ValidateShapeGivesTheMakeFunctionsMessages) {
+  EXPECT_TRUE(validateShape(makeCircle({}, 1).value()).ok());
+  EXPECT_TRUE(validateShape(makeBox(1, 2, {3, 4}, 0.5f, 0.1f).value()).ok());
+  const struct {
+    ShapeGeometry shape;
+    Status expected;
+  } bad[] = {
+      {Circle{{0, 0}, -1.0f}, Status{makeCircle({0, 0}, -1.0f).error()}},
+      {Capsule{{0, 0}, {0, 0}, 1.0f}, Status{makeCapsule({0, 0}, {0, 0}, 1.0f).error()}},
+      {Segment{{1, 1}, {1, 1}}, Status{makeSegment({1, 1}, {1, 1}).error()}},
+      {Polygon{}, validatePolygon(Polygon{})},
+  };
+  for (const auto& b : bad) {
+    Status s = validateShape(b.shape);
+    ASSERT_FALSE(s.ok());
+    ASSERT_FALSE(b.expected.ok());
+    EXPECT_EQ(s.message(), b.expected.message());
+  }
+}
+
+TEST(ShapeGeometry, OverloadsAgreeWithThePerShapeFunctions) {
+  const Transform xf = makeTransform({1, -2}, 0.7f);
+  const RayCastInput ray{{-5, 0.3f}, {10, 0.1f}, 1.0f};
+  auto check = [&](const auto& shape) {
+    const ShapeGeometry g = shape;
+    const Aabb a = computeAabb(g, xf), b = computeAabb(shape, xf);
+    EXPECT_EQ(a.lower, b.lower);
+    EXPECT_EQ(a.upper, b.upper);
+    EXPECT_EQ(containsPoint(g, {0.1f, 0.2f}), containsPoint(shape, Vec2{0.1f, 0.2f}));
+    EXPECT_EQ(computeMass(g, 2.0f).inertia, computeMass(shape, 2.0f).inertia);
+    EXPECT_EQ(rayCast(g, ray).fraction, rayCast(shape, ray).fraction);
+    EXPECT_EQ(rayCast(g, ray).hit, rayCast(shape, ray).hit);
+  };
+  check(makeCircle({0.5f, 0}, 1).value());
+  check(makeCapsule({-1, 0}, {1, 0.5f}, 0.25f).value());
+  check(makeSegment({-1, 0}, {1, 0.5f}).value());
+  check(makeBox(1, 0.5f, {0.2f, 0}, 0.3f, 0.05f).value());
 }
 
 }  // namespace

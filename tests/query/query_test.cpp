@@ -8,6 +8,7 @@
 #include <sstream>
 #include <streambuf>
 
+#include "quack/geometry/mass.hpp"
 #include "quack/io/shape_json.hpp"
 #include "query.hpp"
 
@@ -17,10 +18,10 @@ namespace {
 using nlohmann::json;
 
 TEST(ShapeJson, DefaultsAndErrorsNameTheField) {
-  Result<ParsedShape> c = parseShape(json::parse(R"({"type":"circle","radius":2})"), "a");
+  Result<ShapeGeometry> c = parseShape(json::parse(R"({"type":"circle","radius":2})"), "a");
   ASSERT_TRUE(c.ok());
-  EXPECT_EQ(c->circle.radius, 2.0f);
-  Result<ParsedShape> bad =
+  EXPECT_EQ(std::get<Circle>(*c).radius, 2.0f);
+  Result<ShapeGeometry> bad =
       parseShape(json::parse(R"({"type":"capsule","p1":[0,0],"p2":[1,0]})"), "b");
   ASSERT_FALSE(bad.ok());
   EXPECT_EQ(bad.error().message, "b.radius: missing");
@@ -30,9 +31,39 @@ TEST(ShapeJson, DefaultsAndErrorsNameTheField) {
   Result<Transform> badPose = parsePose(json::parse(R"({"pos":[0,0],"spin":1})"), "pa");
   ASSERT_FALSE(badPose.ok());
   EXPECT_EQ(badPose.error().message, "pa.spin: unknown key");
-  Result<ParsedShape> nan = parseShape(json::parse(R"({"type":"box","half":[1,1e300]})"), "a");
+  Result<ShapeGeometry> nan = parseShape(json::parse(R"({"type":"box","half":[1,1e300]})"), "a");
   ASSERT_FALSE(nan.ok());
   EXPECT_EQ(nan.error().message, "a.half[1]: must be finite (as a float)");
+}
+
+TEST(ShapeJson, ConcaveShapesAreReadAsPieces) {
+  const json l =
+      json::parse(R"({"type":"concave","points":[[0,0],[2,0],[2,1],[1,1],[1,2],[0,2]]})");
+  Result<ShapeGeometry> one = parseShape(l, "a");
+  ASSERT_FALSE(one.ok());
+  EXPECT_EQ(one.error().message,
+            "a.type: a concave shape is several convex pieces; read it with parseShapePieces");
+  Result<std::vector<ShapeGeometry>> pieces = parseShapePieces(l, "a");
+  ASSERT_TRUE(pieces.ok());
+  ASSERT_GE(pieces->size(), 2u);
+  float area = 0.0f;
+  for (const ShapeGeometry& g : *pieces) {
+    ASSERT_EQ(shapeType(g), ShapeType::polygon);
+    EXPECT_TRUE(validateShape(g).ok());
+    area += computeMass(g, 1.0f).area;
+  }
+  EXPECT_NEAR(area, 3.0f, 1e-5f);
+  Result<std::vector<ShapeGeometry>> box =
+      parseShapePieces(json::parse(R"({"type":"box","half":[1,2]})"), "b");
+  ASSERT_TRUE(box.ok());
+  ASSERT_EQ(box->size(), 1u);
+  EXPECT_EQ(shapeType(box->front()), ShapeType::polygon);
+  Result<std::vector<ShapeGeometry>> unknown =
+      parseShapePieces(json::parse(R"({"type":"ellipse"})"), "b");
+  ASSERT_FALSE(unknown.ok());
+  EXPECT_EQ(unknown.error().message,
+            "b.type: unknown shape type \"ellipse\" (expected circle, capsule, segment, box, "
+            "polygon, concave)");
 }
 
 TEST(Query, DistanceAnswerCarriesTheId) {

@@ -113,6 +113,12 @@ struct EpaTrace {
 /// computeDistance. No allocation (the polytope is a fixed array on the stack).
 PenetrationOutput computePenetration(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
                                      Transform worldFromB, GjkCache* cache = nullptr) noexcept;
+/// The same for shapes of any kind, through their proxies.
+inline PenetrationOutput computePenetration(const ShapeGeometry& a, Transform worldFromA,
+                                            const ShapeGeometry& b, Transform worldFromB,
+                                            GjkCache* cache = nullptr) noexcept {
+  return computePenetration(makeProxy(a), worldFromA, makeProxy(b), worldFromB, cache);
+}
 
 /// computePenetration that also records every pass of GJK into `gjkTrace` and of EPA into
 /// `epaTrace` (either may be null; see GjkTrace, EpaTrace). The answer is the same, bit for

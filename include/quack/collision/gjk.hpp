@@ -126,4 +126,15 @@ DistanceOutput computeDistance(const ShapeProxy& a, Transform worldFromA, const 
 bool testOverlap(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
                  Transform worldFromB, GjkCache* cache = nullptr) noexcept;
 
+/// The same for shapes of any kind, through their proxies.
+inline DistanceOutput computeDistance(const ShapeGeometry& a, Transform worldFromA,
+                                      const ShapeGeometry& b, Transform worldFromB,
+                                      GjkCache* cache = nullptr) noexcept {
+  return computeDistance(makeProxy(a), worldFromA, makeProxy(b), worldFromB, cache);
+}
+inline bool testOverlap(const ShapeGeometry& a, Transform worldFromA, const ShapeGeometry& b,
+                        Transform worldFromB, GjkCache* cache = nullptr) noexcept {
+  return testOverlap(makeProxy(a), worldFromA, makeProxy(b), worldFromB, cache);
+}
+
 }  // namespace quack

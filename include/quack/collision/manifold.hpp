@@ -89,29 +89,18 @@ Manifold collidePolygons(const Polygon& a, Transform worldFromA, const Polygon& 
                          Transform worldFromB,
                          float speculativeDistance = kSpeculativeDistance) noexcept;
 
-/// Any shape, by reference, for dispatch: a type tag and a pointer to the shape, which
-/// must outlive the reference.
-struct ShapeRef {
-  ShapeType type = ShapeType::circle;
-  const void* shape = nullptr;
-
-  ShapeRef() = default;
-  ShapeRef(const Circle& s) noexcept : type(ShapeType::circle), shape(&s) {}    // NOLINT
-  ShapeRef(const Capsule& s) noexcept : type(ShapeType::capsule), shape(&s) {}  // NOLINT
-  ShapeRef(const Segment& s) noexcept : type(ShapeType::segment), shape(&s) {}  // NOLINT
-  ShapeRef(const Polygon& s) noexcept : type(ShapeType::polygon), shape(&s) {}  // NOLINT
-};
-
-/// A pair routine, type-erased for the dispatch table.
-using ManifoldFn = Manifold (*)(const void* a, Transform worldFromA, const void* b,
-                                Transform worldFromB, float speculativeDistance) noexcept;
+/// A pair routine for shapes of any kind, as stored in the dispatch table. The entry for
+/// types (a, b) knows its types: it must be called with shapes of those types only.
+using ManifoldFn = Manifold (*)(const ShapeGeometry& a, Transform worldFromA,
+                                const ShapeGeometry& b, Transform worldFromB,
+                                float speculativeDistance) noexcept;
 
 /// The routine for shapes of types a and b (never null).
 ManifoldFn findManifoldFn(ShapeType a, ShapeType b) noexcept;
 
 /// Manifold of any two shapes, through the dispatch table.
-Manifold collide(ShapeRef a, Transform worldFromA, ShapeRef b, Transform worldFromB,
-                 float speculativeDistance = kSpeculativeDistance) noexcept;
+Manifold collide(const ShapeGeometry& a, Transform worldFromA, const ShapeGeometry& b,
+                 Transform worldFromB, float speculativeDistance = kSpeculativeDistance) noexcept;
 
 /// The general path: any two support proxies, through GJK (apart) or EPA (overlapping),
 /// giving at most one point (id 0). Serves shape pairs with no special routine, and checks

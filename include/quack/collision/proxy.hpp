@@ -57,6 +57,9 @@ ShapeProxy makeProxy(const Circle& circle) noexcept;
 ShapeProxy makeProxy(const Capsule& capsule) noexcept;
 ShapeProxy makeProxy(const Segment& segment) noexcept;
 ShapeProxy makeProxy(const Polygon& polygon) noexcept;
+/// The proxy of a shape of any kind; it views the polygon a polygon geometry holds, so keep
+/// `geometry` alive and unmoved while the proxy is in use.
+ShapeProxy makeProxy(const ShapeGeometry& geometry) noexcept;
 
 namespace detail {
 

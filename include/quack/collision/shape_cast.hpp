@@ -68,5 +68,11 @@ struct ShapeCastOutput {
 ShapeCastOutput castShape(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
                           Transform worldFromB, Vec2 translationB,
                           float maxFraction = 1.0f) noexcept;
+/// The same for shapes of any kind, through their proxies.
+inline ShapeCastOutput castShape(const ShapeGeometry& a, Transform worldFromA,
+                                 const ShapeGeometry& b, Transform worldFromB, Vec2 translationB,
+                                 float maxFraction = 1.0f) noexcept {
+  return castShape(makeProxy(a), worldFromA, makeProxy(b), worldFromB, translationB, maxFraction);
+}
 
 }  // namespace quack

@@ -105,6 +105,12 @@ struct ToiOutput {
 ToiOutput computeToi(const ShapeProxy& a, const Sweep& sweepA, const ShapeProxy& b,
                      const Sweep& sweepB, float tMax = 1.0f,
                      float targetSeparation = kToiTargetSeparation) noexcept;
+/// The same for shapes of any kind (in their body frames), through their proxies.
+inline ToiOutput computeToi(const ShapeGeometry& a, const Sweep& sweepA, const ShapeGeometry& b,
+                            const Sweep& sweepB, float tMax = 1.0f,
+                            float targetSeparation = kToiTargetSeparation) noexcept {
+  return computeToi(makeProxy(a), sweepA, makeProxy(b), sweepB, tMax, targetSeparation);
+}
 
 /// Checks that every number of a sweep is finite; the error names `name` and the field
 /// ("sweepA.c2.x is not finite: nan").

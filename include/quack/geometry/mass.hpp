@@ -22,5 +22,7 @@ MassProperties computeMass(const Segment& segment, float density);
 /// Exact for rounded polygons too: the core polygon, a rectangle along each edge and a
 /// circular sector at each vertex (the sectors add up to one disk).
 MassProperties computeMass(const Polygon& polygon, float density);
+/// Any shape, by its type.
+MassProperties computeMass(const ShapeGeometry& geometry, float density);
 
 }  // namespace quack

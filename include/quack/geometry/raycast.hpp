@@ -27,5 +27,6 @@ RayHit rayCast(const Circle& circle, const RayCastInput& ray) noexcept;
 RayHit rayCast(const Capsule& capsule, const RayCastInput& ray) noexcept;
 RayHit rayCast(const Segment& segment, const RayCastInput& ray) noexcept;
 RayHit rayCast(const Polygon& polygon, const RayCastInput& ray) noexcept;
+RayHit rayCast(const ShapeGeometry& geometry, const RayCastInput& ray) noexcept;
 
 }  // namespace quack

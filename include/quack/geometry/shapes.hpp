@@ -4,9 +4,11 @@
 /// Shapes are plain values in their own frame ("shape frame"); a `Transform`
 /// `worldFromShape` places them. Build them with the `make*` functions, which check every
 /// number and return an error naming what is wrong; the structs themselves do not check.
-/// To add a shape, see docs/ARCHITECTURE.md.
+/// `ShapeGeometry` is a shape of any kind; the geometry, collision and world functions that
+/// take one dispatch on its type. To add a shape, see docs/ARCHITECTURE.md.
 
 #include <span>
+#include <variant>
 
 #include "quack/core/result.hpp"
 #include "quack/geometry/hull.hpp"
@@ -72,5 +74,19 @@ Result<Polygon> makeBox(float halfWidth, float halfHeight, Vec2 center = {}, flo
 /// Checks every invariant of a `Polygon` (count, finite values, unit normals that match the
 /// edges, counter-clockwise strict convexity, centroid inside, radius >= 0).
 Status validatePolygon(const Polygon& polygon);
+
+/// A shape of any kind, shape frame. The alternatives are in ShapeType order, so
+/// `shapeType(g)` is the index of the one held.
+using ShapeGeometry = std::variant<Circle, Capsule, Segment, Polygon>;
+
+/// The type of the shape `geometry` holds.
+inline ShapeType shapeType(const ShapeGeometry& geometry) noexcept {
+  return static_cast<ShapeType>(geometry.index());
+}
+
+/// Checks a shape of any kind as the make* functions check their arguments (a polygon with
+/// validatePolygon), so a hand-built struct cannot pass a NaN, a zero radius or a concave
+/// polygon; the error is the make* function's message.
+Status validateShape(const ShapeGeometry& geometry);
 
 }  // namespace quack

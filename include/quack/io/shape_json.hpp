@@ -22,42 +22,23 @@
 #include <string>
 #include <vector>
 
-#include "quack/collision/manifold.hpp"
-#include "quack/collision/proxy.hpp"
 #include "quack/core/result.hpp"
-#include "quack/world/types.hpp"
+#include "quack/geometry/shapes.hpp"
+#include "quack/math/transform.hpp"
 
 namespace quack {
 
-/// One parsed shape of any kind, shape frame. A proxy made from it views its storage, so
-/// keep the ParsedShape alive (and unmoved) while the proxy is in use.
-struct ParsedShape {
-  ShapeType type = ShapeType::circle;
-  Circle circle;
-  Capsule capsule;
-  Segment segment;
-  Polygon polygon;  ///< for a concave shape, its first piece
-  /// A "concave" shape: `pieces` holds its convex pieces (type is polygon). Use
-  /// geometries() or proxies() to see every piece; the single-shape accessors below give
-  /// the first piece only.
-  bool concave = false;
-  std::vector<Polygon> pieces;
-
-  ShapeProxy proxy() const noexcept;
-  /// Every piece (one for a convex shape), viewing this object's storage.
-  std::vector<ShapeProxy> proxies() const;
-  /// Every piece as a world geometry (copies; one for a convex shape).
-  std::vector<ShapeGeometry> geometries() const;
-  /// The shape for the manifold dispatch table (refers to this object's storage).
-  ShapeRef ref() const noexcept;
-  /// The shape as a world geometry (a copy).
-  ShapeGeometry geometry() const;
-};
-
-/// Shape from JSON; `path` prefixes error messages ("a"). Keys in `extraKeys` are allowed
-/// beside the shape's own and left to the caller (scene files add material keys).
-Result<ParsedShape> parseShape(const nlohmann::json& j, const std::string& path,
-                               std::initializer_list<const char*> extraKeys = {});
+/// Convex shape from JSON (every type but "concave", which is refused with a message that
+/// points to parseShapePieces), shape frame; `path` prefixes error messages ("a"). Keys in
+/// `extraKeys` are allowed beside the shape's own and left to the caller (scene files add
+/// material keys).
+Result<ShapeGeometry> parseShape(const nlohmann::json& j, const std::string& path,
+                                 std::initializer_list<const char*> extraKeys = {});
+/// Shape of any type from JSON as its convex pieces, shape frame: one piece for a convex
+/// type, the pieces of decomposePolygon for "concave". Errors and `extraKeys` as parseShape.
+Result<std::vector<ShapeGeometry>> parseShapePieces(
+    const nlohmann::json& j, const std::string& path,
+    std::initializer_list<const char*> extraKeys = {});
 /// Pose from JSON as worldFromShape; `path` prefixes error messages ("pa").
 Result<Transform> parsePose(const nlohmann::json& j, const std::string& path);
 /// [x, y] with finite numbers.

@@ -53,9 +53,6 @@ struct BodyDef {
   std::uint64_t userData = 0;
 };
 
-/// The geometry of a shape, in the body frame.
-using ShapeGeometry = std::variant<Circle, Capsule, Segment, Polygon>;
-
 /// A new shape on a body.
 struct ShapeDef {
   float density = 1.0f;      ///< kg/m^2, >= 0
