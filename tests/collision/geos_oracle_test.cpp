@@ -133,8 +133,8 @@ void runCombination(ShapeType ka, ShapeType kb, unsigned seed, Stats& stats) {
     double err = std::abs(mine - core);
     stats.maxError = std::max(stats.maxError, err / s);
     ++stats.compared;
-    ASSERT_LE(err, tol) << "seed " << seed << " pair " << k << " (" << testing::toString(ka) << ", "
-                        << testing::toString(kb) << "): quack " << mine << " geos " << core
+    ASSERT_LE(err, tol) << "seed " << seed << " pair " << k << " (" << toString(ka) << ", "
+                        << toString(kb) << "): quack " << mine << " geos " << core
                         << "\n  A: " << testing::describe(sa) << " at (" << xa.p.x << "," << xa.p.y
                         << "," << xa.q.angle() << ")\n  B: " << testing::describe(sb) << " at ("
                         << xb.p.x << "," << xb.p.y << "," << xb.q.angle() << ")";
@@ -164,8 +164,8 @@ TEST_P(GeosOracle, DistanceAndOverlapAgree) {
   std::printf(
       "  %s-%s: %d pairs, max |quack - geos| / S = %.3g, overlap checked on %d, %d "
       "within tolerance of touching\n",
-      testing::toString(ka), testing::toString(kb), stats.compared, stats.maxError,
-      stats.overlapChecked, stats.touching);
+      toString(ka), toString(kb), stats.compared, stats.maxError, stats.overlapChecked,
+      stats.touching);
 }
 
 std::vector<std::pair<ShapeType, ShapeType>> allCombinations() {
@@ -180,8 +180,8 @@ std::vector<std::pair<ShapeType, ShapeType>> allCombinations() {
 
 INSTANTIATE_TEST_SUITE_P(AllKinds, GeosOracle, ::testing::ValuesIn(allCombinations()),
                          [](const auto& param) {
-                           return std::string(testing::toString(param.param.first)) + "_" +
-                                  testing::toString(param.param.second);
+                           return std::string(toString(param.param.first)) + "_" +
+                                  toString(param.param.second);
                          });
 
 }  // namespace

@@ -12,20 +12,6 @@
 
 namespace quack::testing {
 
-inline const char* toString(ShapeType type) {
-  switch (type) {
-    case ShapeType::circle:
-      return "circle";
-    case ShapeType::capsule:
-      return "capsule";
-    case ShapeType::segment:
-      return "segment";
-    case ShapeType::polygon:
-      return "polygon";
-  }
-  return "?";
-}
-
 // The shape for a failure message: its type, radius and core points.
 inline std::string describe(const ShapeGeometry& shape) {
   char buf[256];

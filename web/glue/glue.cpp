@@ -23,6 +23,7 @@
 #include "quack/collision/gjk.hpp"
 #include "quack/collision/manifold.hpp"
 #include "quack/collision/minkowski.hpp"
+#include "quack/io/shape_json.hpp"
 #include "quack/world/world.hpp"
 
 namespace quack::web {
@@ -34,100 +35,21 @@ json toJson(Vec2 v) {
   return json::array({v.x, v.y});
 }
 
-Result<Vec2> readVec(const json& j, const char* key, Vec2 fallback, bool required) {
-  if (!j.contains(key)) {
-    if (required) return fail(std::string(key) + ": missing");
-    return fallback;
-  }
-  const json& v = j.at(key);
-  if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number()) {
-    return fail(std::string(key) + ": must be [x, y]");
-  }
-  return Vec2{v[0].get<float>(), v[1].get<float>()};
-}
-
-Result<float> readNumber(const json& j, const char* key, float fallback, bool required) {
-  if (!j.contains(key)) {
-    if (required) return fail(std::string(key) + ": missing");
-    return fallback;
-  }
-  if (!j.at(key).is_number()) return fail(std::string(key) + ": must be a number");
-  return j.at(key).get<float>();
-}
-
-template <class T>
-Result<ShapeGeometry> geometryOf(Result<T> made) {
-  if (!made) return made.error();
-  return ShapeGeometry{made.value()};
-}
-
-// A shape in the JSON of DESIGN.md ("Formats"); the make* functions check the numbers.
-Result<ShapeGeometry> parseShape(const std::string& text) {
+// A shape in the JSON of DESIGN.md ("Formats"), read by the io layer's own parser (the
+// same one `quack query` and scene files use: unknown keys refused, fields named).
+Result<ShapeGeometry> readShape(const char* text) {
   json j = json::parse(text, nullptr, false);
-  if (j.is_discarded() || !j.is_object()) return fail("shape: not a JSON object");
-  if (!j.contains("type") || !j.at("type").is_string()) return fail("type: missing");
-  const std::string type = j.at("type").get<std::string>();
-  if (type == "circle") {
-    Result<Vec2> c = readVec(j, "center", {}, false);
-    Result<float> r = readNumber(j, "radius", 0.0f, true);
-    if (!c) return c.error();
-    if (!r) return r.error();
-    return geometryOf(makeCircle(*c, *r));
-  }
-  if (type == "capsule" || type == "segment") {
-    Result<Vec2> p1 = readVec(j, "p1", {}, true);
-    Result<Vec2> p2 = readVec(j, "p2", {}, true);
-    if (!p1) return p1.error();
-    if (!p2) return p2.error();
-    if (type == "segment") return geometryOf(makeSegment(*p1, *p2));
-    Result<float> r = readNumber(j, "radius", 0.0f, true);
-    if (!r) return r.error();
-    return geometryOf(makeCapsule(*p1, *p2, *r));
-  }
-  if (type == "box") {
-    Result<Vec2> half = readVec(j, "half", {}, true);
-    Result<Vec2> c = readVec(j, "center", {}, false);
-    Result<float> angle = readNumber(j, "angle", 0.0f, false);
-    Result<float> r = readNumber(j, "radius", 0.0f, false);
-    if (!half) return half.error();
-    if (!c) return c.error();
-    if (!angle) return angle.error();
-    if (!r) return r.error();
-    return geometryOf(makeBox(half->x, half->y, *c, *angle, *r));
-  }
-  if (type == "polygon") {
-    if (!j.contains("points") || !j.at("points").is_array()) return fail("points: missing");
-    std::vector<Vec2> points;
-    for (const json& p : j.at("points")) {
-      if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number()) {
-        return fail("points: each must be [x, y]");
-      }
-      points.push_back({p[0].get<float>(), p[1].get<float>()});
-    }
-    Result<float> r = readNumber(j, "radius", 0.0f, false);
-    if (!r) return r.error();
-    return geometryOf(makePolygon(points, *r));
-  }
-  return fail("type: unknown shape type \"" + type + "\"");
-}
-
-// The proxy views the geometry (for polygons): keep `geometry` alive and unmoved.
-ShapeProxy proxyOf(const ShapeGeometry& geometry) {
-  return std::visit([](const auto& shape) { return makeProxy(shape); }, geometry);
-}
-
-ShapeRef refOf(const ShapeGeometry& geometry) {
-  return std::visit([](const auto& shape) { return ShapeRef(shape); }, geometry);
+  if (j.is_discarded()) return fail("shape: not valid JSON");
+  return parseShape(j, "shape");
 }
 
 // Outline for drawing: the core points (shape frame) and the rounding radius.
 json outlineOf(const ShapeGeometry& geometry) {
-  ShapeProxy proxy = proxyOf(geometry);
+  ShapeProxy proxy = makeProxy(geometry);
   json points = json::array();
   for (int i = 0; i < proxy.count(); ++i)
     points.push_back(toJson(proxy.points()[i]));
-  static const char* const kNames[] = {"circle", "capsule", "segment", "polygon"};
-  return {{"type", kNames[geometry.index()]}, {"points", points}, {"radius", proxy.radius()}};
+  return {{"type", toString(shapeType(geometry))}, {"points", points}, {"radius", proxy.radius()}};
 }
 
 json supportJson(const SupportPoint& s, Transform worldFromA) {
@@ -259,7 +181,7 @@ extern "C" {
 /// {"ok": true, "outline": ...} or {"error": "..."} (the old shape is kept on error).
 EMSCRIPTEN_KEEPALIVE const char* qk_set_shape(int slot, const char* shapeJson) {
   if (slot < 0 || slot > 1) return errorAnswer("slot: must be 0 or 1");
-  Result<ShapeGeometry> g = parseShape(shapeJson);
+  Result<ShapeGeometry> g = readShape(shapeJson);
   if (!g) return errorAnswer(g.error().message);
   gShapes[slot] = g.value();
   return answer({{"ok", true}, {"outline", outlineOf(gShapes[slot])}});
@@ -275,15 +197,15 @@ EMSCRIPTEN_KEEPALIVE const char* qk_analyze(double ax, double ay, double aAngle,
       makeTransform({static_cast<float>(ax), static_cast<float>(ay)}, static_cast<float>(aAngle));
   Transform worldFromB =
       makeTransform({static_cast<float>(bx), static_cast<float>(by)}, static_cast<float>(bAngle));
-  ShapeProxy a = proxyOf(gShapes[0]);
-  ShapeProxy b = proxyOf(gShapes[1]);
+  ShapeProxy a = makeProxy(gShapes[0]);
+  ShapeProxy b = makeProxy(gShapes[1]);
 
   GjkTrace gjkTrace{gGjkRecords.data(), kGjkMaxTraceRecords};
   EpaTrace epaTrace{gEpaRecords.data(), kEpaMaxTraceRecords};
   DistanceOutput d = computeDistance(a, worldFromA, b, worldFromB, nullptr, gjkTrace);
   PenetrationOutput p =
       computePenetration(a, worldFromA, b, worldFromB, nullptr, nullptr, &epaTrace);
-  Manifold m = collide(refOf(gShapes[0]), worldFromA, refOf(gShapes[1]), worldFromB);
+  Manifold m = collide(gShapes[0], worldFromA, gShapes[1], worldFromB);
 
   json out;
   out["outlineA"] = outlineOf(gShapes[0]);
@@ -349,7 +271,7 @@ EMSCRIPTEN_KEEPALIVE const char* qk_world_add(const char* shapeJson, int type, d
                                               double angle, double vx, double vy,
                                               double restitution) {
   if (!gSandbox.world) return errorAnswer("no world: call qk_world_reset first");
-  Result<ShapeGeometry> g = parseShape(shapeJson);
+  Result<ShapeGeometry> g = readShape(shapeJson);
   if (!g) return errorAnswer(g.error().message);
   static const BodyType kTypes[] = {BodyType::staticBody, BodyType::kinematicBody,
                                     BodyType::dynamicBody};

@@ -84,6 +84,21 @@ inline ShapeType shapeType(const ShapeGeometry& geometry) noexcept {
   return static_cast<ShapeType>(geometry.index());
 }
 
+/// The shape kind's name as in the JSON formats: "circle", "capsule", "segment", "polygon".
+constexpr const char* toString(ShapeType type) noexcept {
+  switch (type) {
+    case ShapeType::circle:
+      return "circle";
+    case ShapeType::capsule:
+      return "capsule";
+    case ShapeType::segment:
+      return "segment";
+    case ShapeType::polygon:
+      return "polygon";
+  }
+  return "unknown";
+}
+
 /// Checks a shape of any kind as the make* functions check their arguments (a polygon with
 /// validatePolygon), so a hand-built struct cannot pass a NaN, a zero radius or a concave
 /// polygon; the error is the make* function's message.
