@@ -26,6 +26,15 @@ const char* toString(BodyType type) noexcept {
 
 namespace quack::detail {
 
+namespace {
+// Six comparisons, all false for NaN: finite, not inverted, within the broad phase's range.
+bool boxWithinWorld(const Aabb& box) {
+  return box.lower.x <= box.upper.x && box.lower.y <= box.upper.y &&
+         box.lower.x >= -kMaxCoordinate && box.lower.y >= -kMaxCoordinate &&
+         box.upper.x <= kMaxCoordinate && box.upper.y <= kMaxCoordinate;
+}
+}  // namespace
+
 std::uint32_t BodyStore::createBody(const BodyDef& def) {
   const std::uint32_t index = bodyIds.allocate();
   if (index == bodies.size()) bodies.emplace_back();
@@ -126,14 +135,29 @@ void BodyStore::updateMass(std::uint32_t index) {
 
 bool BodyStore::shapesWithinWorld(std::uint32_t body, Transform xf) const {
   for (std::uint32_t s : bodies[body].shapes) {
-    const Aabb box = computeAabb(shapes[s].geometry, xf);
-    // Six comparisons, all false for NaN: finite, not inverted, within the broad phase's range.
-    if (!(box.lower.x <= box.upper.x && box.lower.y <= box.upper.y &&
-          box.lower.x >= -kMaxCoordinate && box.lower.y >= -kMaxCoordinate &&
-          box.upper.x <= kMaxCoordinate && box.upper.y <= kMaxCoordinate)) {
-      return false;
-    }
+    if (!boxWithinWorld(computeAabb(shapes[s].geometry, xf))) return false;
   }
+  return true;
+}
+
+bool BodyStore::moveBody(BroadPhase& broadPhase, std::uint32_t body, Transform xf, Vec2 center,
+                         Vec2 displacement) {
+  Body& b = bodies[body];
+  if (b.shapes.size() == 1) {
+    const Shape& s = shapes[b.shapes[0]];
+    const Aabb box = computeAabb(s.geometry, xf);
+    if (!boxWithinWorld(box)) return false;
+    b.xf = xf;
+    b.center = center;
+    Result<bool> moved = broadPhase.moveProxy(s.proxy, box, displacement);
+    QUACK_ASSERT(moved.ok());
+    (void)moved;
+    return true;
+  }
+  if (!shapesWithinWorld(body, xf)) return false;
+  b.xf = xf;
+  b.center = center;
+  updateShapeBoxes(broadPhase, body, displacement);
   return true;
 }
 

@@ -83,6 +83,11 @@ class BodyStore {
   bool shapesWithinWorld(std::uint32_t body, Transform worldFromBody) const;
   /// Moves the body's proxies to its present pose (callers keep it within the world).
   void updateShapeBoxes(BroadPhase& broadPhase, std::uint32_t body, Vec2 displacement) const;
+  /// Puts the body at `worldFromBody` (centre of mass `center`) and moves its proxies, unless
+  /// a shape would leave the world: then nothing changes and it returns false. Each shape's
+  /// box is computed once (the step's hot path: one shape per body is the common case).
+  bool moveBody(BroadPhase& broadPhase, std::uint32_t body, Transform worldFromBody, Vec2 center,
+                Vec2 displacement);
 
  private:
   std::uint32_t worldId_;

@@ -197,7 +197,8 @@ void ContactSet::update(const WorldDef& def, const BroadPhase& broadPhase, BodyS
 
 void ContactSet::forgetPoses(const BodyStore& store, std::uint32_t body) {
   for (std::uint32_t s : store.bodies[body].shapes)
-    for (std::uint32_t c : store.shapes[s].contacts) contacts[c].recycleValid = false;
+    for (std::uint32_t c : store.shapes[s].contacts)
+      contacts[c].recycleValid = false;
 }
 
 Status ContactSet::validate(const BodyStore& store) const {

@@ -67,7 +67,8 @@ class ContactSet {
   void forgetPoses(const BodyStore& store, std::uint32_t body);
   /// Every contact computes its manifold anew in the next update.
   void forgetAllPoses() noexcept {
-    for (Contact& c : contacts) c.recycleValid = false;
+    for (Contact& c : contacts)
+      c.recycleValid = false;
   }
   /// Removes a contact (from its shapes' lists too); a touching one reports its end to
   /// `events` when `emitEnd`, reported in this step (`inStep`) or the next.

@@ -319,18 +319,14 @@ void Solver::solve(const WorldDef& worldDef, BodyStore& store, ContactSet& conta
     const Vec2 center = b.center + s.dp;
     const Rot q = normalizeRot(mulRot(s.dq, b.xf.q));
     const Transform xf{center - rotate(q, b.localCenter), q};
-    if (!store.shapesWithinWorld(i, xf)) {
+    if (!store.moveBody(broadPhase, i, xf, center, s.dp)) {
       // The edge of the world (world.hpp, kMaxCoordinate): the body stays where the step
       // began, stopped, and the game is told (StepEvents::outOfBounds).
       b.v = {};
       b.w = 0.0f;
       b.fast = false;
       events.events.outOfBounds.push_back(store.bodyId(i));
-      continue;
     }
-    b.center = center;
-    b.xf = xf;
-    store.updateShapeBoxes(broadPhase, i, s.dp);
   }
 }
 

@@ -63,14 +63,14 @@ Result<World> World::create(const WorldDef& def) {
                 std::to_string(def.timeStep));
   if (def.substeps < 1 || def.substeps > 64)
     return fail("WorldDef.substeps must be in 1..64, got " + std::to_string(def.substeps));
-  for (auto [value, name] : {std::pair{def.contactHertz, "WorldDef.contactHertz"},
-                             std::pair{def.contactDampingRatio, "WorldDef.contactDampingRatio"},
-                             std::pair{def.contactPushMaxSpeed, "WorldDef.contactPushMaxSpeed"},
-                             std::pair{def.restitutionThreshold, "WorldDef.restitutionThreshold"},
-                             std::pair{def.hitEventThreshold, "WorldDef.hitEventThreshold"},
-                             std::pair{def.speculativeDistance, "WorldDef.speculativeDistance"},
-                             std::pair{def.contactRecycleDistance,
-                                       "WorldDef.contactRecycleDistance"}}) {
+  for (auto [value, name] :
+       {std::pair{def.contactHertz, "WorldDef.contactHertz"},
+        std::pair{def.contactDampingRatio, "WorldDef.contactDampingRatio"},
+        std::pair{def.contactPushMaxSpeed, "WorldDef.contactPushMaxSpeed"},
+        std::pair{def.restitutionThreshold, "WorldDef.restitutionThreshold"},
+        std::pair{def.hitEventThreshold, "WorldDef.hitEventThreshold"},
+        std::pair{def.speculativeDistance, "WorldDef.speculativeDistance"},
+        std::pair{def.contactRecycleDistance, "WorldDef.contactRecycleDistance"}}) {
     if (Status s = checkFiniteNonNegative(value, name); !s) return fail(s.message());
   }
   if (!isFinite(def.maxRotationPerSubstep) || def.maxRotationPerSubstep <= 0.0f) {
