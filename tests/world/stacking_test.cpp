@@ -22,15 +22,15 @@ using testing::addStaticBox;
 
 // Thresholds for a column after 60 s: its top box within this of its start x, and no box
 // turned more than this.
-constexpr float kColumnDrift = 0.05f;   // metres
-constexpr float kColumnAngle = 0.02f;   // radians
-constexpr int kMinuteSteps = 60 * 60;   // 60 s at the default 60 Hz
+constexpr float kColumnDrift = 0.05f;  // metres
+constexpr float kColumnAngle = 0.02f;  // radians
+constexpr int kMinuteSteps = 60 * 60;  // 60 s at the default 60 Hz
 
 struct ColumnResult {
-  float topDrift = 0.0f;   // |x - x0| of the top box
-  float topAngle = 0.0f;   // |angle| of the top box
-  float maxAngle = 0.0f;   // largest |angle| of any box
-  float topDrop = 0.0f;    // how far the top box sank
+  float topDrift = 0.0f;  // |x - x0| of the top box
+  float topAngle = 0.0f;  // |angle| of the top box
+  float maxAngle = 0.0f;  // largest |angle| of any box
+  float topDrop = 0.0f;   // how far the top box sank
 };
 
 ColumnResult runColumn(int boxes, int steps, int substeps = 4) {
@@ -157,8 +157,8 @@ TEST(Stacking, RecycledManifoldAgreesWithAFreshOne) {
     ASSERT_TRUE(world.step().ok());
   const Polygon groundBox = makeBox(20, 0.5f).value();
   const Polygon unitBox = makeBox(0.5f, 0.5f).value();
-  const Manifold fresh = collidePolygons(groundBox, world.transform(ground), unitBox,
-                                         world.transform(box));
+  const Manifold fresh =
+      collidePolygons(groundBox, world.transform(ground), unitBox, world.transform(box));
   int views = 0;
   for (const World::ContactView& c : world.touchingContacts()) {
     ++views;
