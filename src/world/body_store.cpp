@@ -27,11 +27,10 @@ const char* toString(BodyType type) noexcept {
 namespace quack::detail {
 
 namespace {
-// Six comparisons, all false for NaN: finite, not inverted, within the broad phase's range.
+// Finite, not inverted, within the broad phase's range (every comparison is false for NaN).
 bool boxWithinWorld(const Aabb& box) {
   return box.lower.x <= box.upper.x && box.lower.y <= box.upper.y &&
-         box.lower.x >= -kMaxCoordinate && box.lower.y >= -kMaxCoordinate &&
-         box.upper.x <= kMaxCoordinate && box.upper.y <= kMaxCoordinate;
+         withinCoordinateLimit(box.lower) && withinCoordinateLimit(box.upper);
 }
 }  // namespace
 

@@ -33,10 +33,6 @@ std::string describe(Vec2 v) {
   return "(" + std::to_string(v.x) + ", " + std::to_string(v.y) + ")";
 }
 
-bool withinWorld(Vec2 p) {
-  return absf(p.x) <= kMaxCoordinate && absf(p.y) <= kMaxCoordinate;
-}
-
 // World ids: unique in the process, never 0 (the null handle's), so a handle from one world
 // is refused by every other.
 std::uint32_t nextWorldId() {
@@ -158,7 +154,7 @@ Status World::checkShape(ShapeId id, const char* function) const {
 Result<BodyId> World::createBody(const BodyDef& def) {
   if (s_->inStep && !s_->inCallbacks) return fail("createBody: called during step");
   if (!isFinite(def.position)) return fail("createBody: BodyDef.position is not finite");
-  if (!withinWorld(def.position))
+  if (!withinCoordinateLimit(def.position))
     return fail("createBody: BodyDef.position " + describe(def.position) +
                 " lies beyond kMaxCoordinate (1e9 m) from the origin");
   if (!isFinite(def.angle)) return fail("createBody: BodyDef.angle is not finite");
@@ -449,15 +445,15 @@ Status World::setTransform(BodyId id, Vec2 position, float angle) {
   if (!isFinite(position) || !isFinite(angle))
     return fail("setTransform: position and angle must be finite");
   const Transform xf = makeTransform(position, angle);
-  if (!withinWorld(position) || !s_->store.shapesWithinWorld(id.index, xf))
+  Body& b = s_->store.bodies[id.index];
+  // moveBody checks every shape against the edge of the world and moves nothing if one
+  // would leave it.
+  if (!withinCoordinateLimit(position) ||
+      !s_->store.moveBody(s_->broadPhase, id.index, xf, transformPoint(xf, b.localCenter), Vec2{}))
     return fail("setTransform: position " + describe(position) +
                 " would put the body beyond kMaxCoordinate (1e9 m) from the origin");
-  Body& b = s_->store.bodies[id.index];
-  b.xf = xf;
-  b.center = transformPoint(b.xf, b.localCenter);
   if (b.type == BodyType::staticBody) s_->edges.markDirty();
   s_->contacts.forgetPoses(s_->store, id.index);
-  s_->store.updateShapeBoxes(s_->broadPhase, id.index, Vec2{});
   return {};
 }
 
@@ -487,7 +483,7 @@ Status World::applyLinearImpulse(BodyId id, Vec2 impulse, Vec2 point) {
   if (Status s = checkBody(id, "applyLinearImpulse"); !s) return s;
   if (!isFinite(impulse) || !isFinite(point))
     return fail("applyLinearImpulse: impulse and point must be finite");
-  if (!withinWorld(point))
+  if (!withinCoordinateLimit(point))
     return fail("applyLinearImpulse: point " + describe(point) +
                 " lies beyond kMaxCoordinate (1e9 m) from the origin");
   Body& b = s_->store.bodies[id.index];
@@ -524,7 +520,7 @@ Status World::applyForce(BodyId id, Vec2 force, Vec2 point) {
   if (Status s = checkBody(id, "applyForce"); !s) return s;
   if (!isFinite(force) || !isFinite(point))
     return fail("applyForce: force and point must be finite");
-  if (!withinWorld(point))
+  if (!withinCoordinateLimit(point))
     return fail("applyForce: point " + describe(point) +
                 " lies beyond kMaxCoordinate (1e9 m) from the origin");
   Body& b = s_->store.bodies[id.index];
