@@ -31,6 +31,11 @@ function(quack_add_layer name)
     set(scope PUBLIC)
     set_target_properties(${target} PROPERTIES OUTPUT_NAME quack_${name} POSITION_INDEPENDENT_CODE ON)
     quack_set_warnings(${target})
+    if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
+      # Determinism (docs/world.md): no fused multiply-add contracted behind our back, so
+      # that every build (and every SIMD path) rounds the same operations the same way.
+      target_compile_options(${target} PRIVATE -ffp-contract=off)
+    endif()
   else()
     # A header-only layer; the tests compile its headers with the warnings on.
     add_library(${target} INTERFACE)

@@ -7,10 +7,13 @@
 
 #include "solver.hpp"
 
+#include <vector>
+
 #include "body_store.hpp"
 #include "contact_set.hpp"
 #include "event_dispatcher.hpp"
 #include "quack/world/world.hpp"
+#include "simd.hpp"
 
 namespace quack::detail {
 namespace {
@@ -42,9 +45,75 @@ Rot integrateRotation(Rot q, float deltaAngle) {
   return {r.c * inv, r.s * inv};
 }
 
-// One pass over the contact constraints. Velocities are copied into locals and written
-// back once per constraint, so the compiler need not assume every impulse aliases them.
-// (Templated on the world's private record types, which it deduces.)
+// ---- the constraints, a block of lanes at a time -----------------------------------------
+//
+// A block holds F::width contact constraints side by side, each field an array with one
+// entry per lane (structure of arrays), so a lane's constraint is solved with the same
+// operations as every other lane's. Empty lanes have zero masses and read the resting
+// body in slot 0; they change nothing and write nothing. A manifold with one point has a
+// second point of zero mass, which gives zero impulses.
+template <class F>
+struct alignas(F::width * sizeof(float)) ContactBlock {
+  static constexpr int W = F::width;
+  struct Point {
+    float rAx[W], rAy[W], rBx[W], rBy[W];  // anchors from each centre of mass, world axes
+    float baseSeparation[W];               // separation minus the anchors' offset along the normal
+    float normalImpulse[W], tangentImpulse[W], maxNormalImpulse[W];
+    float normalMass[W], tangentMass[W];
+    float relativeVelocity[W];  // normal velocity before the step (for restitution)
+  };
+  Point points[kMaxManifoldPoints];
+  float nx[W], ny[W], friction[W], restitution[W];
+  float biasRate[W], massScale[W], impulseScale[W];
+  float mA[W], iA[W], mB[W], iB[W];
+  std::int32_t slotA[W], slotB[W];       // slots of the solver's body states; 0 = at rest
+  std::uint32_t writeA = 0, writeB = 0;  // lanes whose body is dynamic (bit per lane)
+};
+
+template <class F>
+F ld(const float* p) {
+  return load(p, F{});
+}
+template <class F>
+F sp(float x) {
+  return splat(x, F{});
+}
+
+template <class F>
+void applyImpulse(BodyLanes<F>& A, BodyLanes<F>& B, F mA, F iA, F mB, F iB, F rAx, F rAy, F rBx,
+                  F rBy, F Px, F Py) {
+  A.vx = A.vx - mA * Px;
+  A.vy = A.vy - mA * Py;
+  A.w = A.w - iA * (rAx * Py - rAy * Px);
+  B.vx = B.vx + mB * Px;
+  B.vy = B.vy + mB * Py;
+  B.w = B.w + iB * (rBx * Py - rBy * Px);
+}
+
+// Warm start: the accumulated impulses of the last step, applied again.
+template <class F>
+[[gnu::noinline]] void warmStart(ContactBlock<F>* blocks, std::size_t count, BodyState* states) {
+  for (std::size_t bi = 0; bi < count; ++bi) {
+    ContactBlock<F>& b = blocks[bi];
+    BodyLanes<F> A = gather(states, b.slotA, F{});
+    BodyLanes<F> B = gather(states, b.slotB, F{});
+    const F mA = ld<F>(b.mA), iA = ld<F>(b.iA), mB = ld<F>(b.mB), iB = ld<F>(b.iB);
+    const F nx = ld<F>(b.nx), ny = ld<F>(b.ny);
+    for (auto& p : b.points) {
+      const F ni = ld<F>(p.normalImpulse), ti = ld<F>(p.tangentImpulse);
+      // P = ni n + ti t, t = rightPerp(n) = (ny, -nx)
+      const F Px = ni * nx + ti * ny;
+      const F Py = ni * ny - ti * nx;
+      applyImpulse(A, B, mA, iA, mB, iB, ld<F>(p.rAx), ld<F>(p.rAy), ld<F>(p.rBx), ld<F>(p.rBy), Px,
+                   Py);
+    }
+    scatter(states, b.slotA, b.writeA, A);
+    scatter(states, b.slotB, b.writeB, B);
+  }
+}
+
+// One pass over the constraints: normal impulses (soft, or rigid in the relax pass), then
+// friction.
 //
 // The normal impulses of a manifold's points are solved one after the other, and whichever
 // goes first takes more of the load in that pass: a box resting flat on another gets a
@@ -52,240 +121,400 @@ Rot integrateRotation(Rot q, float deltaAngle) {
 // column turns that steady nudge into a lean (docs/world.md, "What made columns drift").
 // `lastFirst` solves the points in the opposite order; the solver alternates it between
 // sub-steps and between the solve and the relax pass, so the nudges cancel.
-template <class Constraint, class Body>
-void solveContacts(Constraint* constraints, std::size_t count, Body* bodies, float invH,
-                   float pushMax, bool useBias, bool lastFirst) {
-  for (std::size_t ci = 0; ci < count; ++ci) {
-    Constraint& k = constraints[ci];
-    Body& A = bodies[k.bodyA];
-    Body& B = bodies[k.bodyB];
-    const float mA = A.invMass, iA = A.invInertia, mB = B.invMass, iB = B.invInertia;
-    Vec2 vA = A.v, vB = B.v;
-    float wA = A.w, wB = B.w;
-    const Vec2 dp = B.dp - A.dp;
-    const Rot qA = A.dq, qB = B.dq;
-    const Vec2 n = k.normal;
-    const Vec2 t = rightPerp(n);
-    const int pointCount = k.pointCount;
-    for (int i = 0; i < pointCount; ++i) {
-      const int j = lastFirst ? pointCount - 1 - i : i;
-      auto& p = k.points[j];
-      // Current separation from the bodies' motion since the step began.
-      const Vec2 d = dp + (rotate(qB, p.rB) - rotate(qA, p.rA));
-      const float s = dot(d, n) + p.baseSeparation;
-      float bias = 0.0f, massScale = 1.0f, impulseScale = 0.0f;
-      if (s > 0.0f) {
-        bias = s * invH;  // speculative: close the gap, no further
-      } else if (useBias) {
-        bias = maxf(k.softness.biasRate * s, -pushMax);
-        massScale = k.softness.massScale;
-        impulseScale = k.softness.impulseScale;
-      }
-      const Vec2 dv = vB + cross(wB, p.rB) - vA - cross(wA, p.rA);
-      const float vn = dot(dv, n);
-      float impulse = -p.normalMass * massScale * (vn + bias) - impulseScale * p.normalImpulse;
-      const float total = maxf(p.normalImpulse + impulse, 0.0f);
-      impulse = total - p.normalImpulse;
-      p.normalImpulse = total;
-      p.maxNormalImpulse = maxf(p.maxNormalImpulse, impulse);
-      const Vec2 P = impulse * n;
-      vA -= mA * P;
-      wA -= iA * cross(p.rA, P);
-      vB += mB * P;
-      wB += iB * cross(p.rB, P);
+// The normal impulse at one point of each lane's manifold. `useBias`: the soft push (the
+// solve pass) or none (the relax pass).
+template <bool useBias, class F>
+[[gnu::always_inline]] inline void solveNormalPoint(typename ContactBlock<F>::Point& p,
+                                                    BodyLanes<F>& A, BodyLanes<F>& B, F mA, F iA,
+                                                    F mB, F iB, F nx, F ny, F dpx, F dpy,
+                                                    F biasRate, F softMass, F softImpulse, F invH,
+                                                    F minBias) {
+  const F zero = sp<F>(0.0f);
+  const F rAx = ld<F>(p.rAx), rAy = ld<F>(p.rAy), rBx = ld<F>(p.rBx), rBy = ld<F>(p.rBy);
+  // Current separation from the bodies' motion since the step began.
+  const F prAx = A.qc * rAx - A.qs * rAy, prAy = A.qs * rAx + A.qc * rAy;
+  const F prBx = B.qc * rBx - B.qs * rBy, prBy = B.qs * rBx + B.qc * rBy;
+  const F dx = dpx + (prBx - prAx), dy = dpy + (prBy - prAy);
+  const F s = (dx * nx + dy * ny) + ld<F>(p.baseSeparation);
+  // Apart: speculative, close the gap and no further. Overlapping: the soft push, limited
+  // to pushMax (nothing in the relax pass).
+  const auto apart = greater(s, zero);
+  F bias, massScale, impulseScale;
+  if constexpr (useBias) {
+    bias = select(apart, s * invH, maxW(biasRate * s, minBias));
+    massScale = select(apart, sp<F>(1.0f), softMass);
+    impulseScale = select(apart, zero, softImpulse);
+  } else {
+    bias = select(apart, s * invH, zero);
+    massScale = sp<F>(1.0f);
+    impulseScale = zero;
+  }
+  const F dvx = (B.vx - B.w * rBy) - (A.vx - A.w * rAy);
+  const F dvy = (B.vy + B.w * rBx) - (A.vy + A.w * rAx);
+  const F vn = dvx * nx + dvy * ny;
+  const F ni = ld<F>(p.normalImpulse);
+  F impulse = (zero - ld<F>(p.normalMass) * massScale * (vn + bias)) - impulseScale * ni;
+  const F total = maxW(ni + impulse, zero);
+  impulse = total - ni;
+  store(p.normalImpulse, total);
+  store(p.maxNormalImpulse, maxW(ld<F>(p.maxNormalImpulse), impulse));
+  applyImpulse(A, B, mA, iA, mB, iB, rAx, rAy, rBx, rBy, impulse * nx, impulse * ny);
+}
+
+// One pass over the constraints: normal impulses (soft, or rigid in the relax pass), then
+// friction.
+//
+// The normal impulses of a manifold's points are solved one after the other, and whichever
+// goes first takes more of the load in that pass: a box resting flat on another gets a
+// little more push under one corner than the other, the same corner every sub-step, and a
+// column turns that steady nudge into a lean (docs/world.md, "What made columns drift").
+// `lastFirst` solves the points in the opposite order; the solver alternates it between
+// sub-steps and between the solve and the relax pass, so the nudges cancel.
+template <bool useBias, class F>
+[[gnu::noinline]] void solveContacts(ContactBlock<F>* blocks, std::size_t count, BodyState* states,
+                                     float invH, float pushMax, bool lastFirst) {
+  const F zero = sp<F>(0.0f), one = sp<F>(1.0f), invHW = sp<F>(invH);
+  const F minBias = sp<F>(-pushMax);
+  for (std::size_t bi = 0; bi < count; ++bi) {
+    ContactBlock<F>& b = blocks[bi];
+    BodyLanes<F> A = gather(states, b.slotA, F{});
+    BodyLanes<F> B = gather(states, b.slotB, F{});
+    const F mA = ld<F>(b.mA), iA = ld<F>(b.iA), mB = ld<F>(b.mB), iB = ld<F>(b.iB);
+    const F nx = ld<F>(b.nx), ny = ld<F>(b.ny);
+    const F dpx = B.dpx - A.dpx, dpy = B.dpy - A.dpy;
+    F biasRate = zero, softMass = one, softImpulse = zero;
+    if constexpr (useBias) {
+      biasRate = ld<F>(b.biasRate);
+      softMass = ld<F>(b.massScale);
+      softImpulse = ld<F>(b.impulseScale);
     }
-    for (int j = 0; j < pointCount; ++j) {
-      auto& p = k.points[j];
-      const Vec2 dv = vB + cross(wB, p.rB) - vA - cross(wA, p.rA);
-      float impulse = -p.tangentMass * dot(dv, t);
-      const float limit = k.friction * p.normalImpulse;
-      const float total = clampf(p.tangentImpulse + impulse, -limit, limit);
-      impulse = total - p.tangentImpulse;
-      p.tangentImpulse = total;
-      const Vec2 P = impulse * t;
-      vA -= mA * P;
-      wA -= iA * cross(p.rA, P);
-      vB += mB * P;
-      wB += iB * cross(p.rB, P);
+    const int first = lastFirst ? 1 : 0;
+    solveNormalPoint<useBias, F>(b.points[first], A, B, mA, iA, mB, iB, nx, ny, dpx, dpy, biasRate,
+                                 softMass, softImpulse, invHW, minBias);
+    solveNormalPoint<useBias, F>(b.points[1 - first], A, B, mA, iA, mB, iB, nx, ny, dpx, dpy,
+                                 biasRate, softMass, softImpulse, invHW, minBias);
+    const F friction = ld<F>(b.friction);
+    for (auto& p : b.points) {
+      const F rAx = ld<F>(p.rAx), rAy = ld<F>(p.rAy), rBx = ld<F>(p.rBx), rBy = ld<F>(p.rBy);
+      const F dvx = (B.vx - B.w * rBy) - (A.vx - A.w * rAy);
+      const F dvy = (B.vy + B.w * rBx) - (A.vy + A.w * rAx);
+      const F vt = dvx * ny - dvy * nx;  // along t = (ny, -nx)
+      const F ti = ld<F>(p.tangentImpulse);
+      const F limit = friction * ld<F>(p.normalImpulse);
+      const F total = maxW(minW(ti - ld<F>(p.tangentMass) * vt, limit), zero - limit);
+      const F impulse = total - ti;
+      store(p.tangentImpulse, total);
+      applyImpulse(A, B, mA, iA, mB, iB, rAx, rAy, rBx, rBy, impulse * ny, zero - impulse * nx);
     }
-    A.v = vA;
-    A.w = wA;
-    B.v = vB;
-    B.w = wB;
+    scatter(states, b.slotA, b.writeA, A);
+    scatter(states, b.slotB, b.writeB, B);
   }
 }
 
+// Restitution: for points that approached faster than the threshold and were pushed, aim
+// the normal velocity at -e times the approach velocity. Lanes without it are left exactly
+// as they were (selects, not zero impulses), so skipping a block that has none is safe.
+template <class F>
+[[gnu::noinline]] void applyRestitution(ContactBlock<F>* blocks, std::size_t count,
+                                        BodyState* states, float threshold) {
+  const F zero = sp<F>(0.0f), minusThreshold = sp<F>(-threshold);
+  for (std::size_t bi = 0; bi < count; ++bi) {
+    ContactBlock<F>& b = blocks[bi];
+    const F e = ld<F>(b.restitution);
+    const auto bouncy = greater(e, zero);
+    auto wants = [&](const typename ContactBlock<F>::Point& p) {
+      return bouncy & greater(minusThreshold, ld<F>(p.relativeVelocity)) &
+             greater(ld<F>(p.maxNormalImpulse), zero);
+    };
+    const auto want0 = wants(b.points[0]), want1 = wants(b.points[1]);
+    if (!any(want0) && !any(want1)) continue;
+    BodyLanes<F> A = gather(states, b.slotA, F{});
+    BodyLanes<F> B = gather(states, b.slotB, F{});
+    const F mA = ld<F>(b.mA), iA = ld<F>(b.iA), mB = ld<F>(b.mB), iB = ld<F>(b.iB);
+    const F nx = ld<F>(b.nx), ny = ld<F>(b.ny);
+    for (int j = 0; j < kMaxManifoldPoints; ++j) {
+      auto& p = b.points[j];
+      const auto want = j == 0 ? want0 : want1;
+      const F rAx = ld<F>(p.rAx), rAy = ld<F>(p.rAy), rBx = ld<F>(p.rBx), rBy = ld<F>(p.rBy);
+      const F dvx = (B.vx - B.w * rBy) - (A.vx - A.w * rAy);
+      const F dvy = (B.vy + B.w * rBx) - (A.vy + A.w * rAx);
+      const F vn = dvx * nx + dvy * ny;
+      const F ni = ld<F>(p.normalImpulse);
+      F impulse = zero - ld<F>(p.normalMass) * (vn + e * ld<F>(p.relativeVelocity));
+      const F total = maxW(ni + impulse, zero);
+      impulse = total - ni;
+      store(p.normalImpulse, select(want, total, ni));
+      const F maxNi = ld<F>(p.maxNormalImpulse);
+      store(p.maxNormalImpulse, select(want, maxW(maxNi, impulse), maxNi));
+      BodyLanes<F> A2 = A, B2 = B;
+      applyImpulse(A2, B2, mA, iA, mB, iB, rAx, rAy, rBx, rBy, impulse * nx, impulse * ny);
+      A.vx = select(want, A2.vx, A.vx);
+      A.vy = select(want, A2.vy, A.vy);
+      A.w = select(want, A2.w, A.w);
+      B.vx = select(want, B2.vx, B.vx);
+      B.vy = select(want, B2.vy, B.vy);
+      B.w = select(want, B2.w, B.w);
+    }
+    scatter(states, b.slotA, b.writeA, A);
+    scatter(states, b.slotB, b.writeB, B);
+  }
+}
+
+// Colours (Box2D v3's constraint graph, read for understanding): no two constraints of a
+// colour share a dynamic body, so a colour's constraints can be solved side by side in
+// lanes (and, later, on several threads) with the result of solving them one by one.
+// Static and kinematic bodies do not count: the solver never writes them. 24 colours hold
+// any pile of boxes (a box touches at most eight others); constraints of a body with more
+// contacts than that go to the overflow set, solved one constraint per block, in order.
+constexpr int kColors = 24;
+constexpr int kOverflow = kColors;
+
 }  // namespace
 
-void Solver::solve(const WorldDef& worldDef, BodyStore& store, ContactSet& contactSet,
-                   BroadPhase& broadPhase, EventDispatcher& events, float dt, int substeps) {
-  std::vector<Body>& bodies = store.bodies;
-  const std::vector<Shape>& shapes = store.shapes;
-  const std::vector<Contact>& contacts = contactSet.contacts;
-  const WorldDef& def = worldDef;
-  const float h = dt / static_cast<float>(substeps);
-  const float invH = 1.0f / h;
-  // Contacts stiffer than a quarter of the sub-step rate are not resolved by the sub-step.
-  const float hertz = minf(def.contactHertz, 0.25f * invH);
-  const Softness soft = makeSoftness(hertz, def.contactDampingRatio, h);
-  // Against static (and kinematic) bodies there is only one body to move: twice as stiff.
-  const Softness staticSoft = makeSoftness(2.0f * hertz, def.contactDampingRatio, h);
-  const float pushMax = def.contactPushMaxSpeed;
+// The per-step arrays, kept between steps so that a step allocates nothing once warm.
+// What integrating a body's velocity needs, per sub-step, worked out once per step.
+struct SlotSim {
+  Vec2 gravityDv, forceDv;                          // h g gravityScale; h F / m
+  float torqueDw = 0.0f;                            // h T / I
+  float linearScale = 1.0f, angularDivisor = 1.0f;  // 1 / (1 + h c), 1 + h c
+  bool dynamic = false, forced = false, torqued = false;
+};
 
-  std::vector<SolverBody>& sb = solverBodies_;
-  sb.assign(bodies.size(), SolverBody{});
-  for (std::uint32_t i = 0; i < bodies.size(); ++i) {
-    const Body& b = bodies[i];
-    if (!store.bodyAlive(i)) continue;
-    SolverBody& s = sb[i];
-    s.v = b.v;
-    // A dynamic body without rotational inertia (zero density, or segments only) does not
-    // turn, whatever spin it was given.
-    s.w = (b.type == BodyType::dynamicBody && b.invInertia == 0.0f) ? 0.0f : b.w;
-    s.invMass = b.invMass;
-    s.invInertia = b.invInertia;
-  }
-
-  // Prepare the constraints of touching contacts (a dynamic body in every one).
-  constraints_.clear();
-  for (std::uint32_t ci = 0; ci < contacts.size(); ++ci) {
-    const Contact& c = contacts[ci];
-    if (!c.alive || !c.touching || c.sensor) continue;
-    ContactConstraint k;
-    k.contact = ci;
-    k.bodyA = shapes[c.shapeA].body;
-    k.bodyB = shapes[c.shapeB].body;
-    k.normal = c.manifold.normal;
-    k.friction = c.friction;
-    k.restitution = c.restitution;
-    const SolverBody& A = sb[k.bodyA];
-    const SolverBody& B = sb[k.bodyB];
-    k.softness = (A.invMass == 0.0f || B.invMass == 0.0f) ? staticSoft : soft;
-    k.pointCount = c.manifold.pointCount;
-    const Vec2 cA = bodies[k.bodyA].center;
-    const Vec2 cB = bodies[k.bodyB].center;
-    const Vec2 n = k.normal;
-    const Vec2 t = rightPerp(n);
-    for (int j = 0; j < k.pointCount; ++j) {
-      const ManifoldPoint& mp = c.manifold.points[j];
-      ContactConstraint::Point& p = k.points[j];
-      if (c.recycled) {
-        // A recycled manifold (contact_set.cpp, recycle): the arms from each centre of mass
-        // to the point as they were when the manifold was computed, not turned with the
-        // bodies since. Box2D v3 does the same (its anchors stay as computed while a
-        // contact is recycled; physics_world.c and contact_solver.c, read for
-        // understanding). Arms that turn with the bodies while the normal stays put let a
-        // column's tilt move its contact forces the way that tilts it further: columns of
-        // 15 boxes or more toppled so (docs/world.md, "What made columns drift").
-        p.rA = rotate(c.cachedA.q, c.localA[j] - bodies[k.bodyA].localCenter);
-        p.rB = rotate(c.cachedB.q, c.localB[j] - bodies[k.bodyB].localCenter);
-      } else {
-        p.rA = mp.point - cA;
-        p.rB = mp.point - cB;
-      }
-      p.baseSeparation = mp.separation - dot(p.rB - p.rA, n);
-      p.normalImpulse = c.normalImpulse[j];
-      p.tangentImpulse = c.tangentImpulse[j];
-      p.maxNormalImpulse = 0.0f;
-      float rnA = cross(p.rA, n), rnB = cross(p.rB, n);
-      float kn = A.invMass + B.invMass + A.invInertia * rnA * rnA + B.invInertia * rnB * rnB;
-      p.normalMass = kn > 0.0f ? 1.0f / kn : 0.0f;
-      float rtA = cross(p.rA, t), rtB = cross(p.rB, t);
-      float kt = A.invMass + B.invMass + A.invInertia * rtA * rtA + B.invInertia * rtB * rtB;
-      p.tangentMass = kt > 0.0f ? 1.0f / kt : 0.0f;
-      Vec2 dv = B.v + cross(B.w, p.rB) - A.v - cross(A.w, p.rA);
-      p.relativeVelocity = dot(n, dv);
-    }
-    constraints_.push_back(k);
-  }
-
-  auto applyImpulse = [](SolverBody& A, SolverBody& B, Vec2 rA, Vec2 rB, Vec2 P) {
-    A.v -= A.invMass * P;
-    A.w -= A.invInertia * cross(rA, P);
-    B.v += B.invMass * P;
-    B.w += B.invInertia * cross(rB, P);
+struct SolverScratch {
+  std::vector<BodyState> states;        // by slot; slot 0 is at rest
+  std::vector<SlotSim> sims;            // by slot
+  std::vector<float> turned;            // by slot: rotation this step as an angle, radians
+  std::vector<std::uint32_t> slotBody;  // slot -> body index
+  std::vector<std::int32_t> bodySlot;   // body index -> slot (0: static or dead)
+  std::vector<std::uint32_t> touching;  // touching contacts, in index order
+  struct Pair {
+    std::uint32_t bodyA, bodyB;  // body indices
+    std::int32_t slotA, slotB;   // their slots
+    bool dynamicA, dynamicB;
   };
+  std::vector<Pair> pairs;               // per touching contact
+  std::vector<std::uint32_t> lane;       // per touching contact: block * width + lane
+  std::vector<std::uint8_t> color;       // per touching contact: colour, or kOverflow
+  std::vector<std::uint64_t> colorBits;  // kColors bitsets of slots
+  std::vector<ContactBlock<FloatW>> wide;
+  std::vector<ContactBlock<FloatS>> narrow;
+};
 
-  const float maxRotation = def.maxRotationPerSubstep;
-  for (int stepIndex = 0; stepIndex < substeps; ++stepIndex) {
-    // Integrate velocities: gravity and damping (implicit, so any damping is stable).
-    for (std::uint32_t i = 0; i < bodies.size(); ++i) {
-      const Body& b = bodies[i];
-      if (!store.bodyAlive(i) || b.type != BodyType::dynamicBody) continue;
-      SolverBody& s = sb[i];
-      Vec2 v = s.v + (h * b.gravityScale) * def.gravity;
-      float w = s.w;
-      // Applied forces (applyForce, applyTorque); a branch, so that a body without them
-      // gives the same bits as before forces existed.
-      if (b.force.x != 0.0f || b.force.y != 0.0f) v += (h * b.invMass) * b.force;
-      if (b.torque != 0.0f) w += h * b.invInertia * b.torque;
-      s.v = (1.0f / (1.0f + h * b.linearDamping)) * v;
-      s.w = w / (1.0f + h * b.angularDamping);
-      // Speed limits (world.hpp): keep speed * dt and every impulse finite.
-      s.v = clampSpeed(s.v);
-      s.w = clampf(s.w, -kMaxAngularSpeed, kMaxAngularSpeed);
-    }
-    // Warm start with the accumulated impulses.
-    for (const ContactConstraint& k : constraints_) {
-      SolverBody& A = sb[k.bodyA];
-      SolverBody& B = sb[k.bodyB];
-      const Vec2 t = rightPerp(k.normal);
-      for (int j = 0; j < k.pointCount; ++j) {
-        const ContactConstraint::Point& p = k.points[j];
-        applyImpulse(A, B, p.rA, p.rB, p.normalImpulse * k.normal + p.tangentImpulse * t);
+namespace {
+
+struct StepParams {
+  float h, invH, pushMax, restitutionThreshold;
+  Softness soft, staticSoft;
+};
+
+// Colours the touching contacts and lays them out in blocks: the overflow set first (one
+// constraint per block), then each colour's constraints in contact order, `width` to a
+// block. Returns the block count; `colorStart[c]` is colour c's first block.
+template <class F>
+[[gnu::noinline]] std::size_t layoutBlocks(SolverScratch& s, std::vector<ContactBlock<F>>& blocks,
+                                           std::size_t* colorStart, Solver::Stats& stats) {
+  constexpr int W = F::width;
+  const std::size_t words = (s.states.size() + 63) / 64;
+  s.colorBits.assign(static_cast<std::size_t>(kColors) * words, 0);
+  std::size_t perColor[kColors + 1] = {};
+  s.color.resize(s.touching.size());
+  auto taken = [&](int c, std::int32_t slot) {
+    return (s.colorBits[c * words + (slot >> 6)] >> (slot & 63)) & 1u;
+  };
+  auto take = [&](int c, std::int32_t slot) {
+    s.colorBits[c * words + (slot >> 6)] |= std::uint64_t{1} << (slot & 63);
+  };
+  for (std::size_t k = 0; k < s.touching.size(); ++k) {
+    const SolverScratch::Pair& pair = s.pairs[k];
+    const bool dynA = pair.dynamicA, dynB = pair.dynamicB;
+    const std::int32_t sa = pair.slotA, sb = pair.slotB;
+    int color = kOverflow;
+    if (!dynA && !dynB) {
+      color = 0;  // not made by the world (a dynamic body is in every contact); harmless
+    } else if (dynA && dynB) {
+      for (int ci = 0; ci < kColors; ++ci) {
+        if (!taken(ci, sa) && !taken(ci, sb)) {
+          take(ci, sa);
+          take(ci, sb);
+          color = ci;
+          break;
+        }
+      }
+    } else {
+      const std::int32_t d = dynA ? sa : sb;
+      for (int ci = 1; ci < kColors; ++ci) {
+        if (!taken(ci, d)) {
+          take(ci, d);
+          color = ci;
+          break;
+        }
       }
     }
-    solveContacts(constraints_.data(), constraints_.size(), sb.data(), invH, pushMax, true,
-                  (stepIndex & 1) != 0);
-    // Integrate positions.
-    for (std::uint32_t i = 0; i < bodies.size(); ++i) {
-      const Body& b = bodies[i];
-      if (!store.bodyAlive(i) || b.type == BodyType::staticBody) continue;
-      SolverBody& s = sb[i];
-      if (absf(h * s.w) > maxRotation) s.w = (s.w > 0.0f ? maxRotation : -maxRotation) * invH;
-      s.dq = integrateRotation(s.dq, h * s.w);
-      // integrateRotation turns by atan(h w), not h w; below 0.01 rad the two differ by
-      // under 4e-7 rad, so the arctangent is only paid for fast spinners.
-      const float turn = h * s.w;
-      s.da += absf(turn) < 0.01f ? turn : std::atan(turn);
-      s.dp += h * s.v;
-    }
-    // Relax: remove the velocity the soft push added, so it does not become bounce.
-    solveContacts(constraints_.data(), constraints_.size(), sb.data(), invH, pushMax, false,
-                  (stepIndex & 1) == 0);
+    s.color[k] = static_cast<std::uint8_t>(color);
+    ++perColor[color];
   }
-
-  // Restitution: for points that approached faster than the threshold, aim the normal
-  // velocity at -e times the approach velocity.
-  const float threshold = def.restitutionThreshold;
-  for (ContactConstraint& k : constraints_) {
-    if (k.restitution == 0.0f) continue;
-    SolverBody& A = sb[k.bodyA];
-    SolverBody& B = sb[k.bodyB];
-    for (int j = 0; j < k.pointCount; ++j) {
-      ContactConstraint::Point& p = k.points[j];
-      if (p.relativeVelocity > -threshold || p.maxNormalImpulse == 0.0f) continue;
-      Vec2 dv = B.v + cross(B.w, p.rB) - A.v - cross(A.w, p.rA);
-      float vn = dot(dv, k.normal);
-      float impulse = -p.normalMass * (vn + k.restitution * p.relativeVelocity);
-      float total = maxf(p.normalImpulse + impulse, 0.0f);
-      impulse = total - p.normalImpulse;
-      p.normalImpulse = total;
-      p.maxNormalImpulse = maxf(p.maxNormalImpulse, impulse);
-      applyImpulse(A, B, p.rA, p.rB, impulse * k.normal);
+  // Block ranges: overflow first.
+  std::size_t next = perColor[kOverflow];
+  stats.overflow = perColor[kOverflow];
+  stats.colors = 0;
+  for (int c = 0; c < kColors; ++c) {
+    colorStart[c] = next;
+    next += (perColor[c] + W - 1) / W;
+    if (perColor[c] > 0) stats.colors = c + 1;
+  }
+  colorStart[kColors] = next;
+  blocks.assign(next, ContactBlock<F>{});
+  std::size_t fill[kColors + 1] = {};
+  s.lane.resize(s.touching.size());
+  for (std::size_t k = 0; k < s.touching.size(); ++k) {
+    const int c = s.color[k];
+    if (c == kOverflow) {
+      s.lane[k] = static_cast<std::uint32_t>(fill[c]++ * W);
+    } else {
+      s.lane[k] = static_cast<std::uint32_t>(colorStart[c] * W + fill[c]++);
     }
   }
+  return next;
+}
 
-  // Store impulses for warm starting; report hits.
-  for (const ContactConstraint& k : constraints_) {
-    Contact& c = contactSet.contacts[k.contact];
+// One constraint into its lane.
+template <class F>
+void prepareLane(ContactBlock<F>& b, int lane, const Contact& c, const Body& bodyA,
+                 const Body& bodyB, std::int32_t slotA, std::int32_t slotB, const BodyState& A,
+                 const BodyState& B, const StepParams& params) {
+  b.slotA[lane] = slotA;
+  b.slotB[lane] = slotB;
+  if (bodyA.type == BodyType::dynamicBody) b.writeA |= 1u << lane;
+  if (bodyB.type == BodyType::dynamicBody) b.writeB |= 1u << lane;
+  const Vec2 n = c.manifold.normal;
+  const Vec2 t = rightPerp(n);
+  b.nx[lane] = n.x;
+  b.ny[lane] = n.y;
+  b.friction[lane] = c.friction;
+  b.restitution[lane] = c.restitution;
+  const float mA = bodyA.invMass, iA = bodyA.invInertia, mB = bodyB.invMass, iB = bodyB.invInertia;
+  b.mA[lane] = mA;
+  b.iA[lane] = iA;
+  b.mB[lane] = mB;
+  b.iB[lane] = iB;
+  // Against static (and kinematic) bodies there is only one body to move: twice as stiff.
+  const Softness& soft = (mA == 0.0f || mB == 0.0f) ? params.staticSoft : params.soft;
+  b.biasRate[lane] = soft.biasRate;
+  b.massScale[lane] = soft.massScale;
+  b.impulseScale[lane] = soft.impulseScale;
+  const Vec2 vA{A.vx, A.vy}, vB{B.vx, B.vy};
+  for (int j = 0; j < c.manifold.pointCount; ++j) {
+    const ManifoldPoint& mp = c.manifold.points[j];
+    auto& p = b.points[j];
+    Vec2 rA, rB;
+    if (c.recycled) {
+      // A recycled manifold (contact_set.cpp, recycle): the arms from each centre of mass
+      // to the point as they were when the manifold was computed, not turned with the
+      // bodies since. Box2D v3 does the same (its anchors stay as computed while a
+      // contact is recycled; physics_world.c and contact_solver.c, read for
+      // understanding). Arms that turn with the bodies while the normal stays put let a
+      // column's tilt move its contact forces the way that tilts it further: columns of
+      // 15 boxes or more toppled so (docs/world.md, "What made columns drift").
+      rA = rotate(c.cachedA.q, c.localA[j] - bodyA.localCenter);
+      rB = rotate(c.cachedB.q, c.localB[j] - bodyB.localCenter);
+    } else {
+      rA = mp.point - bodyA.center;
+      rB = mp.point - bodyB.center;
+    }
+    p.rAx[lane] = rA.x;
+    p.rAy[lane] = rA.y;
+    p.rBx[lane] = rB.x;
+    p.rBy[lane] = rB.y;
+    p.baseSeparation[lane] = mp.separation - dot(rB - rA, n);
+    p.normalImpulse[lane] = c.normalImpulse[j];
+    p.tangentImpulse[lane] = c.tangentImpulse[j];
+    const float rnA = cross(rA, n), rnB = cross(rB, n);
+    const float kn = mA + mB + iA * rnA * rnA + iB * rnB * rnB;
+    p.normalMass[lane] = kn > 0.0f ? 1.0f / kn : 0.0f;
+    const float rtA = cross(rA, t), rtB = cross(rB, t);
+    const float kt = mA + mB + iA * rtA * rtA + iB * rtB * rtB;
+    p.tangentMass[lane] = kt > 0.0f ? 1.0f / kt : 0.0f;
+    const Vec2 dv = vB + cross(B.w, rB) - vA - cross(A.w, rA);
+    p.relativeVelocity[lane] = dot(n, dv);
+  }
+}
+
+// Gravity, forces and damping for one sub-step (implicit damping: any damping is stable).
+[[gnu::noinline]] void integrateVelocities(SolverScratch& s) {
+  BodyState* states = s.states.data();
+  for (std::size_t slot = 1; slot < s.states.size(); ++slot) {
+    const SlotSim& m = s.sims[slot];
+    if (!m.dynamic) continue;
+    BodyState& st = states[slot];
+    Vec2 v = Vec2{st.vx, st.vy} + m.gravityDv;
+    float w = st.w;
+    // Applied forces (applyForce, applyTorque); a branch, so that a body without them
+    // gives the same bits as before forces existed.
+    if (m.forced) v += m.forceDv;
+    if (m.torqued) w += m.torqueDw;
+    v = m.linearScale * v;
+    // Speed limits (world.hpp): keep speed * dt and every impulse finite.
+    v = clampSpeed(v);
+    st.vx = v.x;
+    st.vy = v.y;
+    st.w = clampf(w / m.angularDivisor, -kMaxAngularSpeed, kMaxAngularSpeed);
+  }
+}
+
+// Moves every body by its velocity for one sub-step.
+[[gnu::noinline]] void integratePositions(SolverScratch& s, float h, float maxRotation) {
+  BodyState* states = s.states.data();
+  const float invH = 1.0f / h;
+  for (std::size_t slot = 1; slot < s.states.size(); ++slot) {
+    BodyState& st = states[slot];
+    if (absf(h * st.w) > maxRotation) st.w = (st.w > 0.0f ? maxRotation : -maxRotation) * invH;
+    const Rot q = integrateRotation(Rot{st.qc, st.qs}, h * st.w);
+    st.qc = q.c;
+    st.qs = q.s;
+    // integrateRotation turns by atan(h w), not h w; below 0.01 rad the two differ by
+    // under 4e-7 rad, so the arctangent is only paid for fast spinners.
+    const float turn = h * st.w;
+    s.turned[slot] += absf(turn) < 0.01f ? turn : std::atan(turn);
+    st.dpx += h * st.vx;
+    st.dpy += h * st.vy;
+  }
+}
+
+template <class F>
+[[gnu::noinline]] void prepareAll(SolverScratch& s, std::vector<ContactBlock<F>>& blocks,
+                                  const BodyStore& store, const ContactSet& contactSet,
+                                  const StepParams& params) {
+  constexpr int W = F::width;
+  const std::vector<Contact>& contacts = contactSet.contacts;
+  for (std::size_t k = 0; k < s.touching.size(); ++k) {
+    const Contact& c = contacts[s.touching[k]];
+    const SolverScratch::Pair& pair = s.pairs[k];
+    const std::int32_t sa = pair.slotA, sb = pair.slotB;
+    prepareLane(blocks[s.lane[k] / W], static_cast<int>(s.lane[k] % W), c, store.bodies[pair.bodyA],
+                store.bodies[pair.bodyB], sa, sb, s.states[sa], s.states[sb], params);
+  }
+}
+
+// Accumulated impulses back to the contacts for the next step's warm start, and hit
+// events (in contact order).
+template <class F>
+[[gnu::noinline]] void storeImpulses(SolverScratch& s, const std::vector<ContactBlock<F>>& blocks,
+                                     const WorldDef& def, const BodyStore& store,
+                                     ContactSet& contactSet, EventDispatcher& events) {
+  constexpr int W = F::width;
+  std::vector<Contact>& contacts = contactSet.contacts;
+  for (std::size_t k = 0; k < s.touching.size(); ++k) {
+    Contact& c = contacts[s.touching[k]];
+    const ContactBlock<F>& b = blocks[s.lane[k] / W];
+    const std::size_t lane = s.lane[k] % W;
     float strongest = 0.0f;
     int at = -1;
-    for (int j = 0; j < k.pointCount; ++j) {
-      c.normalImpulse[j] = k.points[j].normalImpulse;
-      c.tangentImpulse[j] = k.points[j].tangentImpulse;
-      float approach = -k.points[j].relativeVelocity;
-      if (k.points[j].maxNormalImpulse > 0.0f && approach > def.hitEventThreshold &&
+    for (int j = 0; j < c.manifold.pointCount; ++j) {
+      const auto& p = b.points[j];
+      c.normalImpulse[j] = p.normalImpulse[lane];
+      c.tangentImpulse[j] = p.tangentImpulse[lane];
+      const float approach = -p.relativeVelocity[lane];
+      if (p.maxNormalImpulse[lane] > 0.0f && approach > def.hitEventThreshold &&
           approach > strongest) {
         strongest = approach;
         at = j;
@@ -293,33 +522,136 @@ void Solver::solve(const WorldDef& worldDef, BodyStore& store, ContactSet& conta
     }
     if (at >= 0) {
       events.events.hit.push_back({store.shapeId(c.shapeA), store.shapeId(c.shapeB),
-                                   c.manifold.points[at].point, k.normal, strongest});
+                                   c.manifold.points[at].point, c.manifold.normal, strongest});
     }
   }
+}
+
+// The contact part of a step: colour, prepare, then per sub-step integrate velocities,
+// warm start, solve, integrate positions, relax; then restitution and the impulses stored.
+template <class F>
+void runStep(SolverScratch& s, std::vector<ContactBlock<F>>& blocks, const WorldDef& def,
+             BodyStore& store, ContactSet& contactSet, EventDispatcher& events,
+             const StepParams& params, int substeps, Solver::Stats& stats) {
+  std::size_t colorStart[kColors + 1];
+  const std::size_t blockCount = layoutBlocks<F>(s, blocks, colorStart, stats);
+  prepareAll(s, blocks, store, contactSet, params);
+  ContactBlock<F>* all = blocks.data();
+  BodyState* states = s.states.data();
+  for (int stepIndex = 0; stepIndex < substeps; ++stepIndex) {
+    integrateVelocities(s);
+    warmStart(all, blockCount, states);
+    solveContacts<true>(all, blockCount, states, params.invH, params.pushMax, (stepIndex & 1) != 0);
+    integratePositions(s, params.h, def.maxRotationPerSubstep);
+    // Relax: remove the velocity the soft push added, so it does not become bounce.
+    solveContacts<false>(all, blockCount, states, params.invH, params.pushMax,
+                         (stepIndex & 1) == 0);
+  }
+  applyRestitution(all, blockCount, states, params.restitutionThreshold);
+  storeImpulses(s, blocks, def, store, contactSet, events);
+}
+
+}  // namespace
+
+Solver::Solver() : scratch_(std::make_unique<SolverScratch>()) {}
+Solver::~Solver() = default;
+
+const char* Solver::simdPath() noexcept {
+  return kSimdPath;
+}
+
+void Solver::solve(const WorldDef& def, BodyStore& store, ContactSet& contactSet,
+                   BroadPhase& broadPhase, EventDispatcher& events, float dt, int substeps) {
+  SolverScratch& s = *scratch_;
+  std::vector<Body>& bodies = store.bodies;
+  const std::vector<Shape>& shapes = store.shapes;
+  const std::vector<Contact>& contacts = contactSet.contacts;
+  StepParams params;
+  params.h = dt / static_cast<float>(substeps);
+  params.invH = 1.0f / params.h;
+  // Contacts stiffer than a quarter of the sub-step rate are not resolved by the sub-step.
+  const float hertz = minf(def.contactHertz, 0.25f * params.invH);
+  params.soft = makeSoftness(hertz, def.contactDampingRatio, params.h);
+  params.staticSoft = makeSoftness(2.0f * hertz, def.contactDampingRatio, params.h);
+  params.pushMax = def.contactPushMaxSpeed;
+  params.restitutionThreshold = def.restitutionThreshold;
+
+  // The moving bodies' state, contiguous: slot 0 is the resting body static bodies read.
+  s.states.assign(1, BodyState{});
+  s.sims.assign(1, SlotSim{});
+  s.slotBody.assign(1, 0);
+  const float h = params.h;
+  s.bodySlot.assign(bodies.size(), 0);
+  for (std::uint32_t i = 0; i < bodies.size(); ++i) {
+    const Body& b = bodies[i];
+    if (!store.bodyAlive(i) || b.type == BodyType::staticBody) continue;
+    s.bodySlot[i] = static_cast<std::int32_t>(s.states.size());
+    s.slotBody.push_back(i);
+    BodyState st;
+    st.vx = b.v.x;
+    st.vy = b.v.y;
+    // A dynamic body without rotational inertia (zero density, or segments only) does not
+    // turn, whatever spin it was given.
+    st.w = (b.type == BodyType::dynamicBody && b.invInertia == 0.0f) ? 0.0f : b.w;
+    s.states.push_back(st);
+    SlotSim m;
+    m.dynamic = b.type == BodyType::dynamicBody;
+    m.gravityDv = (h * b.gravityScale) * def.gravity;
+    m.forced = b.force.x != 0.0f || b.force.y != 0.0f;
+    m.forceDv = (h * b.invMass) * b.force;
+    m.torqued = b.torque != 0.0f;
+    m.torqueDw = h * b.invInertia * b.torque;
+    m.linearScale = 1.0f / (1.0f + h * b.linearDamping);
+    m.angularDivisor = 1.0f + h * b.angularDamping;
+    s.sims.push_back(m);
+  }
+  s.turned.assign(s.states.size(), 0.0f);
+
+  // Touching contacts (a dynamic body in every one), in contact order.
+  s.touching.clear();
+  s.pairs.clear();
+  for (std::uint32_t ci = 0; ci < contacts.size(); ++ci) {
+    const Contact& c = contacts[ci];
+    if (!c.alive || !c.touching || c.sensor) continue;
+    s.touching.push_back(ci);
+    const std::uint32_t a = shapes[c.shapeA].body, b = shapes[c.shapeB].body;
+    const std::int32_t sa = s.bodySlot[a], sb = s.bodySlot[b];
+    s.pairs.push_back({a, b, sa, sb, s.sims[sa].dynamic, s.sims[sb].dynamic});
+  }
+  stats_.constraints = s.touching.size();
+
+  if (def.scalarSolver) {
+    runStep(s, s.narrow, def, store, contactSet, events, params, substeps, stats_);
+  } else {
+    runStep(s, s.wide, def, store, contactSet, events, params, substeps, stats_);
+  }
+  (void)shapes;
 
   // Finalise bodies and move their proxies.
-  for (std::uint32_t i = 0; i < bodies.size(); ++i) {
+  for (std::size_t slot = 1; slot < s.states.size(); ++slot) {
+    const std::uint32_t i = s.slotBody[slot];
     Body& b = bodies[i];
-    if (!store.bodyAlive(i) || b.type == BodyType::staticBody) continue;
-    const SolverBody& s = sb[i];
+    const BodyState& st = s.states[slot];
+    const Vec2 dp{st.dpx, st.dpy};
     // Forces act through one step.
     b.force = {};
     b.torque = 0.0f;
     // Restitution may have sped a body up after the last clamp.
-    b.v = clampSpeed(s.v);
-    b.w = clampf(s.w, -kMaxAngularSpeed, kMaxAngularSpeed);
+    b.v = clampSpeed(Vec2{st.vx, st.vy});
+    b.w = clampf(st.w, -kMaxAngularSpeed, kMaxAngularSpeed);
+    const float turned = s.turned[slot];
     // Continuous collision wants the sweeps of fast bodies (world.hpp, kCcdFastFraction).
     b.fast = b.type == BodyType::dynamicBody && def.enableContinuous && b.maxExtent > 0.0f &&
-             (b.bullet || length(s.dp) + absf(s.da) * b.maxExtent > kCcdFastFraction * b.minExtent);
+             (b.bullet || length(dp) + absf(turned) * b.maxExtent > kCcdFastFraction * b.minExtent);
     if (b.fast) {
       b.startCenter = b.center;
       b.startAngle = b.xf.q.angle();
-      b.endAngle = b.startAngle + s.da;
+      b.endAngle = b.startAngle + turned;
     }
-    const Vec2 center = b.center + s.dp;
-    const Rot q = normalizeRot(mulRot(s.dq, b.xf.q));
+    const Vec2 center = b.center + dp;
+    const Rot q = normalizeRot(mulRot(Rot{st.qc, st.qs}, b.xf.q));
     const Transform xf{center - rotate(q, b.localCenter), q};
-    if (!store.moveBody(broadPhase, i, xf, center, s.dp)) {
+    if (!store.moveBody(broadPhase, i, xf, center, dp)) {
       // The edge of the world (world.hpp, kMaxCoordinate): the body stays where the step
       // began, stopped, and the game is told (StepEvents::outOfBounds).
       b.v = {};

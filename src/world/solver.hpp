@@ -4,8 +4,9 @@
 // contacts, writes the bodies' velocities and poses and the contacts' accumulated impulses,
 // and reports hits. docs/world.md explains the choices.
 
+#include <cstddef>
 #include <cstdint>
-#include <vector>
+#include <memory>
 
 #include "quack/collision/manifold.hpp"
 #include "quack/math/transform.hpp"
@@ -29,32 +30,7 @@ struct Softness {
   float impulseScale = 0.0f;
 };
 
-struct ContactConstraint {
-  struct Point {
-    Vec2 rA, rB;                  // anchors from each centre of mass, world axes
-    float baseSeparation = 0.0f;  // separation minus the anchors' offset along the normal
-    float normalImpulse = 0.0f, tangentImpulse = 0.0f, maxNormalImpulse = 0.0f;
-    float normalMass = 0.0f, tangentMass = 0.0f;
-    float relativeVelocity = 0.0f;  // normal velocity before the step (for restitution)
-  };
-  std::uint32_t contact = 0;
-  std::uint32_t bodyA = 0, bodyB = 0;
-  Vec2 normal;
-  float friction = 0.0f, restitution = 0.0f;
-  Softness softness;
-  int pointCount = 0;
-  Point points[kMaxManifoldPoints];
-};
-
-// Per-body state of the solver, indexed like the world's bodies.
-struct SolverBody {
-  Vec2 v;
-  float w = 0.0f;
-  float invMass = 0.0f, invInertia = 0.0f;
-  Vec2 dp;          // displacement of the centre of mass since the step began
-  Rot dq;           // rotation since the step began
-  float da = 0.0f;  // the same rotation as an unwrapped angle, radians
-};
+struct SolverScratch;  // solver.cpp: the per-step arrays
 
 class Solver {
  public:
@@ -63,9 +39,24 @@ class Solver {
   void solve(const WorldDef& def, BodyStore& store, ContactSet& contacts, BroadPhase& broadPhase,
              EventDispatcher& events, float dt, int substeps);
 
+  Solver();
+  ~Solver();
+  Solver(const Solver&) = delete;
+  Solver& operator=(const Solver&) = delete;
+
+  /// Figures of the last step, for tests and benchmarks.
+  struct Stats {
+    int colors = 0;               // colours used
+    std::size_t constraints = 0;  // touching contacts solved
+    std::size_t overflow = 0;     // of which solved one at a time (no colour had room)
+  };
+  const Stats& stats() const noexcept { return stats_; }
+  /// The lanes this build solves with: "sse2", "avx2", "neon" or "scalar" (QUACK_SIMD).
+  static const char* simdPath() noexcept;
+
  private:
-  std::vector<ContactConstraint> constraints_;
-  std::vector<SolverBody> solverBodies_;
+  std::unique_ptr<SolverScratch> scratch_;
+  Stats stats_;
 };
 
 }  // namespace quack::detail

@@ -145,6 +145,15 @@ Result<std::optional<ShapeCastResult>> World::castShape(const ShapeGeometry& geo
 
 // ---- inspection ------------------------------------------------------------------------------
 
+const char* World::simdPath() noexcept {
+  return detail::Solver::simdPath();
+}
+
+World::SolverStats World::solverStats() const noexcept {
+  const auto& st = s_->solver.stats();
+  return {st.colors, st.constraints, st.overflow};
+}
+
 std::uint64_t World::stateHash() const noexcept {
   // FNV-1a over the bit patterns, so that any difference at all changes the hash.
   std::uint64_t h = 1469598103934665603ull;

@@ -85,6 +85,10 @@ struct WorldDef {
   /// points fixed on each body, separation updated from the bodies' motion. 0 recomputes
   /// every step. Ten slops, as Box2D v3.
   float contactRecycleDistance = kContactRecycleDistance;
+  /// Solve contacts with the portable one-lane path even where the build has SIMD lanes
+  /// (QUACK_SIMD; World::simdPath). The answer is the same to the bit (docs/world.md, "The
+  /// solver's data"); this is for tests and for measuring what the lanes buy.
+  bool scalarSolver = false;
 };
 
 /// Two edges of static polygons whose ends are this close (metres), running opposite ways,
@@ -340,6 +344,17 @@ class World {
   std::uint64_t stateHash() const noexcept;
   /// The broad phase, for drawing and statistics.
   const BroadPhase& broadPhase() const noexcept;
+  /// The solver's lanes in this build: "sse2", "avx2", "neon" or "scalar" (CMake option
+  /// QUACK_SIMD). Every path gives the same bits.
+  static const char* simdPath() noexcept;
+  /// What the solver did in the last step: colours used, constraints, and how many of them
+  /// went to the overflow set (solved one at a time). docs/world.md, "The solver's data".
+  struct SolverStats {
+    int colors = 0;
+    std::size_t constraints = 0;
+    std::size_t overflow = 0;
+  };
+  SolverStats solverStats() const noexcept;
   /// Checks every cross-reference: handles and free slots, each shape on its body's list and
   /// in the broad phase under its own index with its box at the body's pose, each contact's
   /// shapes live and listing it, the pair map, counts, finite body state. For tests (call it
