@@ -94,6 +94,14 @@ Timing timeSteps(const Options& o, StepFn step, CountFn count, int extraWarmup =
 
 // ---- Quack ------------------------------------------------------------------------------
 
+// The solver's figures after the last timed step of the last Quack scene.
+World::SolverStats gQuackSolver;
+
+std::size_t quackCount(const World& world) {
+  gQuackSolver = world.solverStats();
+  return world.touchingContactCount();
+}
+
 void quackAddPyramid(World& world, const Polygon& box, int rows, Vec2 base) {
   for (int row = 0; row < rows; ++row) {
     for (int i = 0; i < rows - row; ++i) {
@@ -120,7 +128,7 @@ Timing quackMany(const Options& o) {
       quackAddPyramid(world, box, kManyRows, {kManySpacing * (static_cast<float>(c) + 0.5f), y});
   }
   return timeSteps(
-      o, [&] { world.step(); }, [&] { return world.touchingContactCount(); });
+      o, [&] { world.step(); }, [&] { return quackCount(world); });
 }
 
 Timing quackPyramid(const Options& o) {
@@ -136,7 +144,7 @@ Timing quackPyramid(const Options& o) {
     }
   }
   return timeSteps(
-      o, [&] { world.step(); }, [&] { return world.touchingContactCount(); });
+      o, [&] { world.step(); }, [&] { return quackCount(world); });
 }
 
 Timing quackField(const Options& o, const std::vector<Piece>& pieces, int settleSteps) {
@@ -165,7 +173,7 @@ Timing quackField(const Options& o, const std::vector<Piece>& pieces, int settle
     }
   }
   return timeSteps(
-      o, [&] { world.step(); }, [&] { return world.touchingContactCount(); }, settleSteps);
+      o, [&] { world.step(); }, [&] { return quackCount(world); }, settleSteps);
 }
 
 #ifdef QUACK_BENCH_HAS_BOX2D
@@ -359,8 +367,10 @@ int main(int argc, char** argv) {
   const bool runBox2d = o.only != "quack";
 #endif
   std::vector<Piece> pieces = makeField(o.field);
-  std::printf("world_bench: %d warm-up steps, then %d timed steps at 60 Hz, single thread\n",
-              o.warmup, o.steps);
+  std::printf(
+      "world_bench: %d warm-up steps, then %d timed steps at 60 Hz, single thread; Quack's "
+      "solver lanes: %s\n",
+      o.warmup, o.steps, World::simdPath());
   std::printf("%-24s %14s %14s %10s\n", "scene", "library", "ms/step", "contacts");
   auto scene = [&](const std::string& name, const std::string& label, auto quackFn,
                    [[maybe_unused]] auto box2dFn) {
@@ -368,7 +378,8 @@ int main(int argc, char** argv) {
     Timing q{}, b{};
     if (runQuack) {
       q = quackFn();
-      std::printf("%-24s %14s %14.3f %10zu\n", label.c_str(), "quack", q.msPerStep, q.contacts);
+      std::printf("%-24s %14s %14.3f %10zu   (%d colours, %zu overflow)\n", label.c_str(),
+                  "quack", q.msPerStep, q.contacts, gQuackSolver.colors, gQuackSolver.overflow);
     }
 #ifdef QUACK_BENCH_HAS_BOX2D
     if (runBox2d) {
