@@ -378,8 +378,8 @@ int main(int argc, char** argv) {
     Timing q{}, b{};
     if (runQuack) {
       q = quackFn();
-      std::printf("%-24s %14s %14.3f %10zu   (%d colours, %zu overflow)\n", label.c_str(),
-                  "quack", q.msPerStep, q.contacts, gQuackSolver.colors, gQuackSolver.overflow);
+      std::printf("%-24s %14s %14.3f %10zu   (%d colours, %zu overflow)\n", label.c_str(), "quack",
+                  q.msPerStep, q.contacts, gQuackSolver.colors, gQuackSolver.overflow);
     }
 #ifdef QUACK_BENCH_HAS_BOX2D
     if (runBox2d) {
