@@ -49,6 +49,9 @@ std::uint32_t BodyStore::createBody(const BodyDef& def) {
   b.angularDamping = def.angularDamping;
   b.gravityScale = def.gravityScale;
   b.bullet = def.bullet;
+  b.enableSleep = def.enableSleep;
+  b.sleepThreshold = def.sleepThreshold;
+  b.awake = moves;  // the island set decides (World::createBody)
   b.userData = def.userData;
   updateMass(index);
   return index;

@@ -34,6 +34,13 @@ struct Body {
   bool fast = false;       // moved more than kCcdFastFraction of minExtent in this step
   Vec2 startCenter;        // centre of mass at the start of the step (when fast)
   float startAngle = 0.0f, endAngle = 0.0f;  // radians, unwrapped (when fast)
+  // Sleeping (islands.hpp). Static bodies are never awake; kinematic ones are awake while
+  // they move.
+  bool awake = true;
+  bool enableSleep = true;
+  float sleepThreshold = 0.05f;
+  float sleepTime = 0.0f;              // seconds at rest
+  std::uint32_t island = 0xffffffffu;  // dynamic bodies only (kNoIsland otherwise)
   std::uint64_t userData = 0;
   std::vector<std::uint32_t> shapes;  // in creation order
 };

@@ -73,6 +73,8 @@ void ContactSet::destroy(std::uint32_t index, BodyStore& store, EventDispatcher&
                          bool emitEnd, bool inStep) {
   Contact& c = contacts[index];
   if (emitEnd && c.touching) events.contactEnded(store, c, inStep);
+  if (c.touching && !c.sensor)
+    ended.push_back({store.shapes[c.shapeA].body, store.shapes[c.shapeB].body});
   for (std::uint32_t s : {c.shapeA, c.shapeB}) {
     auto& list = store.shapes[s].contacts;
     list.erase(std::find(list.begin(), list.end(), index));
@@ -126,6 +128,13 @@ void ContactSet::findNew(BroadPhase& broadPhase, BodyStore& store) {
     store.shapes[sa].contacts.push_back(index);
     store.shapes[sb].contacts.push_back(index);
     ++count_;
+    // A contact with nothing awake in it was made by static (or resting kinematic) geometry
+    // created or moved by the game next to a sleeping body: wake that body, or the contact
+    // would never be looked at (sensors excepted: they only watch).
+    if (!c.sensor && !bodyA.awake && !bodyB.awake) {
+      if (bodyA.type == BodyType::dynamicBody) toWake.push_back(shapeA.body);
+      if (bodyB.type == BodyType::dynamicBody) toWake.push_back(shapeB.body);
+    }
   }
 }
 
@@ -136,6 +145,9 @@ void ContactSet::update(const WorldDef& def, const BroadPhase& broadPhase, BodyS
     if (!c.alive) continue;
     const Shape& sa = store.shapes[c.shapeA];
     const Shape& sb = store.shapes[c.shapeB];
+    // Nothing in it moves (both asleep, or asleep and static): kept as it is, touching or
+    // not, with its impulses (docs/world.md, "Sleeping").
+    if (!store.bodies[sa.body].awake && !store.bodies[sb.body].awake) continue;
     if (!overlaps(broadPhase.fatBox(sa.proxy), broadPhase.fatBox(sb.proxy))) {
       destroy(i, store, events, true, true);
       continue;
@@ -189,9 +201,14 @@ void ContactSet::update(const WorldDef& def, const BroadPhase& broadPhase, BodyS
       c.baseSeparation[k] = mp.separation - dot(d, c.manifold.normal);
     }
     c.touching = c.manifold.pointCount > 0;
-    if (c.touching && !wasTouching)
+    if (c.touching && !wasTouching) {
       events.events.begin.push_back({store.shapeId(c.shapeA), store.shapeId(c.shapeB)});
-    if (!c.touching && wasTouching) events.contactEnded(store, c, true);
+      began.push_back({sa.body, sb.body});
+    }
+    if (!c.touching && wasTouching) {
+      events.contactEnded(store, c, true);
+      ended.push_back({sa.body, sb.body});
+    }
   }
 }
 

@@ -51,6 +51,15 @@ class ContactSet {
  public:
   std::vector<Contact> contacts;  // live where Contact::alive
 
+  // For the island set (islands.hpp), which empties them: bodies whose contact began or
+  // stopped touching (not sensors), and sleeping bodies a new contact found with nothing
+  // awake in it (static geometry created or moved onto them), to be woken.
+  struct BodyPair {
+    std::uint32_t a, b;
+  };
+  std::vector<BodyPair> began, ended;
+  std::vector<std::uint32_t> toWake;
+
   std::size_t count() const noexcept { return count_; }
   std::size_t touchingCount() const noexcept;
   /// The contact of a pair of shapes, if any (index into `contacts`).

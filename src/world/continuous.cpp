@@ -126,21 +126,26 @@ bool ContinuousPhase::findImpact(const BodyStore& store, const BroadPhase& broad
   return found;
 }
 
-void ContinuousPhase::run(const WorldDef& def, BodyStore& store, BroadPhase& broadPhase,
+void ContinuousPhase::run(const WorldDef& def, BodyStore& store,
+                          const std::vector<std::uint64_t>& awake, BroadPhase& broadPhase,
                           const GhostEdges& edges, EventDispatcher& events, float dt) {
   if (!def.enableContinuous) return;
   fast_.clear();
   int bullets = 0;
-  for (std::uint32_t i = 0; i < store.bodies.size(); ++i) {
-    Body& b = store.bodies[i];
-    if (!store.bodyAlive(i) || !b.fast) continue;
-    b.fast = false;
-    FastBody f;
-    f.body = i;
-    f.sweep = {b.localCenter, b.startCenter, b.center, b.startAngle, b.endAngle};
-    f.box = sweptBox(store, f);
-    bullets += b.bullet ? 1 : 0;
-    fast_.push_back(f);
+  // Only bodies that moved can be fast (sleeping ones are not).
+  for (std::size_t word = 0; word < awake.size(); ++word) {
+    for (std::uint64_t bits = awake[word]; bits != 0; bits &= bits - 1) {
+      const auto i = static_cast<std::uint32_t>(word * 64 + __builtin_ctzll(bits));
+      Body& b = store.bodies[i];
+      if (!b.fast) continue;
+      b.fast = false;
+      FastBody f;
+      f.body = i;
+      f.sweep = {b.localCenter, b.startCenter, b.center, b.startAngle, b.endAngle};
+      f.box = sweptBox(store, f);
+      bullets += b.bullet ? 1 : 0;
+      fast_.push_back(f);
+    }
   }
   if (fast_.empty()) return;
 

@@ -45,8 +45,9 @@ struct ToiCandidate {
 class ContinuousPhase {
  public:
   /// Handles the impacts of the bodies the solver flagged fast, in time order.
-  void run(const WorldDef& def, BodyStore& store, BroadPhase& broadPhase, const GhostEdges& edges,
-           EventDispatcher& events, float dt);
+  /// `awake`: a bit per body index for the bodies that moved (IslandSet::awakeBits).
+  void run(const WorldDef& def, BodyStore& store, const std::vector<std::uint64_t>& awake,
+           BroadPhase& broadPhase, const GhostEdges& edges, EventDispatcher& events, float dt);
 
  private:
   Aabb sweptBox(const BodyStore& store, const FastBody& f) const;

@@ -561,7 +561,8 @@ const char* Solver::simdPath() noexcept {
 }
 
 void Solver::solve(const WorldDef& def, BodyStore& store, ContactSet& contactSet,
-                   BroadPhase& broadPhase, EventDispatcher& events, float dt, int substeps) {
+                   const std::vector<std::uint64_t>& awake, BroadPhase& broadPhase,
+                   EventDispatcher& events, float dt, int substeps) {
   SolverScratch& s = *scratch_;
   std::vector<Body>& bodies = store.bodies;
   const std::vector<Shape>& shapes = store.shapes;
@@ -582,28 +583,31 @@ void Solver::solve(const WorldDef& def, BodyStore& store, ContactSet& contactSet
   s.slotBody.assign(1, 0);
   const float h = params.h;
   s.bodySlot.assign(bodies.size(), 0);
-  for (std::uint32_t i = 0; i < bodies.size(); ++i) {
-    const Body& b = bodies[i];
-    if (!store.bodyAlive(i) || b.type == BodyType::staticBody) continue;
-    s.bodySlot[i] = static_cast<std::int32_t>(s.states.size());
-    s.slotBody.push_back(i);
-    BodyState st;
-    st.vx = b.v.x;
-    st.vy = b.v.y;
-    // A dynamic body without rotational inertia (zero density, or segments only) does not
-    // turn, whatever spin it was given.
-    st.w = (b.type == BodyType::dynamicBody && b.invInertia == 0.0f) ? 0.0f : b.w;
-    s.states.push_back(st);
-    SlotSim m;
-    m.dynamic = b.type == BodyType::dynamicBody;
-    m.gravityDv = (h * b.gravityScale) * def.gravity;
-    m.forced = b.force.x != 0.0f || b.force.y != 0.0f;
-    m.forceDv = (h * b.invMass) * b.force;
-    m.torqued = b.torque != 0.0f;
-    m.torqueDw = h * b.invInertia * b.torque;
-    m.linearScale = 1.0f / (1.0f + h * b.linearDamping);
-    m.angularDivisor = 1.0f + h * b.angularDamping;
-    s.sims.push_back(m);
+  // The awake set, in body order (sleeping bodies, like static ones, read slot 0).
+  for (std::size_t word = 0; word < awake.size(); ++word) {
+    for (std::uint64_t bits = awake[word]; bits != 0; bits &= bits - 1) {
+      const auto i = static_cast<std::uint32_t>(word * 64 + __builtin_ctzll(bits));
+      const Body& b = bodies[i];
+      s.bodySlot[i] = static_cast<std::int32_t>(s.states.size());
+      s.slotBody.push_back(i);
+      BodyState st;
+      st.vx = b.v.x;
+      st.vy = b.v.y;
+      // A dynamic body without rotational inertia (zero density, or segments only) does not
+      // turn, whatever spin it was given.
+      st.w = (b.type == BodyType::dynamicBody && b.invInertia == 0.0f) ? 0.0f : b.w;
+      s.states.push_back(st);
+      SlotSim m;
+      m.dynamic = b.type == BodyType::dynamicBody;
+      m.gravityDv = (h * b.gravityScale) * def.gravity;
+      m.forced = b.force.x != 0.0f || b.force.y != 0.0f;
+      m.forceDv = (h * b.invMass) * b.force;
+      m.torqued = b.torque != 0.0f;
+      m.torqueDw = h * b.invInertia * b.torque;
+      m.linearScale = 1.0f / (1.0f + h * b.linearDamping);
+      m.angularDivisor = 1.0f + h * b.angularDamping;
+      s.sims.push_back(m);
+    }
   }
   s.turned.assign(s.states.size(), 0.0f);
 
@@ -613,9 +617,11 @@ void Solver::solve(const WorldDef& def, BodyStore& store, ContactSet& contactSet
   for (std::uint32_t ci = 0; ci < contacts.size(); ++ci) {
     const Contact& c = contacts[ci];
     if (!c.alive || !c.touching || c.sensor) continue;
-    s.touching.push_back(ci);
     const std::uint32_t a = shapes[c.shapeA].body, b = shapes[c.shapeB].body;
     const std::int32_t sa = s.bodySlot[a], sb = s.bodySlot[b];
+    // Solved when a dynamic body in it is awake (contacts of sleeping bodies rest).
+    if (!s.sims[sa].dynamic && !s.sims[sb].dynamic) continue;
+    s.touching.push_back(ci);
     s.pairs.push_back({a, b, sa, sb, s.sims[sa].dynamic, s.sims[sb].dynamic});
   }
   stats_.constraints = s.touching.size();

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "quack/collision/manifold.hpp"
 #include "quack/math/transform.hpp"
@@ -36,7 +37,9 @@ class Solver {
  public:
   /// One step of dt seconds in `substeps` sub-steps. Bodies whose motion would leave the
   /// world are held (StepEvents::outOfBounds).
-  void solve(const WorldDef& def, BodyStore& store, ContactSet& contacts, BroadPhase& broadPhase,
+  /// `awake`: a bit per body index for the bodies that move (IslandSet::awakeBits).
+  void solve(const WorldDef& def, BodyStore& store, ContactSet& contacts,
+             const std::vector<std::uint64_t>& awake, BroadPhase& broadPhase,
              EventDispatcher& events, float dt, int substeps);
 
   Solver();

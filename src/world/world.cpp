@@ -182,7 +182,14 @@ Result<BodyId> World::createBody(const BodyDef& def) {
       def.type != BodyType::dynamicBody) {
     return fail("createBody: BodyDef.type is not a body type");
   }
-  return s_->store.bodyId(s_->store.createBody(def));
+  if (!isFinite(def.sleepThreshold) || def.sleepThreshold < 0.0f)
+    return fail("createBody: BodyDef.sleepThreshold must be finite and >= 0, got " +
+                std::to_string(def.sleepThreshold));
+  const std::uint32_t index = s_->store.createBody(def);
+  // A body that may not sleep, in a world that may not, starts awake whatever isAwake says.
+  const bool awake = def.isAwake || !def.enableSleep || !s_->def.enableSleep;
+  s_->islands.addBody(s_->store, index, awake);
+  return s_->store.bodyId(index);
 }
 
 Status World::destroyBody(BodyId id) {
@@ -204,6 +211,8 @@ void World::destroyBodyNow(std::uint32_t index) {
   std::vector<std::uint32_t> shapes = s_->store.bodies[index].shapes;
   for (std::uint32_t s : shapes)
     destroyShapeNow(s);
+  s_->islands.removeBody(s_->store, index);
+  s_->islands.applyContactChanges(s_->store, s_->contacts);
   s_->store.releaseBody(index);
 }
 
@@ -252,6 +261,7 @@ Result<ShapeId> World::createShape(BodyId bodyId, const ShapeDef& def,
   QUACK_ASSERT(created == index);
   store.shapes[created].proxy = proxy.value();
   if (body.type == BodyType::staticBody) s_->edges.markDirty();
+  s_->islands.wake(store, bodyId.index);
   return store.shapeId(created);
 }
 
@@ -273,6 +283,9 @@ Status World::destroyShape(ShapeId id) {
 void World::destroyShapeNow(std::uint32_t index) {
   detail::BodyStore& store = s_->store;
   Shape& s = store.shapes[index];
+  // What rested on it, and its own body, wake.
+  s_->islands.wake(store, s.body);
+  s_->islands.wakeTouching(store, s_->contacts, s.body);
   std::vector<std::uint32_t> contacts = s.contacts;
   for (std::uint32_t c : contacts)
     s_->contacts.destroy(c, store, s_->events, true, s_->inStep);
@@ -281,6 +294,7 @@ void World::destroyShapeNow(std::uint32_t index) {
   (void)st;
   if (store.bodies[s.body].type == BodyType::staticBody) s_->edges.markDirty();
   store.releaseShape(index);
+  s_->islands.applyContactChanges(store, s_->contacts);
 }
 
 // ---- stepping -----------------------------------------------------------------------------
@@ -302,6 +316,10 @@ StepStatus World::step(float dt, int substeps) {
 
   // bodies -> broad phase -> contact set -> solver -> continuous phase -> events
   w.contacts.findNew(w.broadPhase, w.store);
+  for (std::uint32_t b : w.contacts.toWake)
+    w.islands.wake(w.store, b);
+  w.contacts.toWake.clear();
+  w.islands.applyContactChanges(w.store, w.contacts);
   if (w.edges.dirty()) {
     w.edges.update(w.store, w.def.removeGhostCollisions);
     // Static geometry changed: which contacts are ghosts may have too, so no manifold is
@@ -309,8 +327,13 @@ StepStatus World::step(float dt, int substeps) {
     w.contacts.forgetAllPoses();
   }
   w.contacts.update(w.def, w.broadPhase, w.store, w.edges, w.events);
-  w.solver.solve(w.def, w.store, w.contacts, w.broadPhase, w.events, dt, substeps);
-  w.continuous.run(w.def, w.store, w.broadPhase, w.edges, w.events, dt);
+  // Contacts that began touching join islands, and wake the sleeping ones they reach.
+  w.islands.applyContactChanges(w.store, w.contacts);
+  w.solver.solve(w.def, w.store, w.contacts, w.islands.awakeBits(), w.broadPhase, w.events, dt,
+                 substeps);
+  w.continuous.run(w.def, w.store, w.islands.awakeBits(), w.broadPhase, w.edges, w.events, dt);
+  w.islands.applyContactChanges(w.store, w.contacts);
+  w.islands.updateSleep(w.def, w.store, w.contacts, dt);
   // The solver and the continuous phase may both have stopped a body at the edge.
   std::vector<BodyId>& held = w.events.events.outOfBounds;
   std::sort(held.begin(), held.end(), [](BodyId a, BodyId b) { return a.index < b.index; });
@@ -454,6 +477,8 @@ Status World::setTransform(BodyId id, Vec2 position, float angle) {
                 " would put the body beyond kMaxCoordinate (1e9 m) from the origin");
   if (b.type == BodyType::staticBody) s_->edges.markDirty();
   s_->contacts.forgetPoses(s_->store, id.index);
+  s_->islands.wake(s_->store, id.index);
+  s_->islands.wakeTouching(s_->store, s_->contacts, id.index);
   return {};
 }
 
@@ -463,7 +488,9 @@ Status World::setLinearVelocity(BodyId id, Vec2 v) {
     return fail("setLinearVelocity: velocity " + describe(v) +
                 " must be finite and no faster than kMaxLinearSpeed (1e5 m/s)");
   Body& b = s_->store.bodies[id.index];
-  if (b.type != BodyType::staticBody) b.v = v;
+  if (b.type == BodyType::staticBody) return {};
+  b.v = v;
+  wakeForChange(id.index);
   return {};
 }
 
@@ -475,7 +502,9 @@ Status World::setAngularVelocity(BodyId id, float w) {
   // (A dynamic body without rotational inertia keeps it only until the next step: the
   // solver does not turn such a body.)
   Body& b = s_->store.bodies[id.index];
-  if (b.type != BodyType::staticBody) b.w = w;
+  if (b.type == BodyType::staticBody) return {};
+  b.w = w;
+  wakeForChange(id.index);
   return {};
 }
 
@@ -499,6 +528,7 @@ Status World::applyLinearImpulse(BodyId id, Vec2 impulse, Vec2 point) {
                 ", faster than kMaxAngularSpeed (1e5 rad/s)");
   b.v = v;
   b.w = w;
+  wakeForChange(id.index);
   return {};
 }
 
@@ -513,6 +543,7 @@ Status World::applyAngularImpulse(BodyId id, float impulse) {
                 " would make the angular velocity " + std::to_string(w) +
                 ", faster than kMaxAngularSpeed (1e5 rad/s)");
   b.w = w;
+  wakeForChange(id.index);
   return {};
 }
 
@@ -531,6 +562,7 @@ Status World::applyForce(BodyId id, Vec2 force, Vec2 point) {
     return fail("applyForce: force " + describe(force) + " makes the body's total force infinite");
   b.force = f;
   b.torque = t;
+  wakeForChange(id.index);
   return {};
 }
 
@@ -543,6 +575,7 @@ Status World::applyTorque(BodyId id, float torque) {
     return fail("applyTorque: torque " + std::to_string(torque) +
                 " makes the body's total torque infinite");
   b.torque += torque;
+  wakeForChange(id.index);
   return {};
 }
 
@@ -566,6 +599,10 @@ Status World::setBodyType(BodyId id, BodyType type) {
                   " kg, beyond kMaxBodyMass (1e20 kg)");
   }
   if (b.type == BodyType::staticBody || type == BodyType::staticBody) s_->edges.markDirty();
+  // It and what it touches wake; it leaves its island and joins a new one under its new
+  // type.
+  s_->islands.wake(store, id.index);
+  s_->islands.wakeTouching(store, s_->contacts, id.index);
   // Contacts end now and are found again under the new rules; proxies are made again with
   // the new kind (a static proxy does not look for pairs with other static ones).
   for (std::uint32_t s : b.shapes) {
@@ -594,7 +631,42 @@ Status World::setBodyType(BodyId id, BodyType type) {
     shape.proxy = proxy.valueOr(ProxyId{});
   }
   store.updateMass(id.index);
+  s_->islands.removeBody(store, id.index);
+  s_->islands.applyContactChanges(store, s_->contacts);
+  s_->islands.addBody(store, id.index, true);
   return {};
+}
+
+Status World::setAwake(BodyId id, bool awake) {
+  if (Status s = checkBody(id, "setAwake"); !s) return s;
+  if (s_->inStep && !s_->inCallbacks) return fail("setAwake: called during step");
+  detail::Body& b = s_->store.bodies[id.index];
+  if (b.type == BodyType::staticBody) return {};
+  if (awake) {
+    wakeForChange(id.index);
+  } else if (s_->def.enableSleep) {
+    s_->islands.sleepNow(s_->store, s_->contacts, id.index);
+  }
+  return {};
+}
+
+void World::wakeForChange(std::uint32_t index) {
+  s_->islands.wake(s_->store, index);
+  // A kinematic body carries what rests on it.
+  if (s_->store.bodies[index].type == BodyType::kinematicBody)
+    s_->islands.wakeTouching(s_->store, s_->contacts, index);
+}
+
+bool World::isAwake(BodyId id) const {
+  return isValid(id) && s_->islands.isAwake(id.index);
+}
+
+std::size_t World::awakeBodyCount() const noexcept {
+  return s_->islands.awakeCount();
+}
+
+std::size_t World::islandCount() const noexcept {
+  return s_->islands.islandCount();
 }
 
 // ---- validation ----------------------------------------------------------------------------
@@ -644,6 +716,8 @@ Status World::validate() const {
     }
   }
   if (Status s = s_->contacts.validate(store); !s) return s;
+  if (Status s = s_->islands.validate(store, s_->contacts); !s)
+    return fail("sleep: " + s.message());
   return {};
 }
 

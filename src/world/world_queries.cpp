@@ -175,6 +175,9 @@ std::uint64_t World::stateHash() const noexcept {
     mix(b.v.x);
     mix(b.v.y);
     mix(b.w);
+    // Asleep or awake, and how long it has rested: sleeping is part of the state.
+    mix(b.awake ? 1.0f : 0.0f);
+    mix(b.sleepTime);
   }
   return h;
 }

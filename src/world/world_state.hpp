@@ -11,6 +11,7 @@
 #include "continuous.hpp"
 #include "event_dispatcher.hpp"
 #include "ghost_edges.hpp"
+#include "islands.hpp"
 #include "quack/collision/proxy.hpp"
 #include "quack/world/world.hpp"
 #include "solver.hpp"
@@ -25,6 +26,7 @@ struct WorldState {
   BroadPhase broadPhase;
   BodyStore store;
   ContactSet contacts;
+  IslandSet islands;
   GhostEdges edges;
   Solver solver;
   ContinuousPhase continuous;

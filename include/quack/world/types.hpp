@@ -50,6 +50,14 @@ struct BodyDef {
   /// shapes in any step where it moves more than kCcdFastFraction of its thickness
   /// (docs/world.md, "Continuous collision").
   bool bullet = false;
+  /// May this body fall asleep (docs/world.md, "Sleeping")? A body that may not keeps every
+  /// body it touches awake.
+  bool enableSleep = true;
+  /// Created awake (false: created asleep, at rest until something wakes it).
+  bool isAwake = true;
+  /// Below this speed (m/s) the body rests: its centre's speed, and its angular speed times
+  /// its largest extent (the speed of its farthest point from the turning). >= 0.
+  float sleepThreshold = 0.05f;
   std::uint64_t userData = 0;
 };
 

@@ -89,6 +89,9 @@ struct WorldDef {
   /// (QUACK_SIMD; World::simdPath). The answer is the same to the bit (docs/world.md, "The
   /// solver's data"); this is for tests and for measuring what the lanes buy.
   bool scalarSolver = false;
+  /// Sleeping (docs/world.md, "Sleeping"): islands of bodies at rest stop being simulated
+  /// until something wakes them. Off: every body is simulated every step.
+  bool enableSleep = true;
 };
 
 /// Two edges of static polygons whose ends are this close (metres), running opposite ways,
@@ -108,6 +111,13 @@ inline constexpr float kGhostVertexRadius = kSpeculativeDistance + kLinearSlop;
 /// past the middle of what it entered, so the contact solver still pushes it back the way
 /// it came (Box2D v3 uses the same rule, read for understanding).
 inline constexpr float kCcdFastFraction = 0.5f;
+
+/// Seconds every body of an island must rest (move slower than its
+/// BodyDef::sleepThreshold) before the island sleeps. Half a second, as Box2D: long enough
+/// that a body at the top of its bounce or a pendulum at its turning point is not taken
+/// for resting, short enough that a settled pile stops costing soon (docs/world.md,
+/// "Sleeping").
+inline constexpr float kTimeToSleep = 0.5f;
 
 /// Most time-of-impact events one body may have in a step. After that the body stays where
 /// its last event left it for the rest of the step: a bound so that a pathological scene (a
@@ -233,6 +243,10 @@ class World {
   /// Live contacts (fat boxes overlapping) and how many of them touch.
   std::size_t contactCount() const noexcept;
   std::size_t touchingContactCount() const noexcept;
+  /// Bodies simulated in the next step: live, not static, awake.
+  std::size_t awakeBodyCount() const noexcept;
+  /// Islands (groups of dynamic bodies joined by touching contacts).
+  std::size_t islandCount() const noexcept;
 
   // ---- iteration, without allocating -----------------------------------------------------
   class BodyRange;
@@ -255,6 +269,8 @@ class World {
   // transform, a static body type, a null BodyId, an empty circle, a default ShapeDef), and
   // the setters fail with a message. Use isValid to tell.
   BodyType bodyType(BodyId body) const;
+  /// False while the body sleeps (and always for a static body).
+  bool isAwake(BodyId body) const;
   Transform transform(BodyId body) const;  ///< worldFromBody
   Vec2 position(BodyId body) const;        ///< of the body origin, world frame
   float angle(BodyId body) const;
@@ -267,6 +283,9 @@ class World {
   BodyId body(ShapeId shape) const;
   const ShapeGeometry& geometry(ShapeId shape) const;
   const ShapeDef& shapeDef(ShapeId shape) const;
+
+  // Every call below wakes the body (docs/world.md, "Sleeping"); moving a static or
+  // kinematic body, or giving a kinematic body a velocity, also wakes what touches it.
 
   /// Teleports a body (errors: bad handle, non-finite numbers).
   Status setTransform(BodyId body, Vec2 position, float angle);
@@ -285,6 +304,10 @@ class World {
   /// Changes a body's type. Its contacts end (end events) and are found again under the new
   /// type; its mass is recomputed; a body made static stops.
   Status setBodyType(BodyId body, BodyType type);
+  /// Wakes the body's island (true), or puts it to sleep now (false), whatever its rest
+  /// time. A static body has nothing to change. Waking a body also wakes what it touches
+  /// when it is kinematic.
+  Status setAwake(BodyId body, bool awake);
 
   // ---- stepping ------------------------------------------------------------------------
   /// Advances by `def().timeStep` with `def().substeps`.
@@ -340,7 +363,8 @@ class World {
                                                    QueryFilter filter = {}) const;
 
   // ---- inspection ----------------------------------------------------------------------------
-  /// A hash of every body's position, angle and velocities (bitwise), in index order.
+  /// A hash of every body's position, angle, velocities, awake flag and rest time
+  /// (bitwise), in index order.
   std::uint64_t stateHash() const noexcept;
   /// The broad phase, for drawing and statistics.
   const BroadPhase& broadPhase() const noexcept;
@@ -374,6 +398,7 @@ class World {
   Status checkShape(ShapeId id, const char* function) const;
   void destroyShapeNow(std::uint32_t shape);
   void destroyBodyNow(std::uint32_t body);
+  void wakeForChange(std::uint32_t body);
   bool acceptsQuery(std::uint32_t shape, const QueryFilter& filter) const;
 
   std::unique_ptr<detail::WorldState> s_;
