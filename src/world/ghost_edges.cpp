@@ -94,6 +94,9 @@ void GhostEdges::update(BodyStore& store, bool removeGhostCollisions) {
   for (std::uint32_t s = 0; s < store.shapes.size(); ++s) {
     Shape& shape = store.shapes[s];
     if (!store.shapeAlive(s) || store.bodies[shape.body].type != BodyType::staticBody) continue;
+    // A sensor blocks nothing, so its edges make no other edge internal: a sensor zone
+    // standing on the ground must not open a hole in the ground.
+    if (shape.def.sensor) continue;
     StaticEdges& e = shape.edges;
     if (e.chain) {
       // Ghost vertices: the cone at each joint is that of the two segments meeting there.

@@ -356,5 +356,20 @@ TEST(Ghost, FarAwayAndHugeStaticShapesAreHandled) {
   EXPECT_GT(world.linearVelocity(box).x, 0.98f * 6.0f);
 }
 
+// A static sensor box standing on a static ground box: their edges are flush and opposite,
+// but a sensor blocks nothing, so the ground's edge under it must stay solid. (It did not:
+// the ghost-edge pass took the sensor's bottom edge for a neighbour and a box dropped into
+// the sensor fell through the ground.)
+TEST(Ghost, ASensorStandingOnTheGroundOpensNoHoleInIt) {
+  World world = World::create().value();
+  testing::addStaticBox(world, {0, -0.5f}, {20, 0.5f});
+  const BodyId zone = world.createBody({.type = BodyType::staticBody}).value();
+  ASSERT_TRUE(world.createShape(zone, {.sensor = true}, makeBox(2, 2, {0, 2}).value()).ok());
+  const BodyId box = testing::addBox(world, {0, 1}, {0.5f, 0.5f});
+  for (int s = 0; s < 120; ++s)
+    ASSERT_TRUE(testing::stepAndValidate(world));
+  EXPECT_NEAR(world.position(box).y, 0.5f, 0.01f);
+}
+
 }  // namespace
 }  // namespace quack
