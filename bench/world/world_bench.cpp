@@ -10,7 +10,12 @@
 //            ground (Box2D v3's "many pyramids" benchmark, its figures quoted in docs/world.md);
 //   rain     N mixed shapes (boxes, circles, capsules, triangles) raining into a box, timed
 //            from the start while they fall and pile up;
-//   field    the same N shapes timed after 4 s, once they have piled up.
+//   field    the same N shapes timed after 4 s, once they have piled up;
+//   sleep    the pyramid settled until it sleeps, timed asleep, against the same pyramid
+//            simulated in full and Box2D 2.4.1's pyramid asleep;
+//   sleepers (Quack only) 10,000 boxes asleep on a grid and 100 balls moving between them,
+//            against the 100 balls alone.
+// Sleeping is off in every other scene, in both libraries.
 // --scene runs one scene; --only runs one library (for callgrind: instruction counts per
 // library, `valgrind --tool=callgrind world_bench --scene pyramid --only quack --steps 20`).
 // Quack runs its default 4 sub-steps; Box2D its standard 8 velocity and 3 position
@@ -94,6 +99,38 @@ Timing timeSteps(const Options& o, StepFn step, CountFn count, int extraWarmup =
 
 // ---- Quack ------------------------------------------------------------------------------
 
+// 10,000 boxes asleep on a grid (3 m apart, no gravity) and 100 balls moving through the
+// lanes between its rows without touching them; or (`sleepers` false) the 100 balls alone.
+Timing quackSleepers(const Options& o, bool sleepers) {
+  World world = World::create({.gravity = {0, 0}}).value();
+  const Polygon box = makeBox(0.25f, 0.25f).value();
+  const Circle ball = makeCircle({}, 0.25f).value();
+  if (sleepers) {
+    for (int r = 0; r < 100; ++r) {
+      for (int c = 0; c < 100; ++c) {
+        BodyId b = world
+                       .createBody({.position = {3.0f * static_cast<float>(c),
+                                                 3.0f * static_cast<float>(r)},
+                                    .isAwake = false})
+                       .value();
+        (void)world.createShape(b, {}, box);
+        (void)world.setAwake(b, false);  // adding the shape woke it
+      }
+    }
+  }
+  for (int i = 0; i < 100; ++i) {
+    const float y = 3.0f * static_cast<float>(i) + 1.5f;
+    BodyId b = world
+                   .createBody({.position = {-3.0f, y},
+                                .linearVelocity = {i % 2 == 0 ? 5.0f : 4.0f, 0},
+                                .enableSleep = false})
+                   .value();
+    (void)world.createShape(b, {}, ball);
+  }
+  return timeSteps(
+      o, [&] { world.step(); }, [&] { return world.awakeBodyCount(); });
+}
+
 // The solver's figures after the last timed step of the last Quack scene.
 World::SolverStats gQuackSolver;
 
@@ -131,8 +168,10 @@ Timing quackMany(const Options& o) {
       o, [&] { world.step(); }, [&] { return quackCount(world); });
 }
 
-Timing quackPyramid(const Options& o) {
-  World world = World::create({}).value();
+// The pyramid, simulated in full (`sleep` false), or first settled until it sleeps and
+// then timed asleep.
+Timing quackPyramid(const Options& o, bool sleep = false) {
+  World world = World::create({.enableSleep = sleep}).value();
   BodyId ground = world.createBody({.type = BodyType::staticBody}).value();
   (void)world.createShape(ground, {}, makeBox(200.0f, 0.5f, {0, -0.5f}).value());
   Polygon box = makeBox(0.5f, 0.5f).value();
@@ -142,6 +181,12 @@ Timing quackPyramid(const Options& o) {
       BodyId b = world.createBody({.position = {x, 0.5f + static_cast<float>(row)}}).value();
       (void)world.createShape(b, {}, box);
     }
+  }
+  if (sleep) {
+    for (int i = 0; i < 1200 && world.awakeBodyCount() > 0; ++i)
+      world.step();
+    if (world.awakeBodyCount() > 0)
+      std::fprintf(stderr, "world_bench: the pyramid did not sleep\n");
   }
   return timeSteps(
       o, [&] { world.step(); }, [&] { return quackCount(world); });
@@ -186,9 +231,15 @@ std::size_t box2dTouching(b2World& world) {
   return n;
 }
 
-Timing box2dPyramid(const Options& o) {
+bool box2dAnyAwake(b2World& world) {
+  for (b2Body* b = world.GetBodyList(); b != nullptr; b = b->GetNext())
+    if (b->GetType() != b2_staticBody && b->IsAwake()) return true;
+  return false;
+}
+
+Timing box2dPyramid(const Options& o, bool sleep = false) {
   b2World world(b2Vec2(0.0f, -10.0f));
-  world.SetAllowSleeping(false);
+  world.SetAllowSleeping(sleep);
   b2BodyDef gd;
   b2Body* ground = world.CreateBody(&gd);
   b2PolygonShape gs;
@@ -208,6 +259,11 @@ Timing box2dPyramid(const Options& o) {
       fd.friction = 0.6f;
       world.CreateBody(&bd)->CreateFixture(&fd);
     }
+  }
+  if (sleep) {
+    for (int i = 0; i < 1200 && box2dAnyAwake(world); ++i)
+      world.Step(1.0f / 60.0f, 8, 3);
+    if (box2dAnyAwake(world)) std::fprintf(stderr, "world_bench: Box2D's pyramid did not sleep\n");
   }
   return timeSteps(
       o, [&] { world.Step(1.0f / 60.0f, 8, 3); }, [&] { return box2dTouching(world); });
@@ -352,10 +408,12 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  if (!o.scene.empty() && o.scene != "pyramid" && o.scene != "many" && o.scene != "rain" &&
-      o.scene != "field") {
-    std::fprintf(stderr, "world_bench: --scene must be pyramid, many, rain or field, got %s\n",
-                 o.scene.c_str());
+  if (!o.scene.empty() && o.scene != "pyramid" && o.scene != "sleep" && o.scene != "sleepers" &&
+      o.scene != "many" && o.scene != "rain" && o.scene != "field") {
+    std::fprintf(
+        stderr,
+        "world_bench: --scene must be pyramid, sleep, sleepers, many, rain or field, got %s\n",
+        o.scene.c_str());
     return 2;
   }
   if (!o.only.empty() && o.only != "quack" && o.only != "box2d") {
@@ -399,6 +457,34 @@ int main(int argc, char** argv) {
   scene(
       "pyramid", "pyramid " + std::to_string(o.rows) + " rows", [&] { return quackPyramid(o); },
       QUACK_BOX2D(box2dPyramid(o)));
+  // Sleeping: the pyramid settled and asleep, against the same pyramid simulated in full and
+  // against Box2D 2.4.1's pyramid asleep.
+  if (o.scene.empty() || o.scene == "sleep") {
+    const std::string label = "pyramid " + std::to_string(o.rows) + " asleep";
+    const Timing awake = runQuack ? quackPyramid(o, false) : Timing{};
+    const Timing asleep = runQuack ? quackPyramid(o, true) : Timing{};
+    if (runQuack) {
+      std::printf("%-24s %14s %14.4f %10zu\n", label.c_str(), "quack awake", awake.msPerStep,
+                  awake.contacts);
+      std::printf("%-24s %14s %14.4f %10zu   (%.2f%% of awake)\n", "", "quack asleep",
+                  asleep.msPerStep, asleep.contacts, 100.0 * asleep.msPerStep / awake.msPerStep);
+    }
+#ifdef QUACK_BENCH_HAS_BOX2D
+    if (runBox2d) {
+      const Timing b = box2dPyramid(o, true);
+      std::printf("%-24s %14s %14.4f %10zu\n", "", "box2d asleep", b.msPerStep, b.contacts);
+      if (runQuack)
+        std::printf("%-24s %14s %14.2fx\n", "", "box2d/quack", b.msPerStep / asleep.msPerStep);
+    }
+#endif
+  }
+  if (runQuack && (o.scene.empty() || o.scene == "sleepers")) {
+    const Timing few = quackSleepers(o, false);
+    const Timing many = quackSleepers(o, true);
+    std::printf("%-24s %14s %14.4f %10zu\n", "100 moving", "quack", few.msPerStep, few.contacts);
+    std::printf("%-24s %14s %14.4f %10zu   (%.2fx the 100 alone)\n", "+ 10000 asleep", "quack",
+                many.msPerStep, many.contacts, many.msPerStep / few.msPerStep);
+  }
   scene(
       "many", "many 20x20 pyramids", [&] { return quackMany(o); }, QUACK_BOX2D(box2dMany(o)));
   scene(

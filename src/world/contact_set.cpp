@@ -138,19 +138,34 @@ void ContactSet::findNew(BroadPhase& broadPhase, BodyStore& store) {
   }
 }
 
+void ContactSet::markAwake(const BodyStore& store, const std::vector<std::uint64_t>& awakeBodies,
+                           std::size_t awakeCount, std::size_t bodyCount) {
+  allAwake_ = 2 * awakeCount > bodyCount;
+  if (allAwake_) return;
+  awake_.assign((contacts.size() + 63) / 64, 0);
+  for (std::size_t w = 0; w < awakeBodies.size(); ++w) {
+    for (std::uint64_t bits = awakeBodies[w]; bits != 0; bits &= bits - 1) {
+      const std::size_t body = w * 64 + static_cast<std::size_t>(__builtin_ctzll(bits));
+      for (std::uint32_t s : store.bodies[body].shapes)
+        for (std::uint32_t c : store.shapes[s].contacts)
+          awake_[c / 64] |= std::uint64_t{1} << (c % 64);
+    }
+  }
+}
+
 void ContactSet::update(const WorldDef& def, const BroadPhase& broadPhase, BodyStore& store,
                         const GhostEdges& edges, EventDispatcher& events) {
-  for (std::uint32_t i = 0; i < contacts.size(); ++i) {
+  forEachAwake([&](std::uint32_t i) {
     Contact& c = contacts[i];
-    if (!c.alive) continue;
+    if (!c.alive) return;
     const Shape& sa = store.shapes[c.shapeA];
     const Shape& sb = store.shapes[c.shapeB];
     // Nothing in it moves (both asleep, or asleep and static): kept as it is, touching or
     // not, with its impulses (docs/world.md, "Sleeping").
-    if (!store.bodies[sa.body].awake && !store.bodies[sb.body].awake) continue;
+    if (!store.bodies[sa.body].awake && !store.bodies[sb.body].awake) return;
     if (!overlaps(broadPhase.fatBox(sa.proxy), broadPhase.fatBox(sb.proxy))) {
       destroy(i, store, events, true, true);
-      continue;
+      return;
     }
     const Transform xa = store.bodies[sa.body].xf;
     const Transform xb = store.bodies[sb.body].xf;
@@ -160,13 +175,13 @@ void ContactSet::update(const WorldDef& def, const BroadPhase& broadPhase, BodyS
       if (c.touching && !wasTouching)
         events.events.sensorBegin.push_back({store.shapeId(c.shapeA), store.shapeId(c.shapeB)});
       if (!c.touching && wasTouching) events.contactEnded(store, c, true);
-      continue;
+      return;
     }
     const Body& ba = store.bodies[sa.body];
     const Body& bb = store.bodies[sb.body];
     c.recycled = c.touching && c.recycleValid && !ba.fast && !bb.fast &&
                  recycle(c, xa, xb, ba, bb, def.contactRecycleDistance);
-    if (c.recycled) continue;  // still touching; impulses, ids and events as they were
+    if (c.recycled) return;  // still touching; impulses, ids and events as they were
     Manifold old = c.manifold;
     float oldNormal[kMaxManifoldPoints], oldTangent[kMaxManifoldPoints];
     std::copy(c.normalImpulse, c.normalImpulse + kMaxManifoldPoints, oldNormal);
@@ -209,7 +224,7 @@ void ContactSet::update(const WorldDef& def, const BroadPhase& broadPhase, BodyS
       events.contactEnded(store, c, true);
       ended.push_back({sa.body, sb.body});
     }
-  }
+  });
 }
 
 void ContactSet::forgetPoses(const BodyStore& store, std::uint32_t body) {

@@ -61,6 +61,24 @@ class ContactSet {
   std::vector<std::uint32_t> toWake;
 
   std::size_t count() const noexcept { return count_; }
+
+  /// The contacts with an awake body in them (the only ones the narrow phase and the
+  /// solver look at), from the awake bodies' bits (IslandSet::awakeBits). When most bodies
+  /// are awake it is simply every contact, which is cheaper than marking them.
+  void markAwake(const BodyStore& store, const std::vector<std::uint64_t>& awakeBodies,
+                 std::size_t awakeCount, std::size_t bodyCount);
+  /// Calls f(index) for every contact markAwake chose, in index order (some may be dead).
+  template <class F>
+  void forEachAwake(F f) const {
+    if (allAwake_) {
+      for (std::uint32_t i = 0; i < contacts.size(); ++i)
+        f(i);
+      return;
+    }
+    for (std::size_t w = 0; w < awake_.size(); ++w)
+      for (std::uint64_t bits = awake_[w]; bits != 0; bits &= bits - 1)
+        f(static_cast<std::uint32_t>(w * 64 + static_cast<std::size_t>(__builtin_ctzll(bits))));
+  }
   std::size_t touchingCount() const noexcept;
   /// The contact of a pair of shapes, if any (index into `contacts`).
   const std::uint32_t* find(std::uint32_t shapeA, std::uint32_t shapeB) const;
@@ -92,6 +110,8 @@ class ContactSet {
   std::unordered_map<std::uint64_t, std::uint32_t> byPair_;
   std::vector<ProxyPair> pairScratch_;
   std::size_t count_ = 0;
+  std::vector<std::uint64_t> awake_;
+  bool allAwake_ = true;
 };
 
 }  // namespace quack::detail

@@ -614,16 +614,16 @@ void Solver::solve(const WorldDef& def, BodyStore& store, ContactSet& contactSet
   // Touching contacts (a dynamic body in every one), in contact order.
   s.touching.clear();
   s.pairs.clear();
-  for (std::uint32_t ci = 0; ci < contacts.size(); ++ci) {
+  contactSet.forEachAwake([&](std::uint32_t ci) {
     const Contact& c = contacts[ci];
-    if (!c.alive || !c.touching || c.sensor) continue;
+    if (!c.alive || !c.touching || c.sensor) return;
     const std::uint32_t a = shapes[c.shapeA].body, b = shapes[c.shapeB].body;
     const std::int32_t sa = s.bodySlot[a], sb = s.bodySlot[b];
     // Solved when a dynamic body in it is awake (contacts of sleeping bodies rest).
-    if (!s.sims[sa].dynamic && !s.sims[sb].dynamic) continue;
+    if (!s.sims[sa].dynamic && !s.sims[sb].dynamic) return;
     s.touching.push_back(ci);
     s.pairs.push_back({a, b, sa, sb, s.sims[sa].dynamic, s.sims[sb].dynamic});
-  }
+  });
   stats_.constraints = s.touching.size();
 
   if (def.scalarSolver) {

@@ -320,6 +320,8 @@ StepStatus World::step(float dt, int substeps) {
     w.islands.wake(w.store, b);
   w.contacts.toWake.clear();
   w.islands.applyContactChanges(w.store, w.contacts);
+  const std::size_t bodyCount = w.store.bodyIds.liveCount();
+  w.contacts.markAwake(w.store, w.islands.awakeBits(), w.islands.awakeCount(), bodyCount);
   if (w.edges.dirty()) {
     w.edges.update(w.store, w.def.removeGhostCollisions);
     // Static geometry changed: which contacts are ghosts may have too, so no manifold is
@@ -327,8 +329,10 @@ StepStatus World::step(float dt, int substeps) {
     w.contacts.forgetAllPoses();
   }
   w.contacts.update(w.def, w.broadPhase, w.store, w.edges, w.events);
-  // Contacts that began touching join islands, and wake the sleeping ones they reach.
+  // Contacts that began touching join islands, and wake the sleeping ones they reach
+  // (whose contacts, unchanged while they slept, the solver now takes too).
   w.islands.applyContactChanges(w.store, w.contacts);
+  w.contacts.markAwake(w.store, w.islands.awakeBits(), w.islands.awakeCount(), bodyCount);
   w.solver.solve(w.def, w.store, w.contacts, w.islands.awakeBits(), w.broadPhase, w.events, dt,
                  substeps);
   w.continuous.run(w.def, w.store, w.islands.awakeBits(), w.broadPhase, w.edges, w.events, dt);
