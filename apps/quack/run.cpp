@@ -454,9 +454,11 @@ int runScene(const RunOptions& options, std::ostream& out, std::ostream& err) {
   }
   progress.end([&] { return formatBytes(total) + " in " + formatSeconds(writeMs / 1000.0); });
 
-  std::size_t dynamicBodies = 0;
+  std::size_t dynamicBodies = 0, movingBodies = 0;
   for (BodyId b : sw.bodies) {
-    if (sw.world.isValid(b) && sw.world.bodyType(b) == BodyType::dynamicBody) ++dynamicBodies;
+    if (!sw.world.isValid(b)) continue;
+    if (sw.world.bodyType(b) == BodyType::dynamicBody) ++dynamicBodies;
+    if (sw.world.bodyType(b) != BodyType::staticBody) ++movingBodies;
   }
   const double msPerStep = options.steps > 0 ? simulateMs / static_cast<double>(options.steps) : 0;
   char line[256];
@@ -473,6 +475,12 @@ int runScene(const RunOptions& options, std::ostream& out, std::ostream& err) {
   std::snprintf(line, sizeof line,
                 "contacts  %zu touching at the end (%zu pairs with overlapping boxes)\n",
                 sw.world.touchingContactCount(), sw.world.contactCount());
+  out << line;
+  // Static bodies are never awake, so they are not counted.
+  std::snprintf(
+      line, sizeof line, "awake     %zu of %zu non-static bodies at the end (%zu island%s%s)\n",
+      sw.world.awakeBodyCount(), movingBodies, sw.world.islandCount(),
+      sw.world.islandCount() == 1 ? "" : "s", scene->world.enableSleep ? "" : ", sleeping off");
   out << line;
   std::snprintf(
       line, sizeof line, "events    begin %llu, end %llu, hit %llu, sensor %llu\n",

@@ -357,6 +357,23 @@ void ReplayRecorder::record(const SceneWorld& scene) {
     bounds_ =
         merge(bounds_, Aabb{xf.p - Vec2{reach_[k], reach_[k]}, xf.p + Vec2{reach_[k], reach_[k]}});
   }
+  // Which bodies sleep, as run lengths over the moving bodies (awake first, then asleep,
+  // alternately): islands sleep together and scene order keeps them together, so a settled
+  // pile costs a few numbers a frame, and a frame stays whole when thin() drops others.
+  f += "],\"w\":[";
+  std::size_t run = 0;
+  bool awake = true, first = true;
+  for (std::uint32_t i : moving_) {
+    if (scene.world.isAwake(scene.bodies[i]) != awake) {
+      f += first ? "" : ",";
+      f += std::to_string(run);
+      first = false;
+      run = 0;
+      awake = !awake;
+    }
+    ++run;
+  }
+  if (run > 0) f += (first ? "" : ",") + std::to_string(run);
   f += "],\"c\":[";
   std::size_t contacts = 0;
   for (const World::ContactView& c : scene.world.touchingContacts()) {

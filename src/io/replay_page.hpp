@@ -23,6 +23,7 @@ inline constexpr const char* kReplayPage = R"QUACKPAGE(<!doctype html>
   <button id="play" title="play / pause (space)">Pause</button>
   <input id="scrub" type="range" min="0" max="0" value="0" aria-label="time">
   <span id="clock"></span>
+  <span id="awake" title="bodies simulated in this frame; sleeping bodies are drawn faded"></span>
   <label>speed <select id="speed"><option>0.25</option><option>0.5</option><option selected>1</option><option>2</option><option>4</option></select></label>
   <label><input type="checkbox" id="contacts" checked> contacts</label>
   <label><input type="checkbox" id="boxes"> broad-phase boxes</label>
@@ -40,7 +41,7 @@ inline constexpr const char* kReplayPage = R"QUACKPAGE(<!doctype html>
   const canvas = document.getElementById("view");
   const ctx = canvas.getContext("2d");
   const ui = {};
-  for (const id of ["play", "scrub", "clock", "speed", "contacts", "boxes", "zoomIn", "zoomOut", "fit"]) ui[id] = document.getElementById(id);
+  for (const id of ["play", "scrub", "clock", "awake", "speed", "contacts", "boxes", "zoomIn", "zoomOut", "fit"]) ui[id] = document.getElementById(id);
   const frames = data.frames;
   const state = { frame: 0, playing: true, position: 0, cx: 0, cy: 0, scale: 1, last: null };
   ui.scrub.max = String(Math.max(0, frames.length - 1));
@@ -52,6 +53,21 @@ inline constexpr const char* kReplayPage = R"QUACKPAGE(<!doctype html>
   if (notes.length) document.getElementById("note").textContent = notes.join("; ") + " (size budget)";
 
   const colors = { static: "#b9b4a8", kinematic: "#9cc3e6", dynamic: "#f2b45a" };
+  // Sleeping bodies are drawn at this opacity (static bodies, never awake, are not faded).
+  const SLEEPING_ALPHA = 0.35;
+
+  // Per moving body of frame f: 1 when it sleeps. f.w holds run lengths, awake first.
+  function sleeping(f) {
+    if (f.z) return f.z;
+    const n = f.p.length / 3;
+    f.z = new Uint8Array(n);
+    let at = 0;
+    (f.w || []).forEach((run, k) => {
+      if (k % 2 === 1) f.z.fill(1, at, Math.min(n, at + run));
+      at += run;
+    });
+    return f.z;
+  }
 
   function fit() {
     const [lx, ly, ux, uy] = data.bounds;
@@ -77,12 +93,14 @@ inline constexpr const char* kReplayPage = R"QUACKPAGE(<!doctype html>
     if (!f) return;
     ctx.lineWidth = Math.max(1, devicePixelRatio);
     ctx.lineJoin = "round";
+    const asleep = sleeping(f);
     for (const s of data.shapes) {
       let x, y, a;
       if (s.b < 0) { [x, y, a] = s.x; } else {
         x = f.p[3 * s.b]; y = f.p[3 * s.b + 1]; a = f.p[3 * s.b + 2];
         if (x === null) continue;
       }
+      ctx.globalAlpha = s.b >= 0 && asleep[s.b] ? SLEEPING_ALPHA : 1;
       const c = Math.cos(a), sn = Math.sin(a);
       ctx.beginPath();
       for (let k = 0; k < s.o.length; k += 2) {
@@ -100,6 +118,7 @@ inline constexpr const char* kReplayPage = R"QUACKPAGE(<!doctype html>
       ctx.stroke();
       ctx.setLineDash([]);
     }
+    ctx.globalAlpha = 1;
     if (ui.boxes.checked && f.a) {
       ctx.strokeStyle = "rgba(40,120,60,0.7)";
       for (let k = 0; k < f.a.length; k += 4) {
@@ -124,6 +143,13 @@ inline constexpr const char* kReplayPage = R"QUACKPAGE(<!doctype html>
     }
     ui.clock.textContent = "t = " + f.t.toFixed(3) + " s  (" + (state.frame + 1) + "/" + frames.length + ")";
     ui.scrub.value = String(state.frame);
+    let live = 0, awake = 0;
+    for (let b = 0; b < asleep.length; ++b) {
+      if (f.p[3 * b] === null) continue;
+      ++live;
+      if (!asleep[b]) ++awake;
+    }
+    ui.awake.textContent = live > 0 ? "awake " + awake + " of " + live : "";
   }
 
   function setPlaying(p) {
@@ -184,6 +210,13 @@ inline constexpr const char* kReplayPage = R"QUACKPAGE(<!doctype html>
   window.quackReplay = {
     get frame() { return state.frame; }, get playing() { return state.playing; }, frameCount: frames.length,
     play() { setPlaying(true); }, pause() { setPlaying(false); },
+    /** Shows frame k (and pauses). */
+    seek(k) { setPlaying(false); state.frame = k; state.position = k; draw(); },
+    /** Indices (into the moving bodies) of the bodies asleep in frame k. */
+    asleep(k) { const z = sleeping(frames[k]); return [...z.keys()].filter((b) => z[b]); },
+    /** Where moving body b's origin is drawn in frame k, in canvas pixels. */
+    screenOf(k, b) { return toScreen(frames[k].p[3 * b], frames[k].p[3 * b + 1]); },
+    sleepingAlpha: SLEEPING_ALPHA,
   };
   resize();
   fit();

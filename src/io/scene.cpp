@@ -28,6 +28,7 @@ struct Parser {
   std::string file;
   std::vector<std::string> categories;
   const SceneProgress* progress = nullptr;
+  bool worldSleep = true;  // world.sleep, to refuse a body that asks to start asleep without it
 
   // False when the caller asked to stop.
   bool tick(std::size_t done) const { return !progress || !*progress || (*progress)(done, 0); }
@@ -309,8 +310,9 @@ Status checkBodyShapes(const SceneBody& b) {
 Result<SceneBody> parseBody(const Parser& p, const json& j, const std::string& path,
                             std::size_t index) {
   if (!j.is_object()) return fail(path + ": must be an object");
-  if (Status s =
-          checkKeys(j, path, {"name", "type", "pos", "angle", "vel", "angvel", "bullet", "shapes"});
+  if (Status s = checkKeys(
+          j, path,
+          {"name", "type", "pos", "angle", "vel", "angvel", "bullet", "awake", "sleep", "shapes"});
       !s) {
     return fail(s.message());
   }
@@ -348,12 +350,26 @@ Result<SceneBody> parseBody(const Parser& p, const json& j, const std::string& p
   }
   Result<bool> bullet = boolean(j, "bullet", path, false);
   if (!bullet) return bullet.error();
+  Result<bool> awake = boolean(j, "awake", path, true);
+  if (!awake) return awake.error();
+  Result<bool> sleep = boolean(j, "sleep", path, true);
+  if (!sleep) return sleep.error();
+  // The world would start such a body awake anyway (World::createBody); say so instead of
+  // silently ignoring what the file asked for. A static body is never awake: "awake" is
+  // ignored there.
+  if (!*awake && *type != BodyType::staticBody && !*sleep)
+    return fail(path +
+                ".awake: false needs \"sleep\": true (a body that may not sleep starts awake)");
+  if (!*awake && *type != BodyType::staticBody && !p.worldSleep)
+    return fail(path + ".awake: false needs sleeping on (world.sleep is false)");
   body.def.type = *type;
   body.def.position = *pos;
   body.def.angle = *angle;
   body.def.linearVelocity = *vel;
   body.def.angularVelocity = *angvel;
   body.def.bullet = *bullet;
+  body.def.isAwake = *awake;
+  body.def.enableSleep = *sleep;
   if (j.contains("shapes")) {
     const json& shapes = j.at("shapes");
     if (!shapes.is_array()) return fail(path + ".shapes: must be an array");
@@ -629,7 +645,7 @@ Status generate(const Parser& p, const json& g, const std::string& path, std::si
 Result<WorldDef> parseWorld(const json& j, const std::string& path) {
   WorldDef def;
   if (!j.is_object()) return fail(path + ": must be an object");
-  if (Status s = checkKeys(j, path, {"gravity", "dt", "substeps", "broadphase"}); !s)
+  if (Status s = checkKeys(j, path, {"gravity", "dt", "substeps", "broadphase", "sleep"}); !s)
     return fail(s.message());
   Result<Vec2> gravity = vec(j, "gravity", path, def.gravity);
   if (!gravity) return gravity.error();
@@ -644,6 +660,9 @@ Result<WorldDef> parseWorld(const json& j, const std::string& path) {
   }
   Result<int> substeps = integer(j, "substeps", path, def.substeps, 1, kSceneMaxSubsteps);
   if (!substeps) return substeps.error();
+  Result<bool> sleep = boolean(j, "sleep", path, def.enableSleep);
+  if (!sleep) return sleep.error();
+  def.enableSleep = *sleep;
   def.gravity = *gravity;
   def.timeStep = *dt;
   def.substeps = *substeps;
@@ -679,6 +698,7 @@ Result<Scene> parseScene(std::string_view text, const std::string& fileName,
     Result<WorldDef> w = parseWorld(root.at("world"), "world");
     if (!w) return p.relabel(w.error());
     scene.world = *w;
+    p.worldSleep = w->enableSleep;
   }
   if (root.contains("categories")) {
     const json& c = root.at("categories");
@@ -772,6 +792,12 @@ Result<SceneWorld> buildWorld(const Scene& scene, const SceneProgress& progress)
                                           : b.chains[k].path;
         return fail(scene.file + ": " + where(chainPath) + ": " + c.error().message);
       }
+    }
+    // Adding a shape wakes its body (World::createShape), so a body the file lists asleep
+    // is put back to sleep once it has its shapes: alone, as nothing touches it yet.
+    if (!b.def.isAwake && b.def.type != BodyType::staticBody) {
+      if (Status s = out.world.setAwake(*body, false); !s)
+        return fail(scene.file + ": " + where(bodyPath) + ".awake: " + s.message());
     }
     out.bodies.push_back(*body);
     out.names.push_back(b.name);

@@ -74,7 +74,8 @@ StateFile captureState(const SceneWorld& scene, const EventTotals& events) {
     BodyId b = scene.bodies[i];
     if (!scene.world.isValid(b)) continue;  // destroyed during the run
     s.bodies.push_back({scene.names[i], scene.world.position(b), scene.world.angle(b),
-                        scene.world.linearVelocity(b), scene.world.angularVelocity(b)});
+                        scene.world.linearVelocity(b), scene.world.angularVelocity(b),
+                        scene.world.isAwake(b)});
   }
   s.events = events;
   return s;
@@ -85,7 +86,7 @@ std::string writeState(const StateFile& state) {
   std::string out = "{\"time\": ";
   appendDouble(out, state.time);
   out += ",\n \"steps\": " + std::to_string(state.steps) + ",\n \"bodies\": [";
-  out.reserve(out.size() + 110 * state.bodies.size() + 128);
+  out.reserve(out.size() + 125 * state.bodies.size() + 128);
   for (std::size_t i = 0; i < state.bodies.size(); ++i) {
     const BodyState& b = state.bodies[i];
     out += i == 0 ? "\n  " : ",\n  ";
@@ -97,7 +98,7 @@ std::string writeState(const StateFile& state) {
     appendVec(out, b.vel);
     out += ", \"angvel\": ";
     appendDouble(out, static_cast<double>(b.angvel));
-    out += '}';
+    out += b.awake ? ", \"awake\": true}" : ", \"awake\": false}";
   }
   out += state.bodies.empty() ? "],\n" : "\n ],\n";
   out += " \"events\": {\"begin\": " + std::to_string(state.events.begin) +
@@ -145,6 +146,11 @@ Result<StateFile> parseState(std::string_view text, const std::string& fileName)
       Result<float> v = readFloat(b.at(key), path + "." + key);
       if (!v) return error(v.error().message);
       *target = *v;
+    }
+    // Optional: a file from before sleeping has none, and every body then was simulated.
+    if (b.contains("awake")) {
+      if (!b.at("awake").is_boolean()) return error(path + ".awake: must be true or false");
+      st.awake = b.at("awake").get<bool>();
     }
     s.bodies.push_back(st);
   }

@@ -76,6 +76,37 @@ TEST(Render, ReplayKeepsAtMostItsFrameBudget) {
   EXPECT_EQ(html.find("https://"), std::string::npos);
 }
 
+// Issue 16: the replay records which bodies sleep in each frame, as run lengths over the
+// moving bodies (awake first): all awake at the start, and a settled pyramid (with a ball
+// still falling beside it, listed first) is one awake body and then the rest asleep.
+TEST(Render, ReplayRecordsSleepingBodiesAsRunLengths) {
+  Result<Scene> scene = parseScene(R"({"bodies": [
+      {"name": "ground", "type": "static", "pos": [0, -0.5], "shapes": [{"type": "box", "half": [20, 0.5]}]},
+      {"name": "ball", "pos": [15, 1000], "shapes": [{"type": "circle", "radius": 0.5}]}],
+      "generate": [{"kind": "pyramid", "rows": 4}]})",
+                                   "zz");
+  SceneWorld sw = buildWorld(scene.value()).value();
+  ReplayRecorder replay(sw, 181, {});
+  replay.record(sw);
+  for (int i = 0; i < 180; ++i) {
+    ASSERT_TRUE(sw.world.step().ok());
+    replay.record(sw);
+  }
+  ASSERT_FALSE(sw.world.isAwake(sw.bodies[2]));  // the pyramid slept
+  std::string html = replay.html("sleep");
+  std::size_t first = html.find("\"w\":");
+  ASSERT_NE(first, std::string::npos);
+  EXPECT_EQ(html.substr(first, 9), "\"w\":[11],");
+  std::size_t last = html.rfind("\"w\":");
+  EXPECT_EQ(html.substr(last, 11), "\"w\":[1,10],");
+  // A body asleep first in scene order starts with an empty awake run.
+  ASSERT_TRUE(sw.world.setAwake(sw.bodies[1], false).ok());
+  ReplayRecorder again(sw, 1, {});
+  again.record(sw);
+  std::string page = again.html("sleep");
+  EXPECT_NE(page.find("\"w\":[0,11],"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace quack
 

@@ -70,7 +70,7 @@ TEST(Scene, BadFilesGetMessagesNamingFileAndPath) {
         << "got: " << scene.error().message << "\nwanted: " << expected;
     ++checked;
   }
-  EXPECT_GE(checked, 39);
+  EXPECT_GE(checked, 45);
   Result<Scene> missing = loadScene("/no/such/scene.json");
   ASSERT_FALSE(missing.ok());
   // Issue 12: "cannot open" says why.
@@ -221,6 +221,9 @@ TEST(Scene, DefaultsAndExplicitValues) {
   EXPECT_EQ(b.def.position, (Vec2{1, 2}));
   EXPECT_EQ(b.def.linearVelocity, (Vec2{3, 4}));
   EXPECT_TRUE(b.def.bullet);
+  EXPECT_TRUE(scene.world.enableSleep);  // sleeping on by default, for the world and bodies
+  EXPECT_TRUE(a.def.enableSleep);
+  EXPECT_TRUE(a.def.isAwake);
   const ShapeDef& d = b.shapes[0].def;
   EXPECT_EQ(d.density, 2.0f);
   EXPECT_EQ(d.restitution, 0.7f);
@@ -228,6 +231,50 @@ TEST(Scene, DefaultsAndExplicitValues) {
   EXPECT_EQ(d.filter.category, 2u);
   EXPECT_EQ(d.filter.mask, 1u);
   EXPECT_EQ(d.filter.group, -3);
+}
+
+// Issue 16: "awake" and "sleep" on bodies, "sleep" on the world, reach the world: a body
+// listed asleep starts asleep and stays put until something wakes it; a body that may not
+// sleep keeps its pile awake; a world with sleeping off never sleeps.
+TEST(Scene, SleepKeysReachTheWorld) {
+  auto text = [](const char* worldSleep, const char* dozerAwake) {
+    return std::string(R"({"world": {"sleep": )") + worldSleep + R"(}, "bodies": [
+      {"name": "ground", "type": "static", "awake": true, "shapes": [{"type": "box", "half": [20, 0.5]}]},
+      {"name": "dozer", "pos": [-5, 3], "awake": )" +
+           dozerAwake + R"(, "shapes": [{"type": "circle", "radius": 0.5}]},
+      {"name": "insomniac", "pos": [5, 1], "sleep": false, "shapes": [{"type": "box", "half": [0.5, 0.5]}]},
+      {"name": "sleeper", "pos": [0, 1], "sleep": true, "shapes": [{"type": "box", "half": [0.5, 0.5]}]}]})";
+  };
+  Result<Scene> s = parseScene(text("true", "false"), "sleep");
+  ASSERT_TRUE(s.ok()) << s.error().message;
+  EXPECT_TRUE(s->world.enableSleep);
+  EXPECT_FALSE(s->bodies[1].def.isAwake);
+  EXPECT_TRUE(s->bodies[1].def.enableSleep);
+  EXPECT_FALSE(s->bodies[2].def.enableSleep);
+  EXPECT_TRUE(s->bodies[3].def.isAwake);
+  SceneWorld sw = buildWorld(s.value()).value();
+  World& w = sw.world;
+  EXPECT_FALSE(w.isAwake(sw.bodies[0]));  // static: never awake, whatever the file says
+  EXPECT_FALSE(w.isAwake(sw.bodies[1]));
+  EXPECT_TRUE(w.isAwake(sw.bodies[2]));
+  for (int i = 0; i < 120; ++i)
+    ASSERT_TRUE(w.step().ok());
+  // The dozer hangs in the air asleep; the insomniac never sleeps; the sleeper settles.
+  EXPECT_EQ(w.position(sw.bodies[1]), (Vec2{-5, 3}));
+  EXPECT_FALSE(w.isAwake(sw.bodies[1]));
+  EXPECT_TRUE(w.isAwake(sw.bodies[2]));
+  EXPECT_FALSE(w.isAwake(sw.bodies[3]));
+  EXPECT_EQ(w.awakeBodyCount(), 1u);
+
+  // Sleeping off in the world (a body listed asleep is then refused: tests/io/bad_scenes):
+  // nothing sleeps.
+  Result<Scene> off = parseScene(text("false", "true"), "sleep-off");
+  ASSERT_TRUE(off.ok()) << off.error().message;
+  EXPECT_FALSE(off->world.enableSleep);
+  SceneWorld swOff = buildWorld(off.value()).value();
+  for (int i = 0; i < 120; ++i)
+    ASSERT_TRUE(swOff.world.step().ok());
+  EXPECT_EQ(swOff.world.awakeBodyCount(), 3u);
 }
 
 TEST(Scene, Generators) {

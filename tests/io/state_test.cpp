@@ -37,6 +37,54 @@ TEST(State, BadStateFilesAreNamed) {
   EXPECT_EQ(u.error().message, "s.json: extra: unknown key");
 }
 
+// Issue 16: each body says whether it is awake. A settled pyramid writes "awake": false for
+// every box (and for the ground: static bodies are never awake); a falling ball, true. The
+// flag reads back; a file from before sleeping, with no "awake", reads as awake.
+TEST(State, AwakeIsWrittenPerBodyAndReadsBack) {
+  Result<Scene> scene = parseScene(R"({"generate": [{"kind": "pyramid", "rows": 4}],
+      "bodies": [{"name": "ground", "type": "static", "pos": [0, -0.5], "shapes": [{"type": "box", "half": [20, 0.5]}]},
+                 {"name": "ball", "pos": [15, 1000], "shapes": [{"type": "circle", "radius": 0.5}]}]})",
+                                   "aw");
+  ASSERT_TRUE(scene.ok()) << scene.error().message;
+  SceneWorld sw = buildWorld(scene.value()).value();
+  StateFile start = captureState(sw, {});
+  ASSERT_EQ(start.bodies.size(), 12u);
+  EXPECT_FALSE(start.bodies[0].awake);
+  for (std::size_t i = 1; i < start.bodies.size(); ++i)
+    EXPECT_TRUE(start.bodies[i].awake) << start.bodies[i].name;
+  for (int i = 0; i < 180; ++i)
+    ASSERT_TRUE(sw.world.step().ok());
+  StateFile state = captureState(sw, {});
+  EXPECT_TRUE(state.bodies[1].awake);  // the ball is still falling
+  std::size_t asleep = 0;
+  for (std::size_t i = 2; i < state.bodies.size(); ++i)
+    asleep += state.bodies[i].awake ? 0 : 1;
+  EXPECT_EQ(asleep, 10u);
+  std::string text = writeState(state);
+  EXPECT_NE(
+      text.find(
+          R"("name": "ground", "pos": [0.0, -0.5], "angle": 0.0, "vel": [0.0, 0.0], "angvel": 0.0, "awake": false})"),
+      std::string::npos)
+      << text;
+  EXPECT_NE(text.find(R"("awake": true})"), std::string::npos);
+  Result<StateFile> back = parseState(text, "aw.json");
+  ASSERT_TRUE(back.ok()) << back.error().message;
+  EXPECT_EQ(back.value(), state);
+
+  Result<StateFile> bad =
+      parseState(R"({"time": 1, "steps": 2, "bodies": [{"name": "a", "pos": [0, 0],
+      "angle": 0, "vel": [0, 0], "angvel": 0, "awake": 1}], "events": {"begin": 0, "end": 0, "hit": 0, "sensor": 0}})",
+                 "s.json");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.error().message, "s.json: bodies[0].awake: must be true or false");
+  Result<StateFile> old =
+      parseState(R"({"time": 1, "steps": 2, "bodies": [{"name": "a", "pos": [0, 0],
+      "angle": 0, "vel": [0, 0], "angvel": 0}], "events": {"begin": 0, "end": 0, "hit": 0, "sensor": 0}})",
+                 "old.json");
+  ASSERT_TRUE(old.ok()) << old.error().message;
+  EXPECT_TRUE(old->bodies[0].awake);
+}
+
 // Issue 14: timing made two identical runs' state files differ. A state file is now a pure
 // function of the world: no timing in it, and the same world writes the same bytes.
 TEST(State, TimingIsNotInTheStateFileSoIdenticalRunsWriteIdenticalBytes) {

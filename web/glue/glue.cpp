@@ -306,6 +306,28 @@ EMSCRIPTEN_KEEPALIVE int qk_world_cull(double y) {
   return removed;
 }
 
+/// Wakes every sleeping body with a shape within `radius` metres of the world point (x, y)
+/// (the page's click, with a few pixels of slack so that a segment can be picked). Returns
+/// {"woken": [shape index, ...]}: the shapes near the point whose bodies it woke (their
+/// islands wake with them; empty when the point is on no sleeping body), or {"error"}.
+EMSCRIPTEN_KEEPALIVE const char* qk_world_wake(double x, double y, double radius) {
+  if (!gSandbox.world) return errorAnswer("no world: call qk_world_reset first");
+  World& world = *gSandbox.world;
+  Result<Circle> pick = makeCircle({}, static_cast<float>(radius));
+  if (!pick) return errorAnswer("radius: " + pick.error().message);
+  Result<std::vector<ShapeOverlap>> hits = world.overlapShape(
+      pick.value(), makeTransform({static_cast<float>(x), static_cast<float>(y)}, 0.0f));
+  if (!hits) return errorAnswer(hits.error().message);
+  json woken = json::array();
+  for (const ShapeOverlap& hit : hits.value()) {
+    if (world.bodyType(hit.body) == BodyType::staticBody || world.isAwake(hit.body)) continue;
+    Status s = world.setAwake(hit.body, true);
+    if (!s) return errorAnswer(s.message());
+    woken.push_back(sandboxIndex(hit.shape));
+  }
+  return answer({{"woken", woken}});
+}
+
 /// Steps the sandbox `steps` times by dt and returns the events of every step:
 /// {"begin": [[a, b], ...], "end": [...], "hit": [{"a", "b", "point", "speed"}]}.
 EMSCRIPTEN_KEEPALIVE const char* qk_world_step(double dt, int steps) {
@@ -346,6 +368,7 @@ EMSCRIPTEN_KEEPALIVE const char* qk_world_state() {
     s["pos"] = toJson(t.p);
     s["angle"] = world.angle(body);
     s["bodyType"] = static_cast<int>(world.bodyType(body));
+    s["awake"] = world.isAwake(body);  // false while asleep, and always for static bodies
     shapes.push_back(s);
   }
   const BroadPhase& bp = world.broadPhase();
@@ -388,6 +411,8 @@ EMSCRIPTEN_KEEPALIVE const char* qk_world_state() {
                    {"areaRatio", stats.areaRatio},
                    {"hasTree", bp.tree() != nullptr}}},
                  {"bodies", world.bodyCount()},
+                 {"awakeBodies", world.awakeBodyCount()},
+                 {"islands", world.islandCount()},
                  {"contactCount", world.contactCount()},
                  {"time", world.time()},
                  {"steps", world.stepCount()}});

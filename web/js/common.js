@@ -21,6 +21,7 @@ export async function loadQuack() {
     worldCull: (y) => module.ccall('qk_world_cull', 'number', ['number'], [y]),
     worldStep: (dt, steps) => call('qk_world_step', [dt, steps], ['number', 'number']),
     worldState: () => call('qk_world_state', [], []),
+    worldWake: (pos, radius) => call('qk_world_wake', [pos[0], pos[1], radius], ['number', 'number', 'number']),
   };
 }
 

@@ -1,10 +1,15 @@
-// Page 2: a sandbox World. Click to drop shapes; the page draws the bodies, the fat boxes
-// of the broad phase, the touching contacts and flashes the events of each step.
+// Page 2: a sandbox World. Click to drop shapes, or on a sleeping body to wake it; the page
+// draws the bodies (sleeping ones faded), the fat boxes of the broad phase, the touching
+// contacts and flashes the events of each step.
 import { loadQuack, View, drawShape, fmt } from './common.js';
 import { PRESETS } from './shapes.js';
 
 const $ = (id) => document.getElementById(id);
 const DT = 1 / 60;
+// Sleeping bodies are drawn at this opacity (static bodies, never awake, are not faded).
+const SLEEPING_ALPHA = 0.35;
+// How far from a click (pixels) a sleeping body still counts as clicked.
+const PICK_PIXELS = 3;
 const PALETTE = ['#4c72b0', '#dd8452', '#55a868', '#c44e52', '#8172b3', '#937860', '#da8bc3', '#8c8c8c'];
 
 let quack;
@@ -14,7 +19,7 @@ const state = { paused: false, events: [], flashes: [], counts: [0, 0, 0], world
 function reset() {
   const r = quack.worldReset($('broadphase').value);
   if (r.error) throw new Error(r.error);
-  // Ground and two walls (static), and a kinematic paddle sweeping back and forth.
+  // Ground and two walls, and two obstacles (a segment and a capsule), all static.
   quack.worldAdd({ type: 'box', half: [5.5, 0.25] }, 0, [0, -3.8], 0, [0, 0], 0);
   quack.worldAdd({ type: 'box', half: [0.25, 3] }, 0, [-5.5, -1], 0, [0, 0], 0);
   quack.worldAdd({ type: 'box', half: [0.25, 3] }, 0, [5.5, -1], 0, [0, 0], 0);
@@ -30,15 +35,43 @@ function reset() {
   state.world = quack.worldState();
 }
 
-function drop(name, pos) {
+// Drops a dynamic shape at pos (at a random angle unless given); returns its shape index.
+function drop(name, pos, angle = Math.random() * 3) {
   const restitution = Number($('restitution').value) || 0;
-  const r = quack.worldAdd(PRESETS[name], 2, pos, Math.random() * 3, [0, 0], restitution);
+  const r = quack.worldAdd(PRESETS[name], 2, pos, angle, [0, 0], restitution);
   if (r.error) console.warn(`drop ${name}: ${r.error}`);
+  return r.shape;
+}
+
+// A click wakes the sleeping bodies under it, or, when there is none, drops a shape.
+function click(pos) {
+  const r = quack.worldWake(pos, PICK_PIXELS / view.scale);
+  if (r.error) throw new Error(r.error);
+  if (r.woken.length > 0) {
+    logEvent(`${state.world.time.toFixed(2)} woke  ${r.woken.join(', ')}`);
+    showEvents();
+  } else {
+    drop($('drop-shape').value, pos);
+  }
+  state.world = quack.worldState();
+}
+
+// Removes every dynamic body (the ground, walls and obstacles stay).
+function clear() {
+  quack.worldCull(Infinity);
+  state.world = quack.worldState();
 }
 
 function logEvent(text) {
   state.events.push(text);
   if (state.events.length > 200) state.events.splice(0, state.events.length - 200);
+}
+
+function showEvents() {
+  const box = $('events');
+  box.textContent = state.events.slice(-40).join('\n');
+  box.style.whiteSpace = 'pre';
+  box.scrollTop = box.scrollHeight;
 }
 
 function step() {
@@ -54,12 +87,7 @@ function step() {
   state.counts[0] += e.begin.length;
   state.counts[1] += e.end.length;
   state.counts[2] += e.hit.length;
-  if (e.begin.length + e.end.length + e.hit.length > 0) {
-    const box = $('events');
-    box.textContent = state.events.slice(-40).join('\n');
-    box.style.whiteSpace = 'pre';
-    box.scrollTop = box.scrollHeight;
-  }
+  if (e.begin.length + e.end.length + e.hit.length > 0) showEvents();
   quack.worldCull(-20);
   state.world = quack.worldState();
 }
@@ -68,11 +96,13 @@ function draw() {
   const w = state.world;
   view.clear();
   view.grid(1);
+  const { ctx } = view;
   for (const s of w.shapes) {
     const colour = s.bodyType === 0 ? '#6b6b6b' : PALETTE[s.index % PALETTE.length];
+    ctx.globalAlpha = s.bodyType !== 0 && !s.awake ? SLEEPING_ALPHA : 1;
     drawShape(view, s, { pos: s.pos, angle: s.angle }, `${colour}55`, colour);
   }
-  const { ctx } = view;
+  ctx.globalAlpha = 1;
   if ($('show-boxes').checked) {
     ctx.save();
     ctx.strokeStyle = 'rgba(40,160,60,0.8)';
@@ -121,6 +151,7 @@ function draw() {
   const bp = w.broadPhase;
   $('time').textContent = `${fmt(w.time, 4)} s (${w.steps} steps)${state.paused ? ', paused' : ''}`;
   $('bodies').textContent = String(w.bodies);
+  $('awake').textContent = `${w.awakeBodies} / ${w.islands}`;
   $('bp').textContent = `${bp.kind}, ${bp.proxies} proxies` +
     (bp.hasTree ? `, tree height ${bp.height}, area ratio ${fmt(bp.areaRatio, 3)}` : '');
   $('contacts').textContent = `${w.contacts.length} / ${w.contactCount}`;
@@ -150,13 +181,11 @@ async function main() {
   view = new View($('world'), 60, [0, 0]);
   for (const name of Object.keys(PRESETS)) $('drop-shape').add(new Option(name, name));
   reset();
-  view.canvas.addEventListener('click', (e) => {
-    drop($('drop-shape').value, view.toWorld(e.offsetX, e.offsetY));
-    state.world = quack.worldState();
-  });
+  view.canvas.addEventListener('click', (e) => click(view.toWorld(e.offsetX, e.offsetY)));
   $('pause').addEventListener('click', togglePause);
   $('step').addEventListener('click', () => { if (!state.paused) togglePause(); step(); });
   $('reset').addEventListener('click', reset);
+  $('clear').addEventListener('click', clear);
   $('broadphase').addEventListener('change', reset);
   window.addEventListener('keydown', (e) => {
     if (e.key === ' ') { e.preventDefault(); togglePause(); }
@@ -164,7 +193,16 @@ async function main() {
   $('status').textContent = 'ready';
   window.quackSandbox = {
     state: () => ({ paused: state.paused, counts: [...state.counts], world: state.world }),
-    drop: (name, pos) => { drop(name, pos); state.world = quack.worldState(); },
+    drop: (name, pos, angle) => {
+      const shape = drop(name, pos, angle);
+      state.world = quack.worldState();
+      return shape;
+    },
+    /** Steps n times at once (pause first, so that only these steps run). */
+    run: (n) => { for (let i = 0; i < n; ++i) step(); },
+    clear,
+    /** Where the world point p is drawn, in canvas pixels. */
+    toCanvas: (p) => view.toCanvas(p),
     togglePause,
   };
   requestAnimationFrame(frame);

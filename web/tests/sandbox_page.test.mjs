@@ -1,6 +1,6 @@
 // Page 2 (sandbox.html): the world runs, a click drops a shape, shapes collide (contacts
-// and events appear), the broad-phase boxes are drawn, pause stops the picture, and every
-// broad phase works.
+// and events appear), the broad-phase boxes are drawn, pause stops the picture, every
+// broad phase works, and resting bodies fall asleep, are drawn faded and wake on a click.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { serve, launch, open, snapshot, colourCount, sleep } from './helpers.mjs';
@@ -78,5 +78,57 @@ test('every broad phase runs the same scene', async () => {
     assert.ok(s.world.steps > 0);
     assert.equal(s.world.fatBoxes.length, s.world.broadPhase.proxies);
   }
+  assert.deepEqual(errors, []);
+});
+
+// The colour drawn at canvas pixel (x, y) and the page's background, as [r, g, b].
+const pixel = (x, y) => page.evaluate(([px, py]) => {
+  const d = document.getElementById('world').getContext('2d').getImageData(Math.round(px), Math.round(py), 1, 1).data;
+  return [d[0], d[1], d[2]];
+}, [x, y]);
+const BACKGROUND = [0xfb, 0xfa, 0xf7];
+const fromBackground = (c) => Math.hypot(c[0] - BACKGROUND[0], c[1] - BACKGROUND[1], c[2] - BACKGROUND[2]);
+
+test('resting boxes fall asleep and are drawn faded; a click wakes the one it hits', async () => {
+  await page.click('#reset');
+  // Paused, so that only the steps the test asks for run.
+  await page.evaluate(() => { if (!window.quackSandbox.state().paused) window.quackSandbox.togglePause(); });
+  assert.equal((await sandbox()).paused, true);
+  await page.evaluate(() => window.quackSandbox.clear());
+  // Three boxes just above the ground (top at y = -3.55), apart: three islands.
+  const xs = [-3.5, 0.5, 3.5];
+  const boxes = await page.evaluate((at) => at.map((x) => window.quackSandbox.drop('box', [x, -2.9], 0)), xs);
+  const shapeOf = (s, index) => s.world.shapes.find((x) => x.index === index);
+  let s = await sandbox();
+  assert.deepEqual(boxes.map((b) => shapeOf(s, b).awake), [true, true, true]);
+  assert.equal(s.world.awakeBodies, 3);
+  // They settle and sleep within two seconds (kTimeToSleep is half a second of rest).
+  await page.evaluate(() => window.quackSandbox.run(120));
+  s = await sandbox();
+  assert.deepEqual(boxes.map((b) => shapeOf(s, b).awake), [false, false, false]);
+  assert.equal(s.world.awakeBodies, 0);
+  assert.equal(await page.textContent('#awake'), '0 / 3');
+  const bodies = s.world.bodies;
+  // Faded: the middle box's centre is drawn much closer to the background than when awake.
+  const middle = shapeOf(s, boxes[1]);
+  const [cx, cy] = await page.evaluate((p) => window.quackSandbox.toCanvas(p), middle.pos);
+  await sleep(100);
+  const asleepColour = await pixel(cx, cy);
+  // A click at the middle box's centre (playwright's position is from the border's corner).
+  const border = await page.$eval('#world', (c) => [c.clientLeft, c.clientTop]);
+  await page.click('#world', { position: { x: cx + border[0], y: cy + border[1] } });
+  s = await sandbox();
+  assert.equal(s.world.bodies, bodies, 'the click dropped a shape instead of waking the box');
+  assert.deepEqual(boxes.map((b) => shapeOf(s, b).awake), [false, true, false]);
+  assert.equal(s.world.awakeBodies, 1);
+  assert.match(await page.textContent('#events'), new RegExp(`woke  ${boxes[1]}$`));
+  await sleep(100);
+  const awakeColour = await pixel(cx, cy);
+  assert.ok(fromBackground(asleepColour) < 0.6 * fromBackground(awakeColour),
+    `asleep ${asleepColour} is not fainter than awake ${awakeColour}`);
+  // A click on empty space still drops a shape.
+  await page.click('#world', { position: { x: 380, y: 80 } });
+  assert.equal((await sandbox()).world.bodies, bodies + 1);
+  await page.evaluate(() => window.quackSandbox.togglePause());
   assert.deepEqual(errors, []);
 });

@@ -3,13 +3,15 @@
 /// Format (keys exact):
 ///
 /// {"time": seconds, "steps": n,
-///  "bodies": [{"name", "pos": [x, y], "angle", "vel": [x, y], "angvel"}, ...],
+///  "bodies": [{"name", "pos": [x, y], "angle", "vel": [x, y], "angvel", "awake"}, ...],
 ///  "events": {"begin", "end", "hit", "sensor"}}
 ///
 /// A state file is a pure function of the scene and the step count: two runs write the
 /// same bytes. How long a run took is not in it (`quack run` prints it, and writes it with
 /// `--timing FILE`); a "timing" object in a file from an older Quack is accepted and
 /// ignored. Numbers are written so that reading them back gives the same floats.
+/// "awake" is World::isAwake at the end (false for a sleeping body, and always for a
+/// static one); a file from before sleeping (issue 16) has none, and reads as awake.
 
 #include <cstdint>
 #include <string>
@@ -29,6 +31,7 @@ struct BodyState {
   float angle = 0.0f;   ///< radians
   Vec2 vel;             ///< centre of mass, m/s
   float angvel = 0.0f;  ///< rad/s
+  bool awake = true;    ///< World::isAwake: false while asleep, and for static bodies
   friend bool operator==(const BodyState&, const BodyState&) = default;
 };
 
