@@ -261,7 +261,9 @@ Result<ShapeId> World::createShape(BodyId bodyId, const ShapeDef& def,
   QUACK_ASSERT(created == index);
   store.shapes[created].proxy = proxy.value();
   if (body.type == BodyType::staticBody) s_->edges.markDirty();
-  s_->islands.wake(store, bodyId.index);
+  // A shape added to a body that had some changes its mass: it wakes. A body being built
+  // (its first shape) keeps the state it was created in (BodyDef::isAwake).
+  if (store.bodies[bodyId.index].shapes.size() > 1) s_->islands.wake(store, bodyId.index);
   return store.shapeId(created);
 }
 

@@ -273,7 +273,9 @@ TEST(Sleep, TheApiWakesAndSleeps) {
   // A body created asleep stays so until touched; one that may not sleep never does.
   const BodyId dozing = world.createBody({.position = {-5, 3}, .isAwake = false}).value();
   ASSERT_TRUE(world.createShape(dozing, {}, makeBox(0.5f, 0.5f).value()).ok());
-  EXPECT_TRUE(world.isAwake(dozing));  // adding a shape is a change: it woke
+  EXPECT_FALSE(world.isAwake(dozing));  // its first shape: still being built
+  ASSERT_TRUE(world.createShape(dozing, {}, makeCircle({0, 0.5f}, 0.2f).value()).ok());
+  EXPECT_TRUE(world.isAwake(dozing));  // a second one changes it: it wakes
   ASSERT_TRUE(world.setAwake(dozing, false).ok());
   const BodyId restless = world.createBody({.position = {-9, 0.5f}, .enableSleep = false}).value();
   ASSERT_TRUE(world.createShape(restless, {}, makeBox(0.5f, 0.5f).value()).ok());

@@ -53,7 +53,8 @@ struct BodyDef {
   /// May this body fall asleep (docs/world.md, "Sleeping")? A body that may not keeps every
   /// body it touches awake.
   bool enableSleep = true;
-  /// Created awake (false: created asleep, at rest until something wakes it).
+  /// Created awake (false: created asleep, at rest until something wakes it; its first
+  /// shape leaves it asleep, later ones wake it, as any change does).
   bool isAwake = true;
   /// Below this speed (m/s) the body rests: its centre's speed, and its angular speed times
   /// its largest extent (the speed of its farthest point from the turning). >= 0.
