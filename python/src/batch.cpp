@@ -123,9 +123,9 @@ std::string firstBadPose(const Rows& poses, const std::string& name, std::size_t
   const std::size_t rows = poses.single ? 1 : n;
   for (std::size_t i = 0; i < rows; ++i) {
     const double* p = poses.at(i, 3);
-    std::string bad =
-        checkPose(p[0], p[1], p[2], poses.single ? name : name + "[" + std::to_string(i) + "]");
-    if (!bad.empty()) return bad;
+    // The message (and its path string) only for a bad row: this runs for every pair.
+    if (poseIsFine(p[0], p[1], p[2])) continue;
+    return checkPose(p[0], p[1], p[2], poses.single ? name : name + "[" + std::to_string(i) + "]");
   }
   return "";
 }
@@ -311,9 +311,13 @@ class BatchResult:
         if (std::string bad = firstBadPose(pa, "poses", n); !bad.empty()) raiseValue(bad);
         for (std::size_t i = 0; i < (r.single ? 1 : n); ++i) {
           const double* ray = r.at(i, 4);
+          // Columns 0-1 the origin, 2-3 the translation, each within the coordinate limit;
+          // the message (and its path string) only for a bad row.
+          if (coordinateIsFine(ray[0]) && coordinateIsFine(ray[1]) && coordinateIsFine(ray[2]) &&
+              coordinateIsFine(ray[3]))
+            continue;
           const std::string path =
               r.single ? std::string("rays") : "rays[" + std::to_string(i) + "]";
-          // Columns 0-1 the origin, 2-3 the translation, each within the coordinate limit.
           std::string bad;
           for (std::size_t k = 0; k < 4 && bad.empty(); ++k)
             bad = checkCoordinate(ray[k], path + "[" + std::to_string(k) + "]");

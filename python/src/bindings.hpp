@@ -16,6 +16,7 @@
 #include "quack/collision/proxy.hpp"
 #include "quack/core/result.hpp"
 #include "quack/geometry/shapes.hpp"
+#include "quack/math/aabb.hpp"
 #include "quack/math/transform.hpp"
 
 namespace quack::python {
@@ -52,6 +53,17 @@ py::object toPython(const nlohmann::json& json);
 /// Why the pose numbers (x, y, angle) are refused, or "" when they are fine: x and y finite
 /// as floats and within the coordinate limit, the angle finite. `path` names the pose.
 std::string checkPose(double x, double y, double angle, const std::string& path);
+/// A coordinate finite as a float and within the coordinate limit (checkCoordinate's test,
+/// without the message).
+inline bool coordinateIsFine(double v) {
+  const float f = static_cast<float>(v);
+  return f >= -kMaxCoordinate && f <= kMaxCoordinate;  // false for NaN
+}
+/// Pose numbers checkPose accepts.
+inline bool poseIsFine(double x, double y, double angle) {
+  const float a = static_cast<float>(angle);
+  return coordinateIsFine(x) && coordinateIsFine(y) && a - a == 0.0f;  // false for NaN, inf
+}
 /// Why the number is refused as a coordinate (finite as a float, within the coordinate
 /// limit), or "".
 std::string checkCoordinate(double v, const std::string& path);
