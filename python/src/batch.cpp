@@ -48,8 +48,10 @@ ShapeSide toShapeSide(py::handle value, const std::string& name) {
 
 std::string shapeText(const py::array& a) {
   std::string s = "(";
-  for (py::ssize_t i = 0; i < a.ndim(); ++i)
-    s += (i ? ", " : "") + std::to_string(a.shape(i));
+  for (py::ssize_t i = 0; i < a.ndim(); ++i) {
+    if (i > 0) s += ", ";
+    s += std::to_string(a.shape(i));
+  }
   return s + (a.ndim() == 1 ? ",)" : ")");
 }
 
