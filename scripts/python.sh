@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The Python module `quack` (docs/python.md), from a fresh Debian machine. Each mode first
 # installs the Debian packages it needs (scripts/setup.sh build python: as root it installs
-# them, otherwise it names the command), then builds the module in release (build/python).
+# them, otherwise it names the command), then builds the module with the release preset
+# (build/release).
 #   scripts/python.sh install            # make `python3 -c "import quack"` work anywhere:
 #                                        #   root: /usr/local/lib/python3.X/dist-packages
 #                                        #   user: ~/.local/lib/python3.X/site-packages
@@ -19,15 +20,15 @@ python=${QUACK_PYTHON:-/usr/bin/python3}
 say() { printf 'python.sh: %s\n' "$*" >&2; }
 usage() { sed -n '2,13p' "$0" >&2; exit 2; }
 
+# The release preset's build (build/release), so that CI's release build is reused.
 build() {
   local bench=$1
-  cmake -S . -B build/python -G Ninja -DCMAKE_BUILD_TYPE=Release -DQUACK_BUILD_PYTHON=ON \
-    -DPython3_EXECUTABLE="$python" -DQUACK_BUILD_TESTS=OFF -DQUACK_BUILD_APPS=OFF \
-    -DQUACK_BUILD_BENCHMARKS="$bench" >/dev/null
+  cmake --preset release -DQUACK_BUILD_PYTHON=ON -DPython3_EXECUTABLE="$python" \
+    ${bench:+-DQUACK_BUILD_BENCHMARKS=ON} >/dev/null
   local targets=quack_python
-  [ "$bench" = ON ] && targets="quack_python quack_python_baseline"
+  [ -n "$bench" ] && targets="quack_python quack_python_baseline"
   # shellcheck disable=SC2086
-  cmake --build build/python -j2 --target $targets
+  cmake --build --preset release --target $targets
 }
 
 # Where the module goes: --prefix D, else the interpreter's own place for local packages.
@@ -46,9 +47,9 @@ case "$mode" in
   install)
     dir=$(target_dir "$@")
     scripts/setup.sh build python
-    build OFF
+    build ""
     mkdir -p "$dir"
-    cmake --install build/python --component python --prefix "$dir" >/dev/null
+    cmake --install build/release --component python --prefix "$dir" >/dev/null
     say "installed $(ls "$dir"/quack.*.so) for $python"
     # The proof: imported from elsewhere, with nothing but the interpreter's own path (and
     # the prefix, when one was given).
@@ -62,9 +63,9 @@ case "$mode" in
   bench)
     scripts/setup.sh build bench python
     build ON
-    PYTHONPATH="$PWD/build/python/python" "$python" python/bench/bench_batch.py \
-      --baseline build/python/python/quack_python_baseline --n "${1:-100000}" \
-      --json build/python/bench_batch.json
+    PYTHONPATH="$PWD/build/release/python" "$python" python/bench/bench_batch.py \
+      --baseline build/release/python/quack_python_baseline --n "${1:-100000}" \
+      --json build/release/bench_batch.json
     ;;
   *) usage ;;
 esac
