@@ -245,6 +245,7 @@ void addContactCallback(PyWorld& w, Registrar reg, std::uint64_t a, std::uint64_
   PyWorld* self = &w;
   (w.world().*reg)(a, b, [self, slot](World&, ShapeId x, ShapeId y) {
     runCallback(*self, [&] {
+      if (self->callables[slot].is_none()) return;
       py::object world = selfObject(*self);
       self->callables[slot](ShapeHandle{world, x}, ShapeHandle{world, y});
     });
@@ -271,6 +272,61 @@ std::string bodyTypeName(BodyType t) {
   return toString(t);
 }
 
+// Garbage collection: a world holds its callbacks' functions and a handle holds its world,
+// so a callback that refers to its world (directly or through a handle) makes a cycle.
+// These let Python's collector see those references and break such cycles.
+template <class T>
+T* valueOf(PyObject* self) {
+  try {
+    return &py::cast<T&>(py::handle(self));
+  } catch (const std::exception&) {
+    return nullptr;  // not constructed yet (or no more)
+  }
+}
+
+int visitType(PyObject* self, visitproc visit, void* arg) {
+  return visit(reinterpret_cast<PyObject*>(Py_TYPE(self)), arg);
+}
+
+template <class Handle>
+py::custom_type_setup handleGc() {
+  return py::custom_type_setup([](PyHeapTypeObject* heapType) {
+    PyTypeObject* type = &heapType->ht_type;
+    type->tp_flags |= Py_TPFLAGS_HAVE_GC;
+    type->tp_traverse = [](PyObject* self, visitproc visit, void* arg) -> int {
+      if (int r = visitType(self, visit, arg)) return r;
+      Handle* h = valueOf<Handle>(self);
+      return h != nullptr && h->world ? visit(h->world.ptr(), arg) : 0;
+    };
+    type->tp_clear = [](PyObject* self) -> int {
+      if (Handle* h = valueOf<Handle>(self)) h->world = py::object();
+      return 0;
+    };
+  });
+}
+
+py::custom_type_setup worldGc() {
+  return py::custom_type_setup([](PyHeapTypeObject* heapType) {
+    PyTypeObject* type = &heapType->ht_type;
+    type->tp_flags |= Py_TPFLAGS_HAVE_GC;
+    type->tp_traverse = [](PyObject* self, visitproc visit, void* arg) -> int {
+      if (int r = visitType(self, visit, arg)) return r;
+      if (PyWorld* w = valueOf<PyWorld>(self)) {
+        for (const py::object& f : w->callables)
+          if (int r = visit(f.ptr(), arg)) return r;
+      }
+      return 0;
+    };
+    type->tp_clear = [](PyObject* self) -> int {
+      // The world's C++ callbacks keep their slots; a cleared slot holds None and is skipped.
+      if (PyWorld* w = valueOf<PyWorld>(self))
+        for (py::object& f : w->callables)
+          f = py::none();
+      return 0;
+    };
+  });
+}
+
 }  // namespace
 
 void registerWorld(py::module_& m) {
@@ -293,7 +349,7 @@ del _t, _collections
            m.attr("__dict__"));
   m.attr("ALL_CATEGORIES") = ~std::uint64_t{0};
 
-  py::class_<BodyHandle>(m, "BodyHandle",
+  py::class_<BodyHandle>(m, "BodyHandle", handleGc<BodyHandle>(),
                          "A body of a World. Stays usable after the body is destroyed, but "
                          "then says so: valid is False and everything else raises ValueError.")
       .def_property_readonly(
@@ -401,7 +457,7 @@ del _t, _collections
                (worldOf(b.world).world().isValid(b.id) ? "" : ", stale") + ")";
       });
 
-  py::class_<ShapeHandle>(m, "ShapeHandle",
+  py::class_<ShapeHandle>(m, "ShapeHandle", handleGc<ShapeHandle>(),
                           "A shape on a body of a World; valid says whether it still exists "
                           "(everything else raises ValueError once it is destroyed).")
       .def_property_readonly(
@@ -444,7 +500,7 @@ del _t, _collections
                (worldOf(s.world).world().isValid(s.id) ? "" : ", stale") + ")";
       });
 
-  py::class_<PyWorld>(m, "World",
+  py::class_<PyWorld>(m, "World", worldGc(),
                       "Rigid bodies carrying shapes, stepped by Quack's solver (docs/world.md). "
                       "World frame, SI units.")
       .def(py::init([](py::handle gravity, double dt, int substeps, const std::string& broadphase,
@@ -684,20 +740,20 @@ del _t, _collections
           py::arg("visitor_categories") = ~std::uint64_t{0}, "As on_sensor_begin, for ends.")
       .def(
           "on_hit",
-          [m](PyWorld& w, py::function fn, std::uint64_t a, std::uint64_t b) {
+          [](PyWorld& w, py::function fn, std::uint64_t a, std::uint64_t b) {
             w.checkIdle();
             const std::size_t slot = w.callables.size();
             w.callables.push_back(std::move(fn));
             PyWorld* self = &w;
-            py::module_ mod = m;
-            w.world().onHit(a, b,
-                            [self, slot, mod](World&, const ContactHitEvent& hit, bool swapped) {
-                              runCallback(*self, [&] {
-                                py::object world = selfObject(*self);
-                                self->callables[slot](
-                                    hitTuple(const_cast<py::module_&>(mod), world, hit), swapped);
-                              });
-                            });
+            // No Python object in the C++ callback: the world may copy it without the GIL.
+            w.world().onHit(a, b, [self, slot](World&, const ContactHitEvent& hit, bool swapped) {
+              runCallback(*self, [&] {
+                if (self->callables[slot].is_none()) return;
+                py::module_ quackModule = py::module_::import("quack");
+                py::object world = selfObject(*self);
+                self->callables[slot](hitTuple(quackModule, world, hit), swapped);
+              });
+            });
           },
           py::arg("fn"), py::arg("categories_a") = ~std::uint64_t{0},
           py::arg("categories_b") = ~std::uint64_t{0},

@@ -424,3 +424,18 @@ def test_dropping_a_world_frees_it():
     del w, ground, ball
     gc.collect()
     assert ref() is None
+
+
+def test_a_world_in_a_cycle_with_its_callbacks_is_collected():
+    """Callbacks that refer to their world, directly or through a handle, make cycles the
+    collector must see through the module's objects to free."""
+    import weakref
+    w, ground, ball = ball_world()
+    w.on_contact_begin(lambda a, b: w.step_count)
+    w.on_hit(lambda hit, swapped: ball.position)
+    w.step()
+    ref = weakref.ref(w)
+    del w, ground, ball
+    gc.collect()
+    assert ref() is None
+
