@@ -439,3 +439,47 @@ def test_a_world_in_a_cycle_with_its_callbacks_is_collected():
     gc.collect()
     assert ref() is None
 
+
+
+def test_handle_setters_impulses_and_forces():
+    w = quack.World(gravity=(0, 0))
+    b = w.create_body(pos=(1, 2), angle=0.5)
+    shape = w.create_shape(b, quack.box(half=(0.5, 0.5)), density=2, friction=0.3, category=8)
+    assert shape.category == 8 and shape.friction == pytest.approx(0.3) and not shape.sensor
+    assert b.mass == pytest.approx(2.0)
+    assert b.position == (1.0, 2.0) and b.angle == pytest.approx(0.5)
+    b.angle = 1.0
+    b.velocity = (3, 0)
+    b.angular_velocity = 2.0
+    assert (b.angle, b.velocity, b.angular_velocity) == (1.0, (3.0, 0.0), 2.0)
+    b.velocity = (0, 0)
+    b.angular_velocity = 0
+    b.apply_impulse((4, 0))  # 4 N s on 2 kg at the centre: 2 m/s, no spin
+    assert b.velocity == pytest.approx((2.0, 0.0)) and b.angular_velocity == 0.0
+    b.apply_impulse((0, 2), point=(1.5, 2))  # off centre: spins too
+    assert b.angular_velocity != 0.0
+    b.velocity = (0, 0)
+    b.apply_force((20, 0))  # 10 m/s^2 for one step
+    w.step(0.1, 1)
+    assert b.velocity[0] == pytest.approx(1.0, rel=1e-4)
+    with pytest.raises(ValueError, match=r"velocity\[0\]: must be finite"):
+        b.velocity = (math.nan, 0)
+    with pytest.raises(ValueError, match="setAngularVelocity"):
+        b.angular_velocity = 1e6
+    w.destroy_shape(shape)
+    assert not shape.valid and b.shapes == [] and w.shape_count == 0
+    with pytest.raises(ValueError, match="shape: stale handle"):
+        w.destroy_shape(shape)
+
+
+def test_sensor_end_callback():
+    w, ground, ball = ball_world()
+    zone = w.create_body(type="static", pos=(0, 2))
+    w.create_shape(zone, quack.box(half=(2, 0.2)), sensor=True, category=4)
+    left = []
+    w.on_sensor_end(lambda s, v: left.append(v.body), 4, 2)
+    ended = 0
+    for _ in range(120):
+        w.step()
+        ended += len(w.events().sensor_end)
+    assert ended == 1 and left == [ball]
