@@ -1,6 +1,6 @@
 // The C++ side of python/bench/bench_batch.py: the per-query cost of a plain C++ loop over
 // the same pairs the Python batch functions get, so that the two can be compared.
-//   quack_python_baseline OP SHAPE_A SHAPE_B FILE REPEATS
+//   quack_python_baseline OP SHAPE_A SHAPE_B FILE REPEATS [inloop]
 // OP: distance, overlap, penetration or raycast; SHAPE_A, SHAPE_B: JSON shapes (convex);
 // FILE: float64 rows, (xa, ya, angle_a, xb, yb, angle_b) per pair, or for raycast (x, y,
 // angle, origin x, origin y, translation x, translation y). Prints the best of REPEATS runs
@@ -30,24 +30,67 @@ Transform transformAt(const double* p) {
                        static_cast<float>(p[2]));
 }
 
-// One query; its answer folded into a checksum so the loop cannot be optimised away.
-double query(const std::string& op, const ShapeGeometry& a, Transform ta, const ShapeGeometry& b,
-             Transform tb, const double* ray) {
-  if (op == "distance") return static_cast<double>(computeDistance(a, ta, b, tb).distance);
-  if (op == "overlap") return testOverlap(a, ta, b, tb) ? 1.0 : 0.0;
-  if (op == "penetration") return static_cast<double>(computePenetration(a, ta, b, tb).depth);
-  const RayCastInput in{
-      invTransformPoint(ta, {static_cast<float>(ray[0]), static_cast<float>(ray[1])}),
-      invRotate(ta.q, {static_cast<float>(ray[2]), static_cast<float>(ray[3])}), 1.0f};
-  const RayHit h = rayCast(a, in);
-  return h.hit ? static_cast<double>(transformPoint(ta, h.point).x) : 0.0;
+enum class Op { distance, overlap, penetration, raycast };
+
+// One query; its answer folded into a checksum so the loop cannot be optimised away. The op
+// is a template argument, chosen once outside the timed loops.
+template <Op op>
+double query(const ShapeGeometry& a, Transform ta, const ShapeGeometry& b, Transform tb,
+             const double* ray) {
+  if constexpr (op == Op::distance) {
+    return static_cast<double>(computeDistance(a, ta, b, tb).distance);
+  } else if constexpr (op == Op::overlap) {
+    return testOverlap(a, ta, b, tb) ? 1.0 : 0.0;
+  } else if constexpr (op == Op::penetration) {
+    return static_cast<double>(computePenetration(a, ta, b, tb).depth);
+  } else {
+    const RayCastInput in{
+        invTransformPoint(ta, {static_cast<float>(ray[0]), static_cast<float>(ray[1])}),
+        invRotate(ta.q, {static_cast<float>(ray[2]), static_cast<float>(ray[3])}), 1.0f};
+    const RayHit h = rayCast(a, in);
+    return h.hit ? static_cast<double>(transformPoint(ta, h.point).x) : 0.0;
+  }
+}
+
+struct Timing {
+  double inLoop = 1e300, prebuilt = 1e300, checksum = 0.0;
+};
+
+// The best of `repeats` runs of both loops over the rows (`width` numbers each).
+template <Op op>
+Timing timeLoops(const ShapeGeometry& a, const ShapeGeometry& b, const std::vector<double>& rows,
+                 std::size_t width, int repeats, bool inLoopOnly) {
+  const std::size_t n = rows.size() / width;
+  std::vector<Transform> ta(n), tb(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    ta[i] = transformAt(&rows[i * width]);
+    if constexpr (op != Op::raycast) tb[i] = transformAt(&rows[i * width + 3]);
+  }
+  Timing t;
+  for (int r = 0; r < repeats; ++r) {
+    auto t0 = Clock::now();
+    for (std::size_t i = 0; i < n; ++i) {
+      const double* row = &rows[i * width];
+      Transform tb1;
+      if constexpr (op != Op::raycast) tb1 = transformAt(row + 3);
+      t.checksum += query<op>(a, transformAt(row), b, tb1, row + 3);
+    }
+    auto t1 = Clock::now();
+    for (std::size_t i = 0; i < (inLoopOnly ? 0 : n); ++i)
+      t.checksum += query<op>(a, ta[i], b, tb[i], &rows[i * width + 3]);
+    auto t2 = Clock::now();
+    t.inLoop = std::min(t.inLoop, std::chrono::duration<double, std::nano>(t1 - t0).count());
+    t.prebuilt = std::min(t.prebuilt, std::chrono::duration<double, std::nano>(t2 - t1).count());
+  }
+  return t;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 6) {
-    std::fprintf(stderr, "usage: quack_python_baseline OP SHAPE_A SHAPE_B FILE REPEATS\n");
+  // A seventh argument "inloop" runs only the first loop (for instruction counts).
+  if (argc != 6 && !(argc == 7 && std::string(argv[6]) == "inloop")) {
+    std::fprintf(stderr, "usage: quack_python_baseline OP SHAPE_A SHAPE_B FILE REPEATS [inloop]\n");
     return 2;
   }
   const std::string op = argv[1];
@@ -70,32 +113,17 @@ int main(int argc, char** argv) {
             bytes.begin() + static_cast<std::ptrdiff_t>(rows.size() * sizeof(double)),
             reinterpret_cast<char*>(rows.data()));
   const int repeats = std::max(1, std::atoi(argv[5]));
+  const bool inLoopOnly = argc == 7;
 
-  std::vector<Transform> ta(n), tb(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    ta[i] = transformAt(&rows[i * width]);
-    tb[i] = op == "raycast" ? Transform{} : transformAt(&rows[i * width + 3]);
-  }
-  double bestInLoop = 1e300, bestPrebuilt = 1e300, sum = 0.0;
-  for (int r = 0; r < repeats; ++r) {
-    auto t0 = Clock::now();
-    for (std::size_t i = 0; i < n; ++i) {
-      const double* row = &rows[i * width];
-      const Transform tb1 = op == "raycast" ? Transform{} : transformAt(row + 3);
-      sum += query(op, *a, transformAt(row), *b, tb1, row + 3);
-    }
-    auto t1 = Clock::now();
-    for (std::size_t i = 0; i < n; ++i)
-      sum += query(op, *a, ta[i], *b, tb[i], &rows[i * width + 3]);
-    auto t2 = Clock::now();
-    bestInLoop = std::min(bestInLoop, std::chrono::duration<double, std::nano>(t1 - t0).count());
-    bestPrebuilt =
-        std::min(bestPrebuilt, std::chrono::duration<double, std::nano>(t2 - t1).count());
-  }
+  Timing t;
+  if (op == "distance") t = timeLoops<Op::distance>(*a, *b, rows, width, repeats, inLoopOnly);
+  if (op == "overlap") t = timeLoops<Op::overlap>(*a, *b, rows, width, repeats, inLoopOnly);
+  if (op == "penetration") t = timeLoops<Op::penetration>(*a, *b, rows, width, repeats, inLoopOnly);
+  if (op == "raycast") t = timeLoops<Op::raycast>(*a, *b, rows, width, repeats, inLoopOnly);
   std::printf(
       "{\"op\": \"%s\", \"n\": %zu, \"ns_per_query\": %.2f, \"ns_per_query_prebuilt\": %.2f, "
       "\"checksum\": %.6g}\n",
-      op.c_str(), n, bestInLoop / static_cast<double>(n), bestPrebuilt / static_cast<double>(n),
-      sum);
+      op.c_str(), n, t.inLoop / static_cast<double>(n), t.prebuilt / static_cast<double>(n),
+      t.checksum);
   return 0;
 }

@@ -3,9 +3,14 @@
 pairs (quack_python_baseline) and a plain Python loop over the single-pair call.
 
     python3 python/bench/bench_batch.py --baseline BUILD/python/quack_python_baseline [--n N]
+        [--instructions]
 
 Run it through `scripts/python.sh bench`, which builds both in release first. The module
 must be importable (PYTHONPATH). Prints a table; --json FILE also writes the figures.
+With --instructions it also counts instructions per query under valgrind's callgrind
+(repeatable on a busy machine, where times are not): the count of a run with the loop done
+twice minus the count with it done once, over N (20,000 there, to keep valgrind quick), for
+the batch call and for the C++ loop.
 """
 
 import argparse
@@ -43,12 +48,51 @@ def best_of(repeats, fn):
     return best
 
 
+CHILD = """
+import sys, numpy as np, quack, json
+op, a, b, data, width, times = sys.argv[1:7]
+rows = np.fromfile(data).reshape(-1, int(width))
+a = quack.shape(json.loads(a))
+b = quack.shape(json.loads(b))
+pa = np.ascontiguousarray(rows[:, :3])
+rest = np.ascontiguousarray(rows[:, 3:])
+for _ in range(int(times)):
+    if op == "raycast":
+        quack.raycast_many(a, pa, rest)
+    else:
+        getattr(quack, op + "_many")(a, pa, b, rest)
+"""
+
+
+def callgrind(command, tmp):
+    """Instructions the command executes (valgrind --tool=callgrind)."""
+    out = os.path.join(tmp, "callgrind.out")
+    subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=" + out] + command,
+                   capture_output=True, check=True)
+    with open(out) as f:
+        for line in f:
+            if line.startswith("summary:") or line.startswith("totals:"):
+                return int(line.split()[1])
+    raise RuntimeError("no instruction count in " + out)
+
+
+def instructions_per_query(args, op, a_json, b_json, data, n, tmp):
+    width = "7" if op == "raycast" else "6"
+    a, b = json.dumps(a_json), json.dumps(b_json or a_json)
+    batch = [callgrind([sys.executable, "-c", CHILD, op, a, b, data, width, str(k)], tmp)
+             for k in (1, 2)]
+    cpp = [callgrind([args.baseline, op, a, b, data, str(k), "inloop"], tmp) for k in (1, 2)]
+    return (batch[1] - batch[0]) / n, (cpp[1] - cpp[0]) / n
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--baseline", required=True, help="the quack_python_baseline program")
     parser.add_argument("--n", type=int, default=100_000)
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--json", help="also write the figures here")
+    parser.add_argument("--instructions", action="store_true",
+                        help="also count instructions per query with callgrind")
     args = parser.parse_args()
     rng = np.random.default_rng(20)
     n = args.n
@@ -91,7 +135,16 @@ def main():
             cpp = json.loads(out.stdout)
             batch_ns = best_of(args.repeats, batch) / n * 1e9
             loop_ns = best_of(2, loop) / n * 1e9
-            rows.append({"op": op, "a": a_json["type"], "b": (b_json or {"type": "-"})["type"],
+            if args.instructions:
+                small = os.path.join(tmp, "small.bin")
+                width = 7 if op == "raycast" else 6
+                np.fromfile(data).reshape(-1, width)[:20_000].tofile(small)
+                batch_ir, cpp_ir = instructions_per_query(args, op, a_json, b_json, small,
+                                                          20_000, tmp)
+            else:
+                batch_ir = cpp_ir = None
+            rows.append({"batch_instructions": batch_ir, "cpp_instructions": cpp_ir,
+                         "op": op, "a": a_json["type"], "b": (b_json or {"type": "-"})["type"],
                          "n": n, "cpp_ns": cpp["ns_per_query"],
                          "cpp_prebuilt_ns": cpp["ns_per_query_prebuilt"],
                          "batch_ns": batch_ns, "python_loop_ns": loop_ns})
@@ -104,6 +157,13 @@ def main():
               f"{r['cpp_prebuilt_ns']:10.1f} {r['batch_ns']:9.1f} "
               f"{r['batch_ns'] / r['cpp_ns']:9.2f} {r['python_loop_ns']:9.0f} "
               f"{r['python_loop_ns'] / r['batch_ns']:10.1f}")
+    if args.instructions:
+        print("\ninstructions per query (callgrind, N = 20,000)")
+        print(f"{'op':12} {'shapes':18} {'C++ loop':>9} {'batch':>9} {'batch/C++':>9}")
+        for r in rows:
+            print(f"{r['op']:12} {r['a'] + '-' + r['b']:18} {r['cpp_instructions']:9.0f} "
+                  f"{r['batch_instructions']:9.0f} "
+                  f"{r['batch_instructions'] / r['cpp_instructions']:9.2f}")
     print("C++ loop: a plain loop over the same rows, building each Transform from (x, y, angle)"
           " as the batch does; (prebuilt): with the Transforms made beforehand.")
     if args.json:
