@@ -8,7 +8,8 @@
 #                                        #   user: ~/.local/lib/python3.X/site-packages
 #   scripts/python.sh install --prefix D # put it in directory D instead (add D to PYTHONPATH)
 #   scripts/python.sh uninstall [--prefix D]
-#   scripts/python.sh bench [N]          # batch queries vs a C++ loop vs a Python loop
+#   scripts/python.sh bench [--n N] [--instructions]  # batch queries vs a C++ loop vs a
+#                                        #   Python loop (--instructions: callgrind counts too)
 # The module is built for Debian's /usr/bin/python3 (whose numpy and pybind11 Debian ships);
 # QUACK_PYTHON=/path/to/python3 chooses another interpreter that has numpy.
 set -euo pipefail
@@ -18,7 +19,7 @@ shift || true
 python=${QUACK_PYTHON:-/usr/bin/python3}
 [ -x "$python" ] || python=$(command -v python3)
 say() { printf 'python.sh: %s\n' "$*" >&2; }
-usage() { sed -n '2,13p' "$0" >&2; exit 2; }
+usage() { sed -n '2,14p' "$0" >&2; exit 2; }
 
 # The release preset's build (build/release), so that CI's release build is reused.
 build() {
@@ -64,8 +65,8 @@ case "$mode" in
     scripts/setup.sh build bench python
     build ON
     PYTHONPATH="$PWD/build/release/python" "$python" python/bench/bench_batch.py \
-      --baseline build/release/python/quack_python_baseline --n "${1:-100000}" \
-      --json build/release/bench_batch.json
+      --baseline build/release/python/quack_python_baseline --json build/release/bench_batch.json \
+      "$@"
     ;;
   *) usage ;;
 esac

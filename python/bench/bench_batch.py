@@ -17,6 +17,7 @@ import argparse
 import json
 import math
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -94,6 +95,8 @@ def main():
     parser.add_argument("--instructions", action="store_true",
                         help="also count instructions per query with callgrind")
     args = parser.parse_args()
+    if args.instructions and shutil.which("valgrind") is None:
+        parser.error("--instructions needs valgrind (Debian package valgrind)")
     rng = np.random.default_rng(20)
     n = args.n
     # Centres within 4 m of each other: about a third of the pentagon pairs overlap.
