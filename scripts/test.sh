@@ -6,7 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 preset=${QUACK_PRESET:-debug}
-scripts/setup.sh build test bench
+scripts/setup.sh build test bench python
 cmake --preset "$preset" >/dev/null
 cmake --build --preset "$preset"
 ctest --preset "$preset"

@@ -1,0 +1,16 @@
+// The Python module `quack` (docs/python.md).
+
+#include "bindings.hpp"
+
+PYBIND11_MODULE(quack, m) {
+  m.doc() =
+      "Quack: 2D collision detection and response. Shapes (quack.circle, ...), the pair "
+      "queries of `quack query` (quack.distance, ...), batch queries over numpy arrays "
+      "(quack.distance_many, ...) and worlds (quack.World, quack.load_scene). "
+      "Units: metres, kilograms, seconds, radians; poses are (x, y, angle). See docs/python.md.";
+  m.attr("__version__") = QUACK_VERSION;
+  quack::python::registerShapes(m);
+  quack::python::registerQueries(m);
+  quack::python::registerBatch(m);
+  quack::python::registerWorld(m);
+}

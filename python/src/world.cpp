@@ -1,0 +1,978 @@
+// quack.World: bodies and shapes, stepping (GIL released), bulk state as numpy arrays,
+// events, per-category callbacks, world queries, scene and state files.
+//
+// Callbacks: the world calls them at the end of a step, from C++ frames of the library. A
+// Python exception must not unwind through those frames, so each callback catches what its
+// Python callable raised, keeps the first such exception, skips the remaining callables of
+// that step, and `step` raises it once the world has finished the step.
+
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <fstream>
+#include <optional>
+
+#include "bindings.hpp"
+#include "quack/io/scene.hpp"
+#include "quack/io/state.hpp"
+#include "quack/world/world.hpp"
+
+namespace quack::python {
+
+namespace {
+
+class PyWorld;
+
+struct BodyHandle {
+  py::object world;  // the PyWorld: a handle keeps its world alive
+  BodyId id;
+};
+
+struct ShapeHandle {
+  py::object world;
+  ShapeId id;
+};
+
+class PyWorld {
+ public:
+  explicit PyWorld(SceneWorld scene, std::vector<std::string> names = {})
+      : sw(std::move(scene)), categories(std::move(names)) {}
+
+  SceneWorld sw;  // the world, and its bodies in creation (scene) order with their names
+  std::vector<std::string> categories;
+  EventTotals totals;
+  bool stepping = false;
+  int callbackDepth = 0;
+  std::optional<py::error_already_set> pending;  // the first exception a callback raised
+  std::vector<py::object> callables;             // the callbacks' Python functions
+
+  World& world() { return sw.world; }
+
+  // Calls from another Python thread while this one steps (with the GIL released) are
+  // refused; calls from a callback (same thread) are the world's to accept or refuse.
+  void checkIdle() const {
+    if (stepping && callbackDepth == 0)
+      throw std::runtime_error("quack.World: the world is stepping (in another thread)");
+  }
+
+  // Drops destroyed bodies from the creation-order list (not during callbacks, where
+  // destruction is deferred and the list is being read).
+  void compact() {
+    if (stepping) return;
+    std::size_t out = 0;
+    for (std::size_t i = 0; i < sw.bodies.size(); ++i) {
+      if (!sw.world.isValid(sw.bodies[i])) continue;
+      sw.bodies[out] = sw.bodies[i];
+      if (out != i) sw.names[out] = std::move(sw.names[i]);
+      ++out;
+    }
+    sw.bodies.resize(out);
+    sw.names.resize(out);
+  }
+};
+
+py::object selfObject(PyWorld& w) {
+  return py::cast(&w, py::return_value_policy::reference);
+}
+
+PyWorld& worldOf(const py::object& o) {
+  return o.cast<PyWorld&>();
+}
+
+BodyType toBodyType(const std::string& s) {
+  if (s == "static") return BodyType::staticBody;
+  if (s == "kinematic") return BodyType::kinematicBody;
+  if (s == "dynamic") return BodyType::dynamicBody;
+  raiseValue("type: unknown body type \"" + s + "\" (expected static, kinematic, dynamic)");
+}
+
+BroadPhaseKind toBroadPhase(const std::string& s) {
+  for (BroadPhaseKind k : kAllBroadPhaseKinds)
+    if (s == toString(k)) return k;
+  raiseValue("broadphase: unknown broad phase \"" + s +
+             "\" (expected tree, quadtree, sap, hash, brute)");
+}
+
+void check(const Status& s) {
+  if (!s) raiseValue(s.message());
+}
+
+// The id of a handle of this world that is still valid, else ValueError naming `path`.
+BodyId bodyId(PyWorld& w, py::handle h, const std::string& path) {
+  if (!py::isinstance<BodyHandle>(h)) raiseValue(path + ": must be a quack.BodyHandle");
+  const BodyHandle& b = h.cast<const BodyHandle&>();
+  if (&worldOf(b.world) != &w) raiseValue(path + ": a body of another world");
+  if (!w.world().isValid(b.id)) raiseValue(path + ": stale handle (the body was destroyed)");
+  return b.id;
+}
+
+const BodyHandle& validBody(const BodyHandle& b) {
+  if (!worldOf(b.world).world().isValid(b.id))
+    raiseValue("stale quack.BodyHandle (the body was destroyed)");
+  return b;
+}
+
+const ShapeHandle& validShape(const ShapeHandle& s) {
+  if (!worldOf(s.world).world().isValid(s.id))
+    raiseValue("stale quack.ShapeHandle (the shape was destroyed)");
+  return s;
+}
+
+// The bodies a bulk call reads or writes: the given handles (checked), or every live body
+// in creation order.
+std::vector<BodyId> bodyList(PyWorld& w, py::handle bodies) {
+  if (bodies.is_none()) return w.sw.bodies;
+  if (py::isinstance<py::str>(bodies) || !py::isinstance<py::sequence>(bodies))
+    raiseValue("bodies: must be a list of quack.BodyHandle, or None for every body");
+  std::vector<BodyId> out;
+  out.reserve(py::len(bodies));
+  std::size_t i = 0;
+  for (py::handle h : bodies) {
+    out.push_back(bodyId(w, h, "bodies[" + std::to_string(i) + "]"));
+    ++i;
+  }
+  return out;
+}
+
+using Values = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+// An array (N, width) (or (N,) for width 1) of finite numbers for N bodies.
+Values toValues(py::handle v, std::size_t n, std::size_t width, const char* name) {
+  Values a = Values::ensure(v);
+  if (!a) PyErr_Clear();
+  const bool ok = a && (width == 1 ? (a.ndim() == 1 && a.shape(0) == static_cast<py::ssize_t>(n))
+                                   : (a.ndim() == 2 && a.shape(0) == static_cast<py::ssize_t>(n) &&
+                                      a.shape(1) == static_cast<py::ssize_t>(width)));
+  if (!ok) {
+    raiseValue(std::string(name) + ": must be a numpy array of shape (" + std::to_string(n) +
+               (width == 1 ? ",)" : ", " + std::to_string(width) + ")") + " for " +
+               std::to_string(n) + " bodies");
+  }
+  const double* d = a.data();
+  for (std::size_t i = 0; i < n * width; ++i) {
+    if (!std::isfinite(static_cast<float>(d[i]))) {
+      raiseValue(std::string(name) + "[" + std::to_string(i / width) + "]" +
+                 (width == 1 ? "" : "[" + std::to_string(i % width) + "]") +
+                 ": must be finite (as a float)");
+    }
+  }
+  return a;
+}
+
+Vec2 vecAt(const double* d, std::size_t i) {
+  return {static_cast<float>(d[2 * i]), static_cast<float>(d[2 * i + 1])};
+}
+
+py::array_t<double> bulkRead(PyWorld& w, py::handle bodies, std::size_t width,
+                             void (*read)(const World&, BodyId, double*)) {
+  w.checkIdle();
+  const std::vector<BodyId> ids = bodyList(w, bodies);
+  std::vector<py::ssize_t> shape{static_cast<py::ssize_t>(ids.size())};
+  if (width > 1) shape.push_back(static_cast<py::ssize_t>(width));
+  py::array_t<double> out(shape);
+  double* d = out.mutable_data();
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    read(w.world(), ids[i], d + i * width);
+  return out;
+}
+
+// Writes every body, or none: each value is checked first, and when the world still
+// refuses one (a shape pushed beyond the coordinate limit), the bodies already written get
+// their old values back and the world's message is raised.
+template <class T, class Get, class Set>
+void bulkWrite(const std::vector<BodyId>& ids, const std::vector<T>& values, Get get, Set set) {
+  std::vector<T> saved;
+  saved.reserve(ids.size());
+  for (BodyId id : ids)
+    saved.push_back(get(id));
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    Status s = set(ids[i], values[i]);
+    if (!s) {
+      for (std::size_t k = 0; k < i; ++k)
+        (void)set(ids[k], saved[k]);
+      raiseValue("bodies[" + std::to_string(i) + "]: " + s.message());
+    }
+  }
+}
+
+std::vector<Vec2> toVecs(const Values& a, std::size_t n) {
+  std::vector<Vec2> out(n);
+  for (std::size_t i = 0; i < n; ++i)
+    out[i] = vecAt(a.data(), i);
+  return out;
+}
+
+std::vector<float> toFloats(const Values& a, std::size_t n) {
+  std::vector<float> out(n);
+  for (std::size_t i = 0; i < n; ++i)
+    out[i] = static_cast<float>(a.data()[i]);
+  return out;
+}
+
+py::object hitTuple(py::module_& m, py::object world, const ContactHitEvent& e) {
+  return m.attr("HitEvent")(ShapeHandle{world, e.shapeA}, ShapeHandle{world, e.shapeB},
+                            toTuple(e.point), toTuple(e.normal),
+                            static_cast<double>(e.approachSpeed));
+}
+
+// Runs a Python callback from inside the world's step: with the GIL, at most one exception
+// kept (the first), none thrown into the library's frames.
+template <class Call>
+void runCallback(PyWorld& w, Call&& call) {
+  py::gil_scoped_acquire gil;
+  if (w.pending) return;
+  ++w.callbackDepth;
+  try {
+    call();
+  } catch (py::error_already_set& e) {
+    w.pending.emplace(std::move(e));
+  } catch (const std::exception& e) {
+    // A C++ exception from pybind11 (a failed cast of the callable's arguments): as Python's
+    // RuntimeError, with its message.
+    PyErr_SetString(PyExc_RuntimeError, e.what());
+    w.pending.emplace();
+  }
+  --w.callbackDepth;
+}
+
+using Registrar = void (World::*)(std::uint64_t, std::uint64_t, World::ContactCallback);
+
+void addContactCallback(PyWorld& w, Registrar reg, std::uint64_t a, std::uint64_t b,
+                        py::function fn) {
+  w.checkIdle();
+  const std::size_t slot = w.callables.size();
+  w.callables.push_back(std::move(fn));
+  PyWorld* self = &w;
+  (w.world().*reg)(a, b, [self, slot](World&, ShapeId x, ShapeId y) {
+    runCallback(*self, [&] {
+      if (self->callables[slot].is_none()) return;
+      py::object world = selfObject(*self);
+      self->callables[slot](ShapeHandle{world, x}, ShapeHandle{world, y});
+    });
+  });
+}
+
+QueryFilter toFilter(std::uint64_t category, std::uint64_t mask, bool sensors) {
+  QueryFilter f;
+  f.category = category;
+  f.mask = mask;
+  f.includeSensors = sensors;
+  return f;
+}
+
+const ShapeGeometry& convexGeometry(const PyShape& s, const char* path) {
+  if (s.concave)
+    raiseValue(std::string(path) +
+               ": a concave shape cannot be a query shape; query its "
+               "convex pieces (make them with quack.polygon)");
+  return s.pieces.front();
+}
+
+std::string bodyTypeName(BodyType t) {
+  return toString(t);
+}
+
+// Garbage collection: a world holds its callbacks' functions and a handle holds its world,
+// so a callback that refers to its world (directly or through a handle) makes a cycle.
+// These let Python's collector see those references and break such cycles.
+template <class T>
+T* valueOf(PyObject* self) {
+  try {
+    return &py::cast<T&>(py::handle(self));
+  } catch (const std::exception&) {
+    return nullptr;  // not constructed yet (or no more)
+  }
+}
+
+int visitType(PyObject* self, visitproc visit, void* arg) {
+  return visit(reinterpret_cast<PyObject*>(Py_TYPE(self)), arg);
+}
+
+template <class Handle>
+py::custom_type_setup handleGc() {
+  return py::custom_type_setup([](PyHeapTypeObject* heapType) {
+    PyTypeObject* type = &heapType->ht_type;
+    type->tp_flags |= Py_TPFLAGS_HAVE_GC;
+    type->tp_traverse = [](PyObject* self, visitproc visit, void* arg) -> int {
+      if (int r = visitType(self, visit, arg)) return r;
+      Handle* h = valueOf<Handle>(self);
+      return h != nullptr && h->world ? visit(h->world.ptr(), arg) : 0;
+    };
+    type->tp_clear = [](PyObject* self) -> int {
+      if (Handle* h = valueOf<Handle>(self)) h->world = py::object();
+      return 0;
+    };
+  });
+}
+
+py::custom_type_setup worldGc() {
+  return py::custom_type_setup([](PyHeapTypeObject* heapType) {
+    PyTypeObject* type = &heapType->ht_type;
+    type->tp_flags |= Py_TPFLAGS_HAVE_GC;
+    type->tp_traverse = [](PyObject* self, visitproc visit, void* arg) -> int {
+      if (int r = visitType(self, visit, arg)) return r;
+      if (PyWorld* w = valueOf<PyWorld>(self)) {
+        for (const py::object& f : w->callables)
+          if (int r = visit(f.ptr(), arg)) return r;
+      }
+      return 0;
+    };
+    type->tp_clear = [](PyObject* self) -> int {
+      // The world's C++ callbacks keep their slots; a cleared slot holds None and is skipped.
+      if (PyWorld* w = valueOf<PyWorld>(self))
+        for (py::object& f : w->callables)
+          f = py::none();
+      return 0;
+    };
+  });
+}
+
+}  // namespace
+
+void registerWorld(py::module_& m) {
+  py::exec(R"py(
+import collections as _collections
+Events = _collections.namedtuple(
+    "Events", "begin end hit sensor_begin sensor_end toi out_of_bounds")
+Events.__doc__ = ("The events of the last step: begin, end (lists of (shape_a, shape_b)), hit "
+                  "(HitEvent), sensor_begin, sensor_end ((sensor, visitor)), toi (ToiEvent), "
+                  "out_of_bounds (bodies held at the edge of the world).")
+HitEvent = _collections.namedtuple("HitEvent", "shape_a shape_b point normal approach_speed")
+ToiEvent = _collections.namedtuple("ToiEvent", "time shape_a shape_b point normal")
+RayHit = _collections.namedtuple("RayHit", "shape body point normal fraction")
+ShapeOverlap = _collections.namedtuple("ShapeOverlap", "shape body depth depenetration")
+ShapeCastHit = _collections.namedtuple("ShapeCastHit", "shape body point normal fraction")
+for _t in (Events, HitEvent, ToiEvent, RayHit, ShapeOverlap, ShapeCastHit):
+    _t.__module__ = "quack"
+del _t, _collections
+)py",
+           m.attr("__dict__"));
+  m.attr("ALL_CATEGORIES") = ~std::uint64_t{0};
+
+  py::class_<BodyHandle>(m, "BodyHandle", handleGc<BodyHandle>(),
+                         "A body of a World. Stays usable after the body is destroyed, but "
+                         "then says so: valid is False and everything else raises ValueError.")
+      .def_property_readonly(
+          "valid", [](const BodyHandle& b) { return worldOf(b.world).world().isValid(b.id); })
+      .def_property_readonly("world", [](const BodyHandle& b) { return b.world; })
+      .def_property_readonly(
+          "name",
+          [](const BodyHandle& b) {
+            PyWorld& w = worldOf(validBody(b).world);
+            for (std::size_t i = 0; i < w.sw.bodies.size(); ++i)
+              if (w.sw.bodies[i] == b.id) return w.sw.names[i];
+            return std::string();
+          },
+          "The scene's (or create_body's) name.")
+      .def_property_readonly(
+          "type",
+          [](const BodyHandle& b) {
+            return bodyTypeName(worldOf(validBody(b).world).world().bodyType(b.id));
+          })
+      .def_property(
+          "position",
+          [](const BodyHandle& b) {
+            return toTuple(worldOf(validBody(b).world).world().position(b.id));
+          },
+          [](const BodyHandle& b, py::handle p) {
+            World& w = worldOf(validBody(b).world).world();
+            worldOf(b.world).checkIdle();
+            check(w.setTransform(b.id, toPosition(p, "position"), w.angle(b.id)));
+          },
+          "Body origin, world frame, metres (setting it teleports the body).")
+      .def_property(
+          "angle",
+          [](const BodyHandle& b) {
+            return static_cast<double>(worldOf(validBody(b).world).world().angle(b.id));
+          },
+          [](const BodyHandle& b, double a) {
+            World& w = worldOf(validBody(b).world).world();
+            worldOf(b.world).checkIdle();
+            check(w.setTransform(b.id, w.position(b.id), static_cast<float>(a)));
+          },
+          "Radians.")
+      .def_property(
+          "velocity",
+          [](const BodyHandle& b) {
+            return toTuple(worldOf(validBody(b).world).world().linearVelocity(b.id));
+          },
+          [](const BodyHandle& b, py::handle v) {
+            worldOf(validBody(b).world).checkIdle();
+            check(worldOf(b.world).world().setLinearVelocity(b.id, toPosition(v, "velocity")));
+          },
+          "Of the centre of mass, m/s.")
+      .def_property(
+          "angular_velocity",
+          [](const BodyHandle& b) {
+            return static_cast<double>(worldOf(validBody(b).world).world().angularVelocity(b.id));
+          },
+          [](const BodyHandle& b, double v) {
+            worldOf(validBody(b).world).checkIdle();
+            check(worldOf(b.world).world().setAngularVelocity(b.id, static_cast<float>(v)));
+          },
+          "rad/s.")
+      .def_property_readonly(
+          "mass",
+          [](const BodyHandle& b) {
+            return static_cast<double>(worldOf(validBody(b).world).world().mass(b.id));
+          })
+      .def_property_readonly("shapes",
+                             [](const BodyHandle& b) {
+                               py::list out;
+                               for (ShapeId s : worldOf(validBody(b).world).world().shapes(b.id))
+                                 out.append(ShapeHandle{b.world, s});
+                               return out;
+                             })
+      .def(
+          "apply_impulse",
+          [](const BodyHandle& b, py::handle impulse, py::handle point) {
+            World& w = worldOf(validBody(b).world).world();
+            worldOf(b.world).checkIdle();
+            const Vec2 at =
+                point.is_none() ? w.worldCenterOfMass(b.id) : toPosition(point, "point");
+            check(w.applyLinearImpulse(b.id, toPosition(impulse, "impulse"), at));
+          },
+          py::arg("impulse"), py::arg("point") = py::none(),
+          "Linear impulse (N s) at a world point (default: the centre of mass).")
+      .def(
+          "apply_force",
+          [](const BodyHandle& b, py::handle force, py::handle point) {
+            World& w = worldOf(validBody(b).world).world();
+            worldOf(b.world).checkIdle();
+            const Vec2 at =
+                point.is_none() ? w.worldCenterOfMass(b.id) : toPosition(point, "point");
+            check(w.applyForce(b.id, toPosition(force, "force"), at));
+          },
+          py::arg("force"), py::arg("point") = py::none(),
+          "Force (N) at a world point through the next step (default: the centre of mass).")
+      .def("__eq__", [](const BodyHandle& a,
+                        const BodyHandle& b) { return a.world.is(b.world) && a.id == b.id; })
+      .def("__hash__",
+           [](const BodyHandle& b) {
+             return py::hash(py::make_tuple(b.id.world, b.id.index, b.id.generation));
+           })
+      .def("__repr__", [](const BodyHandle& b) {
+        return "BodyHandle(index=" + std::to_string(b.id.index) +
+               ", generation=" + std::to_string(b.id.generation) +
+               (worldOf(b.world).world().isValid(b.id) ? "" : ", stale") + ")";
+      });
+
+  py::class_<ShapeHandle>(m, "ShapeHandle", handleGc<ShapeHandle>(),
+                          "A shape on a body of a World; valid says whether it still exists "
+                          "(everything else raises ValueError once it is destroyed).")
+      .def_property_readonly(
+          "valid", [](const ShapeHandle& s) { return worldOf(s.world).world().isValid(s.id); })
+      .def_property_readonly(
+          "body",
+          [](const ShapeHandle& s) {
+            return BodyHandle{s.world, worldOf(validShape(s).world).world().body(s.id)};
+          })
+      .def_property_readonly(
+          "type",
+          [](const ShapeHandle& s) {
+            return std::string(
+                toString(shapeType(worldOf(validShape(s).world).world().geometry(s.id))));
+          },
+          "circle, capsule, segment or polygon (boxes and concave pieces are polygons).")
+      .def_property_readonly(
+          "category",
+          [](const ShapeHandle& s) {
+            return worldOf(validShape(s).world).world().shapeDef(s.id).filter.category;
+          })
+      .def_property_readonly("sensor",
+                             [](const ShapeHandle& s) {
+                               return worldOf(validShape(s).world).world().shapeDef(s.id).sensor;
+                             })
+      .def_property_readonly("friction",
+                             [](const ShapeHandle& s) {
+                               return static_cast<double>(
+                                   worldOf(validShape(s).world).world().shapeDef(s.id).friction);
+                             })
+      .def("__eq__", [](const ShapeHandle& a,
+                        const ShapeHandle& b) { return a.world.is(b.world) && a.id == b.id; })
+      .def("__hash__",
+           [](const ShapeHandle& s) {
+             return py::hash(py::make_tuple(s.id.world, s.id.index, s.id.generation));
+           })
+      .def("__repr__", [](const ShapeHandle& s) {
+        return "ShapeHandle(index=" + std::to_string(s.id.index) +
+               ", generation=" + std::to_string(s.id.generation) +
+               (worldOf(s.world).world().isValid(s.id) ? "" : ", stale") + ")";
+      });
+
+  py::class_<PyWorld>(m, "World", worldGc(),
+                      "Rigid bodies carrying shapes, stepped by Quack's solver (docs/world.md). "
+                      "World frame, SI units.")
+      .def(py::init([](py::handle gravity, double dt, int substeps, const std::string& broadphase,
+                       bool continuous) {
+             WorldDef def;
+             def.gravity = toPosition(gravity, "gravity");
+             def.timeStep = static_cast<float>(dt);
+             def.substeps = substeps;
+             def.broadPhase = toBroadPhase(broadphase);
+             def.enableContinuous = continuous;
+             World w = valueOrRaise(World::create(def));
+             return std::make_unique<PyWorld>(SceneWorld{std::move(w), {}, {}});
+           }),
+           py::arg("gravity") = py::make_tuple(0.0, -10.0), py::arg("dt") = 1.0 / 60.0,
+           py::arg("substeps") = 4, py::arg("broadphase") = "tree", py::arg("continuous") = true,
+           "A world: gravity (m/s^2), dt (seconds per step()), substeps (1..64), broadphase "
+           "(tree, quadtree, sap, hash, brute), continuous collision on or off.")
+      .def(
+          "create_body",
+          [](py::object self, const std::string& type, py::handle pos, double angle, py::handle vel,
+             double angvel, double linearDamping, double angularDamping, double gravityScale,
+             bool bullet, const std::string& name) {
+            PyWorld& w = worldOf(self);
+            w.checkIdle();
+            BodyDef def;
+            def.type = toBodyType(type);
+            def.position = toPosition(pos, "pos");
+            def.angle = static_cast<float>(angle);
+            def.linearVelocity = toPosition(vel, "vel");
+            def.angularVelocity = static_cast<float>(angvel);
+            def.linearDamping = static_cast<float>(linearDamping);
+            def.angularDamping = static_cast<float>(angularDamping);
+            def.gravityScale = static_cast<float>(gravityScale);
+            def.bullet = bullet;
+            BodyId id = valueOrRaise(w.world().createBody(def));
+            w.sw.bodies.push_back(id);
+            w.sw.names.push_back(name);
+            return BodyHandle{self, id};
+          },
+          py::arg("type") = "dynamic", py::arg("pos") = py::make_tuple(0.0, 0.0),
+          py::arg("angle") = 0.0, py::arg("vel") = py::make_tuple(0.0, 0.0),
+          py::arg("angvel") = 0.0, py::arg("linear_damping") = 0.0,
+          py::arg("angular_damping") = 0.0, py::arg("gravity_scale") = 1.0,
+          py::arg("bullet") = false, py::arg("name") = "",
+          "A new body (type static, kinematic or dynamic) at pos (world frame) and angle.")
+      .def(
+          "create_shape",
+          [](py::object self, py::handle body, py::handle shape, double density, double friction,
+             double restitution, bool sensor, std::uint64_t category, std::uint64_t mask,
+             std::int32_t group) -> py::object {
+            PyWorld& w = worldOf(self);
+            w.checkIdle();
+            const BodyId b = bodyId(w, body, "body");
+            const PyShape& s = toShape(shape, "shape");
+            ShapeDef def;
+            def.density = static_cast<float>(density);
+            def.friction = static_cast<float>(friction);
+            def.restitution = static_cast<float>(restitution);
+            def.sensor = sensor;
+            def.filter.category = category;
+            def.filter.mask = mask;
+            def.filter.group = group;
+            std::vector<ShapeId> made;
+            for (const ShapeGeometry& piece : s.pieces) {
+              Result<ShapeId> r = w.world().createShape(b, def, piece);
+              if (!r) {
+                // All pieces or none.
+                for (ShapeId id : made)
+                  (void)w.world().destroyShape(id);
+                raiseValue(r.error().message);
+              }
+              made.push_back(*r);
+            }
+            if (!s.concave) return py::cast(ShapeHandle{self, made.front()});
+            py::list out;
+            for (ShapeId id : made)
+              out.append(ShapeHandle{self, id});
+            return out;
+          },
+          py::arg("body"), py::arg("shape"), py::arg("density") = 1.0, py::arg("friction") = 0.6,
+          py::arg("restitution") = 0.0, py::arg("sensor") = false, py::arg("category") = 1,
+          py::arg("mask") = ~std::uint64_t{0}, py::arg("group") = 0,
+          "Puts a quack.Shape (body frame) on a body; returns its ShapeHandle (a concave shape: "
+          "a list, one per convex piece). category and mask are bit sets.")
+      .def(
+          "destroy_body",
+          [](PyWorld& w, py::handle body) {
+            w.checkIdle();
+            check(w.world().destroyBody(bodyId(w, body, "body")));
+            w.compact();
+          },
+          py::arg("body"), "Destroys a body and its shapes (deferred inside a callback).")
+      .def(
+          "destroy_shape",
+          [](PyWorld& w, py::handle shape) {
+            w.checkIdle();
+            if (!py::isinstance<ShapeHandle>(shape))
+              raiseValue("shape: must be a quack.ShapeHandle");
+            const ShapeHandle& s = shape.cast<const ShapeHandle&>();
+            if (&worldOf(s.world) != &w) raiseValue("shape: a shape of another world");
+            if (!w.world().isValid(s.id))
+              raiseValue("shape: stale handle (the shape was destroyed)");
+            check(w.world().destroyShape(s.id));
+          },
+          py::arg("shape"))
+      .def_property_readonly(
+          "bodies",
+          [](py::object self) {
+            PyWorld& w = worldOf(self);
+            py::list out;
+            for (BodyId id : w.sw.bodies)
+              out.append(BodyHandle{self, id});
+            return out;
+          },
+          "Every live body, in creation (scene) order.")
+      .def_property_readonly("body_count", [](PyWorld& w) { return w.world().bodyCount(); })
+      .def_property_readonly("shape_count", [](PyWorld& w) { return w.world().shapeCount(); })
+      .def_property_readonly(
+          "contact_count", [](PyWorld& w) { return w.world().touchingContactCount(); },
+          "Touching contacts.")
+      .def_property_readonly(
+          "categories", [](PyWorld& w) { return w.categories; },
+          "The scene's category names; category i is bit 1 << i.")
+      .def(
+          "body",
+          [](py::object self, const std::string& name) {
+            PyWorld& w = worldOf(self);
+            for (std::size_t i = 0; i < w.sw.bodies.size(); ++i)
+              if (w.sw.names[i] == name) return BodyHandle{self, w.sw.bodies[i]};
+            raiseValue("body: no body named \"" + name + "\"");
+          },
+          py::arg("name"), "The first body with this name.")
+      .def(
+          "step",
+          [](PyWorld& w, py::handle dt, py::handle substeps) {
+            w.checkIdle();
+            if (w.stepping) raiseValue("step: called from a callback");
+            std::optional<float> stepDt;
+            int sub = w.world().def().substeps;
+            if (!dt.is_none()) stepDt = static_cast<float>(dt.cast<double>());
+            if (!substeps.is_none()) sub = substeps.cast<int>();
+            StepStatus s;
+            w.stepping = true;
+            {
+              py::gil_scoped_release release;
+              s = stepDt || !substeps.is_none()
+                      ? w.world().step(stepDt.value_or(w.world().def().timeStep), sub)
+                      : w.world().step();
+            }
+            w.stepping = false;
+            if (s) {
+              const StepEvents& e = w.world().events();
+              w.totals.begin += e.begin.size();
+              w.totals.end += e.end.size();
+              w.totals.hit += e.hit.size();
+              w.totals.sensor += e.sensorBegin.size();
+            }
+            w.compact();
+            if (w.pending) {
+              py::error_already_set e = std::move(*w.pending);
+              w.pending.reset();
+              throw e;
+            }
+            if (!s) raiseValue(s.message());
+          },
+          py::arg("dt") = py::none(), py::arg("substeps") = py::none(),
+          "Advances by dt seconds (default: the world's) with substeps. The GIL is released. "
+          "Callbacks run at the end; the first exception one raises is raised here, after the "
+          "step is complete.")
+      .def_property_readonly("time", [](PyWorld& w) { return w.world().time(); })
+      .def_property_readonly("step_count", [](PyWorld& w) { return w.world().stepCount(); })
+      .def(
+          "state_hash", [](PyWorld& w) { return w.world().stateHash(); },
+          "A hash of every body's position, angle and velocities (bitwise): equal in C++ "
+          "(World::stateHash) for the same scene and steps.")
+      .def(
+          "validate", [](PyWorld& w) { check(w.world().validate()); },
+          "Checks every internal cross-reference; raises ValueError when one is broken.")
+      .def(
+          "events",
+          [m](py::object self) mutable {
+            PyWorld& w = worldOf(self);
+            const StepEvents& e = w.world().events();
+            auto pairs = [&](const auto& list, auto first, auto second) {
+              py::list out;
+              for (const auto& x : list)
+                out.append(
+                    py::make_tuple(ShapeHandle{self, x.*first}, ShapeHandle{self, x.*second}));
+              return out;
+            };
+            py::list hits, tois, outs;
+            for (const ContactHitEvent& h : e.hit)
+              hits.append(hitTuple(m, self, h));
+            for (const ToiEvent& t : e.toi)
+              tois.append(m.attr("ToiEvent")(
+                  static_cast<double>(t.time), ShapeHandle{self, t.shapeA},
+                  ShapeHandle{self, t.shapeB}, toTuple(t.point), toTuple(t.normal)));
+            for (BodyId b : e.outOfBounds)
+              outs.append(BodyHandle{self, b});
+            return m.attr("Events")(
+                pairs(e.begin, &ContactBeginEvent::shapeA, &ContactBeginEvent::shapeB),
+                pairs(e.end, &ContactEndEvent::shapeA, &ContactEndEvent::shapeB), hits,
+                pairs(e.sensorBegin, &SensorEvent::sensor, &SensorEvent::visitor),
+                pairs(e.sensorEnd, &SensorEvent::sensor, &SensorEvent::visitor), tois, outs);
+          },
+          "The events of the last step (quack.Events). Shapes destroyed since are stale handles.")
+      .def(
+          "on_contact_begin",
+          [](PyWorld& w, py::function fn, std::uint64_t a, std::uint64_t b) {
+            addContactCallback(w, &World::onContactBegin, a, b, std::move(fn));
+          },
+          py::arg("fn"), py::arg("categories_a") = ~std::uint64_t{0},
+          py::arg("categories_b") = ~std::uint64_t{0},
+          "fn(shape_a, shape_b) after each step for each contact that began between a shape of "
+          "categories_a and one of categories_b (bit sets), in that order.")
+      .def(
+          "on_contact_end",
+          [](PyWorld& w, py::function fn, std::uint64_t a, std::uint64_t b) {
+            addContactCallback(w, &World::onContactEnd, a, b, std::move(fn));
+          },
+          py::arg("fn"), py::arg("categories_a") = ~std::uint64_t{0},
+          py::arg("categories_b") = ~std::uint64_t{0}, "As on_contact_begin, for ends.")
+      .def(
+          "on_sensor_begin",
+          [](PyWorld& w, py::function fn, std::uint64_t a, std::uint64_t b) {
+            addContactCallback(w, &World::onSensorBegin, a, b, std::move(fn));
+          },
+          py::arg("fn"), py::arg("sensor_categories") = ~std::uint64_t{0},
+          py::arg("visitor_categories") = ~std::uint64_t{0},
+          "fn(sensor, visitor) for each shape that started overlapping a sensor.")
+      .def(
+          "on_sensor_end",
+          [](PyWorld& w, py::function fn, std::uint64_t a, std::uint64_t b) {
+            addContactCallback(w, &World::onSensorEnd, a, b, std::move(fn));
+          },
+          py::arg("fn"), py::arg("sensor_categories") = ~std::uint64_t{0},
+          py::arg("visitor_categories") = ~std::uint64_t{0}, "As on_sensor_begin, for ends.")
+      .def(
+          "on_hit",
+          [](PyWorld& w, py::function fn, std::uint64_t a, std::uint64_t b) {
+            w.checkIdle();
+            const std::size_t slot = w.callables.size();
+            w.callables.push_back(std::move(fn));
+            PyWorld* self = &w;
+            // No Python object in the C++ callback: the world may copy it without the GIL.
+            w.world().onHit(a, b, [self, slot](World&, const ContactHitEvent& hit, bool swapped) {
+              runCallback(*self, [&] {
+                if (self->callables[slot].is_none()) return;
+                py::module_ quackModule = py::module_::import("quack");
+                py::object world = selfObject(*self);
+                self->callables[slot](hitTuple(quackModule, world, hit), swapped);
+              });
+            });
+          },
+          py::arg("fn"), py::arg("categories_a") = ~std::uint64_t{0},
+          py::arg("categories_b") = ~std::uint64_t{0},
+          "fn(hit, swapped) for each quack.HitEvent between the categories; swapped says the "
+          "event's shape_a is the one in categories_b.")
+      .def(
+          "get_positions",
+          [](PyWorld& w, py::handle bodies) {
+            return bulkRead(w, bodies, 2, [](const World& world, BodyId id, double* out) {
+              const Vec2 p = world.position(id);
+              out[0] = static_cast<double>(p.x);
+              out[1] = static_cast<double>(p.y);
+            });
+          },
+          py::arg("bodies") = py::none(),
+          "Body origins (N, 2), world frame, of the given bodies (default: every body).")
+      .def(
+          "get_angles",
+          [](PyWorld& w, py::handle bodies) {
+            return bulkRead(w, bodies, 1, [](const World& world, BodyId id, double* out) {
+              out[0] = static_cast<double>(world.angle(id));
+            });
+          },
+          py::arg("bodies") = py::none(), "Angles (N,), radians.")
+      .def(
+          "get_velocities",
+          [](PyWorld& w, py::handle bodies) {
+            return bulkRead(w, bodies, 2, [](const World& world, BodyId id, double* out) {
+              const Vec2 v = world.linearVelocity(id);
+              out[0] = static_cast<double>(v.x);
+              out[1] = static_cast<double>(v.y);
+            });
+          },
+          py::arg("bodies") = py::none(), "Velocities of the centres of mass (N, 2), m/s.")
+      .def(
+          "get_angular_velocities",
+          [](PyWorld& w, py::handle bodies) {
+            return bulkRead(w, bodies, 1, [](const World& world, BodyId id, double* out) {
+              out[0] = static_cast<double>(world.angularVelocity(id));
+            });
+          },
+          py::arg("bodies") = py::none(), "Angular velocities (N,), rad/s.")
+      .def(
+          "set_positions",
+          [](PyWorld& w, py::handle values, py::handle bodies) {
+            w.checkIdle();
+            const std::vector<BodyId> ids = bodyList(w, bodies);
+            const Values a = toValues(values, ids.size(), 2, "positions");
+            World& world = w.world();
+            for (std::size_t i = 0; i < ids.size(); ++i) {
+              std::string bad = checkPosition(a.data()[2 * i], a.data()[2 * i + 1],
+                                              "positions[" + std::to_string(i) + "]");
+              if (!bad.empty()) raiseValue(bad);
+            }
+            bulkWrite(
+                ids, toVecs(a, ids.size()), [&](BodyId id) { return world.position(id); },
+                [&](BodyId id, auto v) { return world.setTransform(id, v, world.angle(id)); });
+          },
+          py::arg("positions"), py::arg("bodies") = py::none(),
+          "Teleports bodies: positions (N, 2), world frame. All or none are moved.")
+      .def(
+          "set_angles",
+          [](PyWorld& w, py::handle values, py::handle bodies) {
+            w.checkIdle();
+            const std::vector<BodyId> ids = bodyList(w, bodies);
+            const Values a = toValues(values, ids.size(), 1, "angles");
+            World& world = w.world();
+            bulkWrite(
+                ids, toFloats(a, ids.size()), [&](BodyId id) { return world.angle(id); },
+                [&](BodyId id, auto v) { return world.setTransform(id, world.position(id), v); });
+          },
+          py::arg("angles"), py::arg("bodies") = py::none(),
+          "Turns bodies: angles (N,), radians. All or none are turned.")
+      .def(
+          "set_velocities",
+          [](PyWorld& w, py::handle values, py::handle bodies) {
+            w.checkIdle();
+            const std::vector<BodyId> ids = bodyList(w, bodies);
+            const Values a = toValues(values, ids.size(), 2, "velocities");
+            World& world = w.world();
+            bulkWrite(
+                ids, toVecs(a, ids.size()), [&](BodyId id) { return world.linearVelocity(id); },
+                [&](BodyId id, auto v) { return world.setLinearVelocity(id, v); });
+          },
+          py::arg("velocities"), py::arg("bodies") = py::none(),
+          "Velocities (N, 2), m/s (static bodies keep theirs, zero). All or none are set.")
+      .def(
+          "set_angular_velocities",
+          [](PyWorld& w, py::handle values, py::handle bodies) {
+            w.checkIdle();
+            const std::vector<BodyId> ids = bodyList(w, bodies);
+            const Values a = toValues(values, ids.size(), 1, "angular_velocities");
+            World& world = w.world();
+            bulkWrite(
+                ids, toFloats(a, ids.size()), [&](BodyId id) { return world.angularVelocity(id); },
+                [&](BodyId id, auto v) { return world.setAngularVelocity(id, v); });
+          },
+          py::arg("angular_velocities"), py::arg("bodies") = py::none(),
+          "Angular velocities (N,), rad/s. All or none are set.")
+      .def(
+          "ray_cast_closest",
+          [m](py::object self, py::handle origin, py::handle translation, std::uint64_t category,
+              std::uint64_t mask, bool sensors) mutable -> py::object {
+            PyWorld& w = worldOf(self);
+            w.checkIdle();
+            std::optional<RayHitResult> h = w.world().rayCastClosest(
+                toPosition(origin, "origin"), toPosition(translation, "translation"),
+                toFilter(category, mask, sensors));
+            if (!h) return py::none();
+            return m.attr("RayHit")(ShapeHandle{self, h->shape}, BodyHandle{self, h->body},
+                                    toTuple(h->point), toTuple(h->normal),
+                                    static_cast<double>(h->fraction));
+          },
+          py::arg("origin"), py::arg("translation"), py::arg("category") = 1,
+          py::arg("mask") = ~std::uint64_t{0}, py::arg("include_sensors") = false,
+          "The first shape the ray origin + t translation (t in [0, 1]) enters: a "
+          "quack.RayHit, or None.")
+      .def(
+          "ray_cast_all",
+          [m](py::object self, py::handle origin, py::handle translation, std::uint64_t category,
+              std::uint64_t mask, bool sensors) mutable {
+            PyWorld& w = worldOf(self);
+            w.checkIdle();
+            py::list out;
+            for (const RayHitResult& h : w.world().rayCastAll(
+                     toPosition(origin, "origin"), toPosition(translation, "translation"),
+                     toFilter(category, mask, sensors))) {
+              out.append(m.attr("RayHit")(ShapeHandle{self, h.shape}, BodyHandle{self, h.body},
+                                          toTuple(h.point), toTuple(h.normal),
+                                          static_cast<double>(h.fraction)));
+            }
+            return out;
+          },
+          py::arg("origin"), py::arg("translation"), py::arg("category") = 1,
+          py::arg("mask") = ~std::uint64_t{0}, py::arg("include_sensors") = false,
+          "Every shape the ray enters (quack.RayHit), by fraction.")
+      .def(
+          "overlap_aabb",
+          [](py::object self, py::handle lower, py::handle upper, std::uint64_t category,
+             std::uint64_t mask, bool sensors) {
+            PyWorld& w = worldOf(self);
+            w.checkIdle();
+            py::list out;
+            for (ShapeId s :
+                 w.world().overlapAabb({toPosition(lower, "lower"), toPosition(upper, "upper")},
+                                       toFilter(category, mask, sensors)))
+              out.append(ShapeHandle{self, s});
+            return out;
+          },
+          py::arg("lower"), py::arg("upper"), py::arg("category") = 1,
+          py::arg("mask") = ~std::uint64_t{0}, py::arg("include_sensors") = false,
+          "Shapes whose bounding boxes overlap the box lower-upper (world frame).")
+      .def(
+          "overlap_shape",
+          [m](py::object self, py::handle shape, py::handle pose, std::uint64_t category,
+              std::uint64_t mask, bool sensors) mutable {
+            PyWorld& w = worldOf(self);
+            w.checkIdle();
+            const ShapeGeometry& g = convexGeometry(toShape(shape, "shape"), "shape");
+            py::list out;
+            for (const ShapeOverlap& o : valueOrRaise(w.world().overlapShape(
+                     g, toTransform(pose, "pose"), toFilter(category, mask, sensors)))) {
+              out.append(
+                  m.attr("ShapeOverlap")(ShapeHandle{self, o.shape}, BodyHandle{self, o.body},
+                                         static_cast<double>(o.depth), toTuple(o.depenetration)));
+            }
+            return out;
+          },
+          py::arg("shape"), py::arg("pose"), py::arg("category") = 1,
+          py::arg("mask") = ~std::uint64_t{0}, py::arg("include_sensors") = false,
+          "Shapes overlapping a convex quack.Shape at pose: quack.ShapeOverlap, each with the "
+          "vector that moves the query shape out.")
+      .def(
+          "cast_shape",
+          [m](py::object self, py::handle shape, py::handle pose, py::handle translation,
+              std::uint64_t category, std::uint64_t mask, bool sensors) mutable -> py::object {
+            PyWorld& w = worldOf(self);
+            w.checkIdle();
+            const ShapeGeometry& g = convexGeometry(toShape(shape, "shape"), "shape");
+            std::optional<ShapeCastResult> r = valueOrRaise(w.world().castShape(
+                g, toTransform(pose, "pose"), toPosition(translation, "translation"),
+                toFilter(category, mask, sensors)));
+            if (!r) return py::none();
+            return m.attr("ShapeCastHit")(ShapeHandle{self, r->shape}, BodyHandle{self, r->body},
+                                          toTuple(r->point), toTuple(r->normal),
+                                          static_cast<double>(r->fraction));
+          },
+          py::arg("shape"), py::arg("pose"), py::arg("translation"), py::arg("category") = 1,
+          py::arg("mask") = ~std::uint64_t{0}, py::arg("include_sensors") = false,
+          "Sweeps a convex quack.Shape from pose along translation: the first shape met "
+          "(quack.ShapeCastHit), or None.")
+      .def(
+          "write_state",
+          [](PyWorld& w, const std::string& path) {
+            w.checkIdle();
+            const std::string text = writeState(captureState(w.sw, w.totals));
+            std::ofstream out(path, std::ios::binary);
+            if (!out) throw py::value_error("write_state: cannot open " + path);
+            out << text;
+            out.close();
+            if (!out) throw py::value_error("write_state: cannot write " + path);
+          },
+          py::arg("path"),
+          "Writes the state file `quack run --out` writes (bodies in creation order, event "
+          "totals since the world was made).")
+      .def("__repr__", [](PyWorld& w) {
+        return "World(bodies=" + std::to_string(w.world().bodyCount()) +
+               ", shapes=" + std::to_string(w.world().shapeCount()) +
+               ", steps=" + std::to_string(w.world().stepCount()) + ")";
+      });
+
+  m.def(
+      "load_scene",
+      [](const std::string& path) {
+        Scene scene = valueOrRaise(loadScene(path));
+        SceneWorld sw = valueOrRaise(buildWorld(scene));
+        return std::make_unique<PyWorld>(std::move(sw), scene.categories);
+      },
+      py::arg("path"), "A World built from a scene file (the README's format).");
+}
+
+}  // namespace quack::python
