@@ -12,6 +12,7 @@
 #include "quack/collision/epa.hpp"
 #include "quack/collision/gjk.hpp"
 #include "quack/collision/manifold.hpp"
+#include "quack/collision/pieces.hpp"
 #include "quack/collision/shape_cast.hpp"
 #include "quack/collision/toi.hpp"
 #include "quack/geometry/bounds.hpp"
@@ -240,26 +241,12 @@ QueryAnswer answerRayCast(const json& id, const std::vector<ShapeGeometry>& piec
   if (!origin) return rejected(id, origin.error().message);
   Result<Vec2> translation = parsePosition(ray.at("translation"), "ray.translation");
   if (!translation) return rejected(id, translation.error().message);
-  const RayCastInput input{invTransformPoint(worldFromA, *origin),
-                           invRotate(worldFromA.q, *translation), 1.0f};
-  bool inside = false;
-  if (pieces.size() > 1) {
-    for (const ShapeGeometry& piece : pieces)
-      inside = inside || containsPoint(piece, input.origin);
-  }
-  RayHit best;
-  if (!inside) {
-    // The nearest entry; on a tie, the first piece's.
-    for (const ShapeGeometry& piece : pieces) {
-      RayHit h = rayCast(piece, input);
-      if (h.hit && (!best.hit || h.fraction < best.fraction)) best = h;
-    }
-  }
+  const RayHit best = rayCastPieces(pieces, worldFromA, *origin, *translation);
   json out = {{"id", id}};
   out["hit"] = best.hit;
   out["fraction"] = best.fraction;
-  out["point"] = toJson(best.hit ? transformPoint(worldFromA, best.point) : Vec2{});
-  out["normal"] = toJson(best.hit ? rotate(worldFromA.q, best.normal) : Vec2{});
+  out["point"] = toJson(best.point);
+  out["normal"] = toJson(best.normal);
   return finished(id, out);
 }
 
@@ -347,30 +334,11 @@ QueryAnswer answerParsed(const json& q) {
     const std::vector<ShapeGeometry>& piecesA = *a;
     const std::vector<ShapeGeometry>& piecesB = *b;
     if (op == "overlap") {
-      bool any = false;
-      for (const ShapeGeometry& x : piecesA)
-        for (const ShapeGeometry& y : piecesB)
-          any = any || testOverlap(x, *pa, y, *pb);
-      out["overlap"] = any;
+      out["overlap"] = overlapPieces(piecesA, *pa, piecesB, *pb);
       return finished(id, out);
     }
-    // The closest pair of pieces (first in order on ties); for penetration, the deepest
-    // overlapping pair, else the closest.
-    std::size_t bestA = 0, bestB = 0;
-    DistanceOutput closest;
-    bool first = true;
-    for (std::size_t i = 0; i < piecesA.size(); ++i) {
-      for (std::size_t k = 0; k < piecesB.size(); ++k) {
-        DistanceOutput d = computeDistance(piecesA[i], *pa, piecesB[k], *pb);
-        if (first || d.distance < closest.distance) {
-          closest = d;
-          bestA = i;
-          bestB = k;
-          first = false;
-        }
-      }
-    }
     if (op == "distance") {
+      const DistanceOutput closest = distancePieces(piecesA, *pa, piecesB, *pb);
       out["distance"] = closest.distance;
       out["pointA"] = toJson(closest.pointA);
       out["pointB"] = toJson(closest.pointB);
@@ -379,13 +347,7 @@ QueryAnswer answerParsed(const json& q) {
       out["status"] = toString(closest.status);
       return finished(id, out);
     }
-    PenetrationOutput best = computePenetration(piecesA[bestA], *pa, piecesB[bestB], *pb);
-    for (const ShapeGeometry& x : piecesA) {
-      for (const ShapeGeometry& y : piecesB) {
-        PenetrationOutput p = computePenetration(x, *pa, y, *pb);
-        if (p.overlap && (!best.overlap || p.depth > best.depth)) best = p;
-      }
-    }
+    const PenetrationOutput best = penetrationPieces(piecesA, *pa, piecesB, *pb);
     out["overlap"] = best.overlap;
     out["depth"] = best.depth;
     out["normal"] = toJson(best.normal);

@@ -1,11 +1,11 @@
 // Batch queries over numpy arrays: one C++ loop over N pairs with the GIL released, the
-// same pair functions as the single queries (pair_queries.hpp), results as numpy arrays.
+// same pair functions as the single queries (quack/collision/pieces.hpp), results as numpy arrays.
 
 #include <cstring>
 #include <optional>
 
 #include "bindings.hpp"
-#include "pair_queries.hpp"
+#include "quack/collision/pieces.hpp"
 
 namespace quack::python {
 

@@ -4,8 +4,8 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
-#include "pair_queries.hpp"
 #include "quack/collision/manifold.hpp"
+#include "quack/collision/pieces.hpp"
 #include "quack/collision/shape_cast.hpp"
 #include "quack/collision/toi.hpp"
 

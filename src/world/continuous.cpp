@@ -129,6 +129,7 @@ bool ContinuousPhase::findImpact(const BodyStore& store, const BroadPhase& broad
 void ContinuousPhase::run(const WorldDef& def, BodyStore& store,
                           const std::vector<std::uint64_t>& awake, BroadPhase& broadPhase,
                           const GhostEdges& edges, EventDispatcher& events, float dt) {
+  pushed.clear();
   if (!def.enableContinuous) return;
   fast_.clear();
   int bullets = 0;
@@ -218,6 +219,7 @@ void ContinuousPhase::run(const WorldDef& def, BodyStore& store,
         if (otherMoves) {
           ob.v += ob.invMass * impulse;
           ob.w += ob.invInertia * cross(rB, impulse);
+          pushed.push_back(other.body);
         }
       }
     }

@@ -49,6 +49,10 @@ class ContinuousPhase {
   void run(const WorldDef& def, BodyStore& store, const std::vector<std::uint64_t>& awake,
            BroadPhase& broadPhase, const GhostEdges& edges, EventDispatcher& events, float dt);
 
+  /// Dynamic bodies a bullet pushed in the last run (some may be asleep: the world wakes
+  /// them).
+  std::vector<std::uint32_t> pushed;
+
  private:
   Aabb sweptBox(const BodyStore& store, const FastBody& f) const;
   bool findImpact(const BodyStore& store, const BroadPhase& broadPhase, const GhostEdges& edges,

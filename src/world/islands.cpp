@@ -133,6 +133,8 @@ void IslandSet::sleepIsland(BodyStore& store, std::uint32_t id) {
     b.awake = false;
     b.v = {};
     b.w = 0.0f;
+    b.force = {};
+    b.torque = 0.0f;
     b.fast = false;
     setAwakeBit(body, false);
   }
@@ -153,6 +155,17 @@ void IslandSet::wake(BodyStore& store, std::uint32_t body) {
 
 void IslandSet::wakeTouching(BodyStore& store, const ContactSet& contacts, std::uint32_t body) {
   forEachTouching(store, contacts, body, [&](std::uint32_t other) { wake(store, other); });
+}
+
+void IslandSet::wakeNear(BodyStore& store, const ContactSet& contacts, std::uint32_t body) {
+  for (std::uint32_t s : store.bodies[body].shapes) {
+    for (std::uint32_t ci : store.shapes[s].contacts) {
+      const Contact& c = contacts.contacts[ci];
+      if (c.sensor) continue;
+      const std::uint32_t a = store.shapes[c.shapeA].body, b = store.shapes[c.shapeB].body;
+      wake(store, a == body ? b : a);
+    }
+  }
 }
 
 void IslandSet::sleepNow(BodyStore& store, const ContactSet& contacts, std::uint32_t body) {
@@ -275,18 +288,21 @@ void IslandSet::updateSleep(const WorldDef& def, BodyStore& store, const Contact
       // A kinematic body rests only when it does not move at all: a slow platform keeps
       // going.
       const bool moving = b.v.x != 0.0f || b.v.y != 0.0f || b.w != 0.0f;
-      b.sleepTime = moving ? 0.0f : b.sleepTime + dt;
+      b.sleepTime = (moving || !b.enableSleep) ? 0.0f : b.sleepTime + dt;
       return;
     }
     const float speed = maxf(length(b.v), b.maxExtent * absf(b.w));
     b.sleepTime = (!b.enableSleep || speed > b.sleepThreshold) ? 0.0f : b.sleepTime + dt;
   });
-  // A moving kinematic body keeps the bodies on it awake.
+  // A moving kinematic body keeps the bodies on it awake (and wakes one put to sleep by
+  // hand: a crate does not hang in the air while its lift goes on).
   forEachAwake([&](std::uint32_t body) {
     const Body& b = store.bodies[body];
     if (b.type != BodyType::kinematicBody || b.sleepTime > 0.0f) return;
     forEachTouching(store, contacts, body, [&](std::uint32_t other) {
-      if (store.bodies[other].type == BodyType::dynamicBody) store.bodies[other].sleepTime = 0.0f;
+      if (store.bodies[other].type != BodyType::dynamicBody) return;
+      wake(store, other);
+      store.bodies[other].sleepTime = 0.0f;
     });
   });
   // Each awake island's least and greatest rest, in the order its bodies come.

@@ -45,6 +45,9 @@ class IslandSet {
   void wake(BodyStore& store, std::uint32_t body);
   /// Wakes every body touching `body`, and their islands.
   void wakeTouching(BodyStore& store, const ContactSet& contacts, std::uint32_t body);
+  /// Wakes every body sharing a contact with `body`, touching or not (fat boxes overlap):
+  /// for a body moved by hand, which may now be inside them.
+  void wakeNear(BodyStore& store, const ContactSet& contacts, std::uint32_t body);
   /// Puts the body's island (a kinematic body: the body) to sleep now (World::setAwake).
   void sleepNow(BodyStore& store, const ContactSet& contacts, std::uint32_t body);
   /// The end of a step: each awake body's rest time, then islands that rested long enough

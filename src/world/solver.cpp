@@ -380,19 +380,25 @@ template <class F>
 // One constraint into its lane.
 template <class F>
 void prepareLane(ContactBlock<F>& b, int lane, const Contact& c, const Body& bodyA,
-                 const Body& bodyB, std::int32_t slotA, std::int32_t slotB, const BodyState& A,
+                 const Body& bodyB, const SolverScratch::Pair& pair, const BodyState& A,
                  const BodyState& B, const StepParams& params) {
-  b.slotA[lane] = slotA;
-  b.slotB[lane] = slotB;
-  if (bodyA.type == BodyType::dynamicBody) b.writeA |= 1u << lane;
-  if (bodyB.type == BodyType::dynamicBody) b.writeB |= 1u << lane;
+  b.slotA[lane] = pair.slotA;
+  b.slotB[lane] = pair.slotB;
+  // Written back only for an awake dynamic body (its own slot). A body without one (static,
+  // kinematic, or, were a wake ever missed, asleep) reads its slot and counts as immovable
+  // here, so no lane ever writes slot 0.
+  if (pair.dynamicA) b.writeA |= 1u << lane;
+  if (pair.dynamicB) b.writeB |= 1u << lane;
   const Vec2 n = c.manifold.normal;
   const Vec2 t = rightPerp(n);
   b.nx[lane] = n.x;
   b.ny[lane] = n.y;
   b.friction[lane] = c.friction;
   b.restitution[lane] = c.restitution;
-  const float mA = bodyA.invMass, iA = bodyA.invInertia, mB = bodyB.invMass, iB = bodyB.invInertia;
+  const float mA = pair.dynamicA ? bodyA.invMass : 0.0f;
+  const float iA = pair.dynamicA ? bodyA.invInertia : 0.0f;
+  const float mB = pair.dynamicB ? bodyB.invMass : 0.0f;
+  const float iB = pair.dynamicB ? bodyB.invInertia : 0.0f;
   b.mA[lane] = mA;
   b.iA[lane] = iA;
   b.mB[lane] = mB;
@@ -489,9 +495,8 @@ template <class F>
   for (std::size_t k = 0; k < s.touching.size(); ++k) {
     const Contact& c = contacts[s.touching[k]];
     const SolverScratch::Pair& pair = s.pairs[k];
-    const std::int32_t sa = pair.slotA, sb = pair.slotB;
     prepareLane(blocks[s.lane[k] / W], static_cast<int>(s.lane[k] % W), c, store.bodies[pair.bodyA],
-                store.bodies[pair.bodyB], sa, sb, s.states[sa], s.states[sb], params);
+                store.bodies[pair.bodyB], pair, s.states[pair.slotA], s.states[pair.slotB], params);
   }
 }
 

@@ -338,6 +338,9 @@ StepStatus World::step(float dt, int substeps) {
   w.solver.solve(w.def, w.store, w.contacts, w.islands.awakeBits(), w.broadPhase, w.events, dt,
                  substeps);
   w.continuous.run(w.def, w.store, w.islands.awakeBits(), w.broadPhase, w.edges, w.events, dt);
+  // A bullet may have hit a sleeping body: it moves now.
+  for (std::uint32_t b : w.continuous.pushed)
+    w.islands.wake(w.store, b);
   w.islands.applyContactChanges(w.store, w.contacts);
   w.islands.updateSleep(w.def, w.store, w.contacts, dt);
   // The solver and the continuous phase may both have stopped a body at the edge.
@@ -484,7 +487,8 @@ Status World::setTransform(BodyId id, Vec2 position, float angle) {
   if (b.type == BodyType::staticBody) s_->edges.markDirty();
   s_->contacts.forgetPoses(s_->store, id.index);
   s_->islands.wake(s_->store, id.index);
-  s_->islands.wakeTouching(s_->store, s_->contacts, id.index);
+  // Every body near it wakes, touching or not yet: it may have been moved into them.
+  s_->islands.wakeNear(s_->store, s_->contacts, id.index);
   return {};
 }
 
@@ -608,7 +612,7 @@ Status World::setBodyType(BodyId id, BodyType type) {
   // It and what it touches wake; it leaves its island and joins a new one under its new
   // type.
   s_->islands.wake(store, id.index);
-  s_->islands.wakeTouching(store, s_->contacts, id.index);
+  s_->islands.wakeNear(store, s_->contacts, id.index);
   // Contacts end now and are found again under the new rules; proxies are made again with
   // the new kind (a static proxy does not look for pairs with other static ones).
   for (std::uint32_t s : b.shapes) {

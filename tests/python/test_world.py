@@ -350,7 +350,7 @@ def test_scene_errors(tmp_path):
 def test_the_gil_is_released_during_step(source_dir):
     from test_batch import _check_gil_released
     w = quack.load_scene(_scene(source_dir, "rain.json"))
-    _check_gil_released(lambda: [w.step() for _ in range(20)])
+    _check_gil_released(lambda: [w.step() for _ in range(400)])
 
 
 def test_another_thread_cannot_use_the_world_while_it_steps(source_dir):

@@ -291,6 +291,56 @@ TEST(Sleep, TheApiWakesAndSleeps) {
             std::string::npos);
 }
 
+// A bullet is handled by the continuous phase, after the solver: its impact on a sleeping
+// box must wake the box, not leave it asleep with a velocity.
+TEST(Sleep, ABulletWakesTheSleepingBodyItHits) {
+  World world = World::create({.gravity = {0, 0}}).value();
+  const BodyId box = addBox(world, {0, 0}, {0.5f, 0.5f});
+  ASSERT_GT(stepUntilAsleep(world, 600), 0);
+  const BodyId bullet =
+      world.createBody({.position = {-20, 0}, .linearVelocity = {300, 0}, .bullet = true}).value();
+  ASSERT_TRUE(world.createShape(bullet, {.restitution = 0.8f}, makeCircle({}, 0.1f).value()).ok());
+  bool woke = false;
+  for (int s = 0; s < 30; ++s) {
+    ASSERT_TRUE(testing::stepAndValidate(world));  // never asleep while moving
+    woke = woke || world.isAwake(box);
+  }
+  EXPECT_TRUE(woke);
+  EXPECT_GT(world.linearVelocity(box).x, 1.0f);  // it was struck
+}
+
+// A static wall moved by hand into a sleeping box that it was near but not touching.
+TEST(Sleep, StaticGeometryMovedIntoASleepingBodyWakesIt) {
+  World world = World::create().value();
+  addStaticBox(world, {0, -0.5f}, {20, 0.5f});
+  const BodyId wall = addStaticBox(world, {1.15f, 2}, {0.5f, 2});  // 0.15 m from the box
+  const BodyId box = addBox(world, {0, 0.5f}, {0.5f, 0.5f});
+  ASSERT_GT(stepUntilAsleep(world, 600), 0);
+  ASSERT_TRUE(world.setTransform(wall, {0.85f, 2}, 0).ok());  // 0.15 m into it
+  EXPECT_TRUE(world.isAwake(box));
+  for (int s = 0; s < 60; ++s)
+    ASSERT_TRUE(testing::stepAndValidate(world));
+  EXPECT_LT(world.position(box).x, -0.14f);  // pushed out of the wall
+}
+
+// A body put to sleep by hand on a moving kinematic platform wakes and rides on.
+TEST(Sleep, AMovingPlatformWakesWhatWasPutToSleepOnIt) {
+  World world = World::create().value();
+  const BodyId platform =
+      world.createBody({.type = BodyType::kinematicBody, .position = {0, 1}}).value();
+  ASSERT_TRUE(world.createShape(platform, {}, makeBox(3, 0.25f).value()).ok());
+  ASSERT_TRUE(world.setLinearVelocity(platform, {0, 0.5f}).ok());  // a lift going up
+  const BodyId box = addBox(world, {0, 1.75f}, {0.5f, 0.5f});
+  for (int s = 0; s < 60; ++s)
+    ASSERT_TRUE(world.step().ok());
+  ASSERT_TRUE(world.setAwake(box, false).ok());
+  for (int s = 0; s < 60; ++s)
+    ASSERT_TRUE(testing::stepAndValidate(world));
+  EXPECT_TRUE(world.isAwake(box));
+  // On the lift, not left hanging: its bottom on the platform's top.
+  EXPECT_NEAR(world.position(box).y - world.position(platform).y, 0.75f, 0.02f);
+}
+
 TEST(Sleep, SensorsKeepSeeingSleepingBodies) {
   World world = World::create().value();
   addStaticBox(world, {0, -0.5f}, {20, 0.5f});

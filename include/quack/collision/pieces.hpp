@@ -1,12 +1,12 @@
 #pragma once
-/// The pair queries of `quack query` over shapes given as convex pieces (one piece for a
-/// convex shape, several for a concave outline), world frame. A shape of one piece gets the
-/// collision layer's answer unchanged; for several pieces the rules are those of
-/// `quack query` (apps/quack/query.cpp, docs/concave.md): overlap when any pair of pieces
-/// overlaps, the distance of the closest pair of pieces (the first in order on ties), the
-/// penetration of the deepest overlapping pair (else the closest pair's), and a ray hits
-/// the nearest piece it enters, none when it starts inside a piece. No Python here: the
-/// batch queries run these with the GIL released.
+/// Pair queries over shapes given as convex pieces (one piece for a convex shape, several
+/// for a concave outline cut up by decomposeConcave), world frame: the rules of
+/// docs/concave.md, shared by `quack query` and the Python module. A shape of one piece gets
+/// the single-shape answer unchanged. For several pieces: overlap when any pair of pieces
+/// overlaps; the distance of the closest pair (the first in order on ties); the penetration
+/// of the deepest overlapping pair, else the closest pair's; a ray hits the nearest piece it
+/// enters (the first on ties), and none when it starts inside a piece (as a ray starting
+/// inside a convex shape is not entering it).
 
 #include <cstddef>
 #include <span>
@@ -16,7 +16,7 @@
 #include "quack/geometry/bounds.hpp"
 #include "quack/geometry/raycast.hpp"
 
-namespace quack::python {
+namespace quack {
 
 using Pieces = std::span<const ShapeGeometry>;
 
@@ -89,4 +89,4 @@ inline RayHit rayCastPieces(Pieces a, Transform worldFromA, Vec2 origin, Vec2 tr
   return best;
 }
 
-}  // namespace quack::python
+}  // namespace quack
