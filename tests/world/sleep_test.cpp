@@ -285,6 +285,12 @@ TEST(Sleep, TheApiWakesAndSleeps) {
   EXPECT_EQ(world.position(dozing).y, 3.0f);  // asleep in mid-air: not simulated
   EXPECT_TRUE(world.isAwake(restless));
   // Bad input.
+  const BodyId gone = addBox(world, {12, 5}, {0.5f, 0.5f});
+  ASSERT_TRUE(world.destroyBody(gone).ok());
+  const Status stale = world.setAwake(gone, true);
+  EXPECT_FALSE(stale.ok());
+  EXPECT_NE(stale.message().find("setAwake"), std::string::npos) << stale.message();
+  EXPECT_FALSE(world.isAwake(gone));
   EXPECT_FALSE(world.createBody({.sleepThreshold = -1}).ok());
   EXPECT_FALSE(world.createBody({.sleepThreshold = std::numeric_limits<float>::quiet_NaN()}).ok());
   EXPECT_NE(world.createBody({.sleepThreshold = -1}).error().message.find("sleepThreshold"),
