@@ -636,7 +636,6 @@ void Solver::solve(const WorldDef& def, BodyStore& store, ContactSet& contactSet
   } else {
     runStep(s, s.wide, def, store, contactSet, events, params, substeps, stats_);
   }
-  (void)shapes;
 
   // Finalise bodies and move their proxies.
   for (std::size_t slot = 1; slot < s.states.size(); ++slot) {
