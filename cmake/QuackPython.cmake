@@ -5,10 +5,10 @@
 # a venv without numpy) would make the module silently vanish, so /usr/bin/python3 is
 # preferred when it exists. Pass -DPython3_EXECUTABLE=... to choose another.
 #
-# Not with QUACK_SANITIZE: an AddressSanitizer build cannot be loaded into an interpreter
-# that was not itself built with it (the runtime must come first in the process).
+# Not with QUACK_SANITIZE or QUACK_TSAN: a sanitizer build cannot be loaded into an
+# interpreter that was not itself built with it (the runtime must come first in the process).
 set(quack_python_default OFF)
-if(NOT QUACK_SANITIZE AND QUACK_BUILD_IO)
+if(NOT QUACK_SANITIZE AND NOT QUACK_TSAN AND QUACK_BUILD_IO)
   if(NOT DEFINED Python3_EXECUTABLE AND EXISTS /usr/bin/python3)
     set(Python3_EXECUTABLE /usr/bin/python3)
   endif()

@@ -7,6 +7,7 @@
 #include <iostream>
 #include <string>
 
+#include "quack/world/tasks.hpp"
 #include "query.hpp"
 #include "run.hpp"
 
@@ -41,6 +42,22 @@ CLI::Validator stepsValidator() {
       "0.." + std::to_string(kMaxSteps));
 }
 
+// --threads: 1..kMaxWorkers, said in words.
+CLI::Validator threadsValidator() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        bool digits = !text.empty() && text.size() <= 9;
+        for (char c : text)
+          digits = digits && c >= '0' && c <= '9';
+        if (!digits) return text + " is not a whole number";
+        const int n = std::stoi(text);
+        if (n < 1 || n > quack::kMaxWorkers)
+          return text + " is not in 1.." + std::to_string(quack::kMaxWorkers);
+        return {};
+      },
+      "1.." + std::to_string(quack::kMaxWorkers));
+}
+
 void addRun(CLI::App& app, int& status) {
   auto* cmd = app.add_subcommand(
       "run", "Simulate a scene headless; write its state, an SVG and an HTML replay");
@@ -51,14 +68,36 @@ void addRun(CLI::App& app, int& status) {
       ->capture_default_str()
       ->check(stepsValidator());
   cmd->add_option("--out", options->out, "state file to write (JSON)")->required();
+  cmd->add_option("--events", options->events,
+                  "every step's events, one JSON object a line (docs/determinism.md)");
   cmd->add_option("--svg", options->svg, "SVG picture of the last state");
   cmd->add_option("--html", options->html, "self-contained HTML replay of the run");
   cmd->add_option("--timing", options->timing,
                   "how long each phase took (JSON; the state file has no timing)");
+  cmd->add_option("--threads", options->threads,
+                  "workers for the step, 1.." + std::to_string(quack::kMaxWorkers) +
+                      " (default: one per core); the result does not depend on it")
+      ->check(threadsValidator());
+  // --snapshot-at STEP FILE: two values, the step checked as --steps is.
+  auto snapshotAt = std::make_shared<std::vector<std::string>>();
+  cmd->add_option("--snapshot-at", *snapshotAt,
+                  "write a run snapshot (for --resume) when the world reaches STEP")
+      ->type_name("STEP FILE")
+      ->expected(2);
+  cmd->add_option("--resume", options->resume,
+                  "continue from a run snapshot of this scene, up to --steps in all");
   cmd->add_flag("--html-boxes", options->htmlBoxes, "record the broad-phase boxes in the replay");
   cmd->add_flag("--quiet", options->quiet, "no progress on stderr");
-  cmd->callback(
-      [options, &status] { status = quack::app::runScene(*options, std::cout, std::cerr); });
+  cmd->callback([options, snapshotAt, &status] {
+    if (!snapshotAt->empty()) {
+      std::string step = (*snapshotAt)[0];
+      if (std::string problem = stepsValidator()(step); !problem.empty())
+        throw CLI::ValidationError("--snapshot-at", problem);
+      options->snapshotAt = std::stoull(step);
+      options->snapshotFile = (*snapshotAt)[1];
+    }
+    status = quack::app::runScene(*options, std::cout, std::cerr);
+  });
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <csignal>
@@ -14,11 +15,14 @@
 #include <optional>
 #include <ostream>
 #include <string_view>
+#include <thread>
+#include <utility>
 #include <vector>
 
 #include "quack/io/render.hpp"
 #include "quack/io/scene.hpp"
 #include "quack/io/state.hpp"
+#include "quack/world/tasks.hpp"
 
 namespace quack::app {
 namespace {
@@ -285,18 +289,73 @@ bool writeTemp(Output& o, Progress& progress, std::size_t& written, std::size_t 
   return true;
 }
 
-std::string timingJson(std::uint64_t steps, double loadMs, double buildMs, double simulateMs,
-                       double renderMs, double writeMs) {
+std::string timingJson(std::uint64_t steps, int threads, double loadMs, double buildMs,
+                       double simulateMs, double renderMs, double writeMs) {
   char buf[512];
   double msPerStep = steps > 0 ? simulateMs / static_cast<double>(steps) : 0.0;
-  std::snprintf(buf, sizeof buf,
-                "{\n \"steps\": %llu,\n \"ms_per_step\": %.6g,\n \"steps_per_s\": %.6g,\n"
-                " \"load_ms\": %.6g,\n \"build_ms\": %.6g,\n \"simulate_ms\": %.6g,\n"
-                " \"render_ms\": %.6g,\n \"write_ms\": %.6g\n}\n",
-                static_cast<unsigned long long>(steps), msPerStep,
-                msPerStep > 0.0 ? 1000.0 / msPerStep : 0.0, loadMs, buildMs, simulateMs, renderMs,
-                writeMs);
+  std::snprintf(
+      buf, sizeof buf,
+      "{\n \"steps\": %llu,\n \"threads\": %d,\n \"ms_per_step\": %.6g,\n \"steps_per_s\": %.6g,\n"
+      " \"load_ms\": %.6g,\n \"build_ms\": %.6g,\n \"simulate_ms\": %.6g,\n"
+      " \"render_ms\": %.6g,\n \"write_ms\": %.6g\n}\n",
+      static_cast<unsigned long long>(steps), threads, msPerStep,
+      msPerStep > 0.0 ? 1000.0 / msPerStep : 0.0, loadMs, buildMs, simulateMs, renderMs, writeMs);
   return buf;
+}
+
+// A run snapshot: "QUACKRUN", a format version (u32), the event totals so far (four u64:
+// begin, end, hit, sensor), then the world's dynamic snapshot (World::snapshot). Little-endian.
+// The world's part is checked by World::restore (checksum, version, structure: the scene
+// must be the one the snapshot was taken of).
+constexpr char kRunMagic[8] = {'Q', 'U', 'A', 'C', 'K', 'R', 'U', 'N'};
+constexpr std::uint32_t kRunVersion = 1;
+constexpr std::size_t kRunHeader = 8 + 4 + 4 * 8;
+
+std::string writeRunSnapshot(const EventTotals& totals, const std::vector<std::uint8_t>& world) {
+  std::string out(kRunMagic, sizeof kRunMagic);
+  auto put = [&](std::uint64_t v, int bytes) {
+    for (int i = 0; i < bytes; ++i)
+      out.push_back(static_cast<char>((v >> (8 * i)) & 0xffu));
+  };
+  put(kRunVersion, 4);
+  for (std::uint64_t v : {totals.begin, totals.end, totals.hit, totals.sensor})
+    put(v, 8);
+  out.append(reinterpret_cast<const char*>(world.data()), world.size());
+  return out;
+}
+
+// Reads a run snapshot file into the world and the totals; the message names the file.
+Status readRunSnapshot(const std::string& path, World& world, EventTotals& totals) {
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) return fail(path + ": is a directory");
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (f == nullptr) return fail(path + ": " + errnoText(errno));
+  std::vector<std::uint8_t> bytes;
+  std::uint8_t buf[65536];
+  std::size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0)
+    bytes.insert(bytes.end(), buf, buf + n);
+  const bool readError = std::ferror(f) != 0;
+  std::fclose(f);
+  if (readError) return fail(path + ": read error");
+  if (bytes.size() < 8 || std::memcmp(bytes.data(), kRunMagic, 8) != 0)
+    return fail(path + ": not a quack run snapshot (it does not start with \"QUACKRUN\")");
+  if (bytes.size() < kRunHeader)
+    return fail(path + ": truncated (" + std::to_string(bytes.size()) + " bytes)");
+  auto get = [&](std::size_t at, int count) {
+    std::uint64_t v = 0;
+    for (int i = 0; i < count; ++i)
+      v |= static_cast<std::uint64_t>(bytes[at + static_cast<std::size_t>(i)]) << (8 * i);
+    return v;
+  };
+  if (get(8, 4) != kRunVersion)
+    return fail(path + ": run snapshot version " + std::to_string(get(8, 4)) +
+                " is not this build's (" + std::to_string(kRunVersion) + ")");
+  EventTotals t{get(12, 8), get(20, 8), get(28, 8), get(36, 8)};
+  Status s = world.restore(std::span<const std::uint8_t>(bytes).subspan(kRunHeader));
+  if (!s) return fail(path + ": " + s.message());
+  totals = t;
+  return {};
 }
 
 double msSince(Clock::time_point t0) {
@@ -312,10 +371,18 @@ int runScene(const RunOptions& options, std::ostream& out, std::ostream& err) {
   };
   std::vector<Output> outputs;
   outputs.push_back({"--out", options.out, {}, {}, {}});
+  if (!options.events.empty()) outputs.push_back({"--events", options.events, {}, {}, {}});
   if (!options.svg.empty()) outputs.push_back({"--svg", options.svg, {}, {}, {}});
   if (!options.html.empty()) outputs.push_back({"--html", options.html, {}, {}, {}});
   if (!options.timing.empty()) outputs.push_back({"--timing", options.timing, {}, {}, {}});
+  const bool snapshotWanted = !options.snapshotFile.empty();
+  if (snapshotWanted) outputs.push_back({"--snapshot-at", options.snapshotFile, {}, {}, {}});
   if (!checkOutputs(outputs, options.scene, err)) return kRunFailed;
+  if (snapshotWanted && options.snapshotAt > options.steps) {
+    err << "quack run: --snapshot-at: step " << options.snapshotAt << " is after the last step ("
+        << options.steps << ")\n";
+    return kRunFailed;
+  }
 
   Progress progress(err, !options.quiet, options.progressAfter);
   // A long loop asks this whether to go on: it shows progress and stops at a signal.
@@ -338,6 +405,12 @@ int runScene(const RunOptions& options, std::ostream& out, std::ostream& err) {
   progress.end([&] { return std::to_string(scene->bodies.size()) + " bodies"; });
   const double loadMs = msSince(t0);
 
+  // Threads: whatever the file says, the command line decides (the bits do not depend on it).
+  int threads = options.threads;
+  if (threads == 0) threads = static_cast<int>(std::thread::hardware_concurrency());
+  threads = std::clamp(threads, 1, kMaxWorkers);
+  scene->world.workerCount = threads;
+
   phase("build");
   t0 = Clock::now();
   progress.begin("building the world", std::to_string(scene->bodies.size()) + " bodies");
@@ -354,19 +427,54 @@ int runScene(const RunOptions& options, std::ostream& out, std::ostream& err) {
   // million generated bodies) before simulating.
   std::vector<SceneBody>().swap(scene->bodies);
 
+  EventTotals totals;
+  if (!options.resume.empty()) {
+    if (Status s = readRunSnapshot(options.resume, sw.world, totals); !s) {
+      err << "quack run: --resume " << s.message() << '\n';
+      return kRunFailed;
+    }
+    if (sw.world.stepCount() > options.steps) {
+      err << "quack run: --resume " << options.resume << ": the snapshot is at step "
+          << sw.world.stepCount() << ", after --steps " << options.steps << '\n';
+      return kRunFailed;
+    }
+    if (snapshotWanted && options.snapshotAt < sw.world.stepCount()) {
+      err << "quack run: --snapshot-at: step " << options.snapshotAt
+          << " is before the resumed run's first (" << sw.world.stepCount() << ")\n";
+      return kRunFailed;
+    }
+  }
+  const std::uint64_t firstStep = sw.world.stepCount();
+  const std::uint64_t stepsToRun = options.steps - firstStep;
+  // The snapshot, taken when the world reaches its step (before the loop when that is now).
+  auto takeSnapshot = [&]() -> bool {
+    if (!snapshotWanted || sw.world.stepCount() != options.snapshotAt) return true;
+    Result<std::vector<std::uint8_t>> bytes = sw.world.snapshot(SnapshotKind::dynamic);
+    if (!bytes) {
+      err << "quack run: --snapshot-at: " << bytes.error().message << '\n';
+      return false;
+    }
+    for (Output& o : outputs) {
+      if (o.option == std::string("--snapshot-at"))
+        o.text = writeRunSnapshot(totals, bytes.value());
+    }
+    return true;
+  };
+  if (!takeSnapshot()) return kRunFailed;
+
   ReplayOptions replayOptions;
   replayOptions.broadPhaseBoxes = options.htmlBoxes;
   std::optional<ReplayRecorder> replay;
   if (!options.html.empty()) {
-    replay.emplace(sw, options.steps + 1, replayOptions);
+    replay.emplace(sw, stepsToRun + 1, replayOptions);
     replay->record(sw);
   }
 
   phase("simulate");
-  EventTotals totals;
+  std::string eventLines;
   t0 = Clock::now();
-  progress.begin("simulating", std::to_string(options.steps) + " steps");
-  for (std::uint64_t i = 0; i < options.steps; ++i) {
+  progress.begin("simulating", std::to_string(stepsToRun) + " steps");
+  for (std::uint64_t i = 0; i < stepsToRun; ++i) {
     if (gSignal != 0) return interruptedStatus();
     Status s = sw.world.step();
     if (!s) {
@@ -378,23 +486,25 @@ int runScene(const RunOptions& options, std::ostream& out, std::ostream& err) {
     totals.end += e.end.size();
     totals.hit += e.hit.size();
     totals.sensor += e.sensorBegin.size();
+    if (!options.events.empty()) appendEventLines(eventLines, i + 1, e);
     if (replay) replay->record(sw);
+    if (!takeSnapshot()) return kRunFailed;
     progress.update([&] {
       double elapsed = progress.elapsed();
       double rate = static_cast<double>(i + 1) / elapsed;
-      double left = static_cast<double>(options.steps - i - 1) / rate;
+      double left = static_cast<double>(stepsToRun - i - 1) / rate;
       char line[160];
       std::snprintf(line, sizeof line, "step %llu/%llu (%.0f%%), %s, %s left",
                     static_cast<unsigned long long>(i + 1),
-                    static_cast<unsigned long long>(options.steps),
-                    100.0 * static_cast<double>(i + 1) / static_cast<double>(options.steps),
+                    static_cast<unsigned long long>(stepsToRun),
+                    100.0 * static_cast<double>(i + 1) / static_cast<double>(stepsToRun),
                     formatRate(rate).c_str(), formatSeconds(left).c_str());
       return std::string(line);
     });
   }
   const double simulateMs = msSince(t0);
   progress.end([&] {
-    return std::to_string(options.steps) + " steps in " + formatSeconds(simulateMs / 1000.0);
+    return std::to_string(stepsToRun) + " steps in " + formatSeconds(simulateMs / 1000.0);
   });
   if (gSignal != 0) return interruptedStatus();
 
@@ -403,6 +513,7 @@ int runScene(const RunOptions& options, std::ostream& out, std::ostream& err) {
   progress.begin("rendering", "the state file");
   outputs[0].text = writeState(captureState(sw, totals));
   std::size_t next = 1;
+  if (!options.events.empty()) outputs[next++].text = std::move(eventLines);
   if (!options.svg.empty()) {
     if (gSignal != 0) return interruptedStatus();
     progress.update([] { return std::string("the SVG"); });
@@ -427,7 +538,7 @@ int runScene(const RunOptions& options, std::ostream& out, std::ostream& err) {
   bool ok = true;
   for (Output& o : outputs) {
     if (&o == &outputs.back() && !options.timing.empty()) {
-      o.text = timingJson(options.steps, loadMs, buildMs, simulateMs, renderMs, msSince(t0));
+      o.text = timingJson(stepsToRun, threads, loadMs, buildMs, simulateMs, renderMs, msSince(t0));
     }
     if (!writeTemp(o, progress, written, total, err)) {
       ok = false;
@@ -460,7 +571,7 @@ int runScene(const RunOptions& options, std::ostream& out, std::ostream& err) {
     if (sw.world.bodyType(b) == BodyType::dynamicBody) ++dynamicBodies;
     if (sw.world.bodyType(b) != BodyType::staticBody) ++movingBodies;
   }
-  const double msPerStep = options.steps > 0 ? simulateMs / static_cast<double>(options.steps) : 0;
+  const double msPerStep = stepsToRun > 0 ? simulateMs / static_cast<double>(stepsToRun) : 0;
   char line[256];
   out << "scene     " << options.scene << '\n';
   std::snprintf(line, sizeof line, "bodies    %zu (%zu dynamic), %zu shapes\n",
@@ -487,8 +598,9 @@ int runScene(const RunOptions& options, std::ostream& out, std::ostream& err) {
       static_cast<unsigned long long>(totals.begin), static_cast<unsigned long long>(totals.end),
       static_cast<unsigned long long>(totals.hit), static_cast<unsigned long long>(totals.sensor));
   out << line;
-  std::snprintf(line, sizeof line, "speed     %.3f ms/step (%s)\n", msPerStep,
-                formatRate(msPerStep > 0 ? 1000.0 / msPerStep : 0.0).c_str());
+  std::snprintf(line, sizeof line, "speed     %.3f ms/step (%s, %d thread%s)\n", msPerStep,
+                formatRate(msPerStep > 0 ? 1000.0 / msPerStep : 0.0).c_str(), threads,
+                threads == 1 ? "" : "s");
   out << line;
   std::snprintf(line, sizeof line,
                 "time      load %.1f ms, build %.1f ms, simulate %.1f ms, render %.1f ms, "
@@ -496,6 +608,7 @@ int runScene(const RunOptions& options, std::ostream& out, std::ostream& err) {
                 loadMs, buildMs, simulateMs, renderMs, writeMs);
   out << line;
   out << "state     " << options.out << '\n';
+  if (!options.events.empty()) out << "event log " << options.events << '\n';
   if (!options.svg.empty()) out << "svg       " << options.svg << '\n';
   if (!options.html.empty()) {
     out << "replay    " << options.html << " (" << replay->frameCount() << " frames";

@@ -15,6 +15,18 @@ struct RunOptions {
   std::string svg;     // optional
   std::string html;    // optional
   std::string timing;  // optional: how long each phase took (JSON)
+  std::string events;  // optional: every step's events, one JSON object a line
+  /// Workers the world's step is spread over (WorldDef::workerCount, 1..kMaxWorkers); 0:
+  /// one per core. The state is the same to the bit for any number.
+  int threads = 0;
+  /// Write a run snapshot (docs/determinism.md, "Snapshots") when the world reaches step
+  /// `snapshotAt` (counted from the scene's start, so a resumed run counts on) to
+  /// `snapshotFile` (empty: none). The step must lie between the run's first and `steps`.
+  std::uint64_t snapshotAt = 0;
+  std::string snapshotFile;
+  /// A run snapshot to continue from (empty: start from the scene): the world and the event
+  /// totals at its step; `steps` is then the step to run up to, not a count to add.
+  std::string resume;
   bool htmlBoxes = false;
   bool quiet = false;  // no progress on stderr
   /// Progress shows once the run has taken this long, and then about this often, seconds.

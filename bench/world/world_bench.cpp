@@ -23,6 +23,7 @@
 // body every step; the note at the end says what sleeping would change.
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -46,6 +47,7 @@ struct Options {
   int field = 2000;
   int steps = 200;
   int warmup = 20;
+  int workers = 1;    // Quack's WorldDef::workerCount
   std::string scene;  // empty: all
   std::string only;   // empty: both libraries
 };
@@ -131,6 +133,48 @@ Timing quackSleepers(const Options& o, bool sleepers) {
       o, [&] { world.step(); }, [&] { return world.awakeBodyCount(); });
 }
 
+// 1,000 bullets (small discs and boxes, 20 to 40 m/s, any heading, restitution 1, no
+// friction, no gravity) in a closed box of 1 m walls, 40 m across (issue 18): every bullet
+// goes through the continuous phase every step (sweeps against the walls and each other).
+// With `continuous` false the same world without it: at these speeds the walls hold either
+// way, so the two do the same discrete work and the difference is the phase's cost.
+Timing quackBullets(const Options& o, bool continuous) {
+  World world = World::create({.gravity = {0, 0}, .enableContinuous = continuous}).value();
+  constexpr float kHalf = 20.0f, kWall = 0.5f;
+  const Vec2 walls[4][2] = {{{0, -kHalf - kWall}, {kHalf + 2 * kWall, kWall}},
+                            {{0, kHalf + kWall}, {kHalf + 2 * kWall, kWall}},
+                            {{-kHalf - kWall, 0}, {kWall, kHalf + 2 * kWall}},
+                            {{kHalf + kWall, 0}, {kWall, kHalf + 2 * kWall}}};
+  for (const auto& w : walls) {
+    BodyId b = world.createBody({.type = BodyType::staticBody, .position = w[0]}).value();
+    (void)world.createShape(b, {}, makeBox(w[1].x, w[1].y).value());
+  }
+  std::mt19937 rng(18);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  const Circle disc = makeCircle({}, 0.05f).value();
+  const Polygon box = makeBox(0.06f, 0.03f).value();
+  for (int i = 0; i < 1000; ++i) {
+    const float heading = 6.2831853f * u(rng);
+    const float speed = 20.0f + 20.0f * u(rng);
+    BodyId b =
+        world
+            .createBody(
+                {.position = {(2 * u(rng) - 1) * (kHalf - 1), (2 * u(rng) - 1) * (kHalf - 1)},
+                 .angle = 3 * u(rng),
+                 .linearVelocity = {speed * std::cos(heading), speed * std::sin(heading)},
+                 .bullet = true,
+                 .enableSleep = false})
+            .value();
+    const ShapeDef def{.friction = 0.0f, .restitution = 1.0f};
+    if (i % 2 == 0)
+      (void)world.createShape(b, def, disc);
+    else
+      (void)world.createShape(b, def, box);
+  }
+  return timeSteps(
+      o, [&] { world.step(); }, [&] { return world.contactCount(); });
+}
+
 // The solver's figures after the last timed step of the last Quack scene.
 World::SolverStats gQuackSolver;
 
@@ -150,8 +194,7 @@ void quackAddPyramid(World& world, const Polygon& box, int rows, Vec2 base) {
   }
 }
 
-Timing quackMany(const Options& o) {
-  World world = World::create({}).value();
+void buildQuackMany(World& world) {
   const float width = kManySpacing * kManyGrid;
   Polygon box = makeBox(0.5f, 0.5f).value();
   for (int r = 0; r < kManyGrid; ++r) {
@@ -164,24 +207,34 @@ Timing quackMany(const Options& o) {
     for (int c = 0; c < kManyGrid; ++c)
       quackAddPyramid(world, box, kManyRows, {kManySpacing * (static_cast<float>(c) + 0.5f), y});
   }
+}
+
+Timing quackMany(const Options& o) {
+  // Sleeping off, as in box2dMany: both simulate every body of every step.
+  World world = World::create({.enableSleep = false, .workerCount = o.workers}).value();
+  buildQuackMany(world);
   return timeSteps(
       o, [&] { world.step(); }, [&] { return quackCount(world); });
 }
 
 // The pyramid, simulated in full (`sleep` false), or first settled until it sleeps and
 // then timed asleep.
-Timing quackPyramid(const Options& o, bool sleep = false) {
-  World world = World::create({.enableSleep = sleep}).value();
+void buildQuackPyramid(World& world, int rows) {
   BodyId ground = world.createBody({.type = BodyType::staticBody}).value();
   (void)world.createShape(ground, {}, makeBox(200.0f, 0.5f, {0, -0.5f}).value());
   Polygon box = makeBox(0.5f, 0.5f).value();
-  for (int row = 0; row < o.rows; ++row) {
-    for (int i = 0; i < o.rows - row; ++i) {
-      float x = static_cast<float>(i) - 0.5f * static_cast<float>(o.rows - row - 1);
+  for (int row = 0; row < rows; ++row) {
+    for (int i = 0; i < rows - row; ++i) {
+      float x = static_cast<float>(i) - 0.5f * static_cast<float>(rows - row - 1);
       BodyId b = world.createBody({.position = {x, 0.5f + static_cast<float>(row)}}).value();
       (void)world.createShape(b, {}, box);
     }
   }
+}
+
+Timing quackPyramid(const Options& o, bool sleep = false) {
+  World world = World::create({.enableSleep = sleep, .workerCount = o.workers}).value();
+  buildQuackPyramid(world, o.rows);
   if (sleep) {
     for (int i = 0; i < 1200 && world.awakeBodyCount() > 0; ++i)
       world.step();
@@ -193,7 +246,8 @@ Timing quackPyramid(const Options& o, bool sleep = false) {
 }
 
 Timing quackField(const Options& o, const std::vector<Piece>& pieces, int settleSteps) {
-  World world = World::create({}).value();
+  // Sleeping off, as in box2dField: both simulate every body of every step.
+  World world = World::create({.enableSleep = false, .workerCount = o.workers}).value();
   BodyId ground = world.createBody({.type = BodyType::staticBody}).value();
   (void)world.createShape(ground, {}, makeBox(32.0f, 0.5f, {0, -0.5f}).value());
   (void)world.createShape(ground, {}, makeBox(0.5f, 40.0f, {-32.5f, 40}).value());
@@ -222,6 +276,33 @@ Timing quackField(const Options& o, const std::vector<Piece>& pieces, int settle
 }
 
 #ifdef QUACK_BENCH_HAS_BOX2D
+// Threads: the same scene in a one-worker world and an o.workers world, stepped in turns and
+// timed step by step, so that whatever else the machine does falls on both alike.
+void quackScaling(const Options& o, const char* label, void (*build)(World&, int)) {
+  World one = World::create({.enableSleep = false}).value();
+  World many = World::create({.enableSleep = false, .workerCount = o.workers}).value();
+  build(one, o.rows);
+  build(many, o.rows);
+  for (int i = 0; i < o.warmup; ++i) {
+    one.step();
+    many.step();
+  }
+  double msOne = 0, msMany = 0;
+  for (int i = 0; i < o.steps; ++i) {
+    auto t0 = Clock::now();
+    one.step();
+    auto t1 = Clock::now();
+    many.step();
+    auto t2 = Clock::now();
+    msOne += std::chrono::duration<double, std::milli>(t1 - t0).count();
+    msMany += std::chrono::duration<double, std::milli>(t2 - t1).count();
+  }
+  const bool same = one.stateHash() == many.stateHash();
+  std::printf("%-24s %8.3f ms/step on 1 worker, %8.3f on %d: %.2fx (%s)\n", label, msOne / o.steps,
+              msMany / o.steps, o.workers, msOne / msMany,
+              same ? "same state hash" : "STATE DIFFERS");
+}
+
 // ---- Box2D 2.4.1 --------------------------------------------------------------------------
 
 std::size_t box2dTouching(b2World& world) {
@@ -399,7 +480,14 @@ int main(int argc, char** argv) {
       o.steps = parseInt("--steps", argv[++i]);
     else if (a == "--warmup")
       o.warmup = parseInt("--warmup", argv[++i]);
-    else if (a == "--scene")
+    else if (a == "--workers") {
+      o.workers = parseInt("--workers", argv[++i]);
+      if (o.workers > kMaxWorkers) {
+        std::fprintf(stderr, "world_bench: --workers must be 1..%d, got %d\n", kMaxWorkers,
+                     o.workers);
+        return 2;
+      }
+    } else if (a == "--scene")
       o.scene = argv[++i];
     else if (a == "--only")
       o.only = argv[++i];
@@ -408,12 +496,23 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
+  if (o.scene == "scaling") {
+    // Threads (docs/world.md, "Threads"): one worker against --workers (default 2).
+    if (o.workers == 1) o.workers = 2;
+    std::printf(
+        "world_bench: threads, %d warm-up steps, then %d timed steps in turns; solver "
+        "lanes: %s\n",
+        o.warmup, o.steps, World::simdPath());
+    quackScaling(o, ("pyramid " + std::to_string(o.rows) + " rows").c_str(), buildQuackPyramid);
+    quackScaling(o, "many 20x20 pyramids", [](World& w, int) { buildQuackMany(w); });
+    return 0;
+  }
   if (!o.scene.empty() && o.scene != "pyramid" && o.scene != "sleep" && o.scene != "sleepers" &&
-      o.scene != "many" && o.scene != "rain" && o.scene != "field") {
-    std::fprintf(
-        stderr,
-        "world_bench: --scene must be pyramid, sleep, sleepers, many, rain or field, got %s\n",
-        o.scene.c_str());
+      o.scene != "bullets" && o.scene != "many" && o.scene != "rain" && o.scene != "field") {
+    std::fprintf(stderr,
+                 "world_bench: --scene must be pyramid, sleep, sleepers, bullets, many, rain, "
+                 "field or scaling, got %s\n",
+                 o.scene.c_str());
     return 2;
   }
   if (!o.only.empty() && o.only != "quack" && o.only != "box2d") {
@@ -426,9 +525,9 @@ int main(int argc, char** argv) {
 #endif
   std::vector<Piece> pieces = makeField(o.field);
   std::printf(
-      "world_bench: %d warm-up steps, then %d timed steps at 60 Hz, single thread; Quack's "
-      "solver lanes: %s\n",
-      o.warmup, o.steps, World::simdPath());
+      "world_bench: %d warm-up steps, then %d timed steps at 60 Hz; Box2D 2.4.1 on one "
+      "thread, Quack on %d worker%s (--workers); Quack's solver lanes: %s\n",
+      o.warmup, o.steps, o.workers, o.workers == 1 ? "" : "s", World::simdPath());
   std::printf("%-24s %14s %14s %10s\n", "scene", "library", "ms/step", "contacts");
   auto scene = [&](const std::string& name, const std::string& label, auto quackFn,
                    [[maybe_unused]] auto box2dFn) {
@@ -484,6 +583,14 @@ int main(int argc, char** argv) {
     std::printf("%-24s %14s %14.4f %10zu\n", "100 moving", "quack", few.msPerStep, few.contacts);
     std::printf("%-24s %14s %14.4f %10zu   (%.2fx the 100 alone)\n", "+ 10000 asleep", "quack",
                 many.msPerStep, many.contacts, many.msPerStep / few.msPerStep);
+  }
+  if (runQuack && (o.scene.empty() || o.scene == "bullets")) {
+    const Timing with = quackBullets(o, true);
+    const Timing without = quackBullets(o, false);
+    std::printf("%-24s %14s %14.4f %10zu\n", "1000 bullets", "quack", with.msPerStep,
+                with.contacts);
+    std::printf("%-24s %14s %14.4f %10zu   (with / without: %.2fx)\n", "", "no continuous",
+                without.msPerStep, without.contacts, with.msPerStep / without.msPerStep);
   }
   scene(
       "many", "many 20x20 pyramids", [&] { return quackMany(o); }, QUACK_BOX2D(box2dMany(o)));

@@ -216,6 +216,12 @@ void BroadPhase::addPair(std::uint32_t a, std::uint32_t b, std::vector<ProxyPair
 
 void BroadPhase::updatePairs(std::vector<ProxyPair>& pairs) {
   pairs.clear();
+  beginPairPass();
+  if (!sweepPairPass(pairs)) queryMoved(0, moveBuffer_.size(), pairs);
+  endPairPass();
+}
+
+void BroadPhase::beginPairPass() {
   // Keep live, buffered entries once each (a destroyed proxy lost kBuffered; a reused slot
   // may appear twice).
   std::size_t kept = 0;
@@ -225,19 +231,28 @@ void BroadPhase::updatePairs(std::vector<ProxyPair>& pairs) {
     moveBuffer_[kept++] = p;
   }
   moveBuffer_.resize(kept);
+}
 
+bool BroadPhase::sweepPairPass(std::vector<ProxyPair>& pairs) {
+  auto* sweep = std::get_if<SweepAndPrune>(&index_);
+  if (sweep == nullptr) return false;
+  auto inPass = [this](std::uint32_t p) { return (flags_[p] & kInPass) != 0; };
+  if (sweep->prefersSweep(moveBuffer_.size())) {
+    sweep->sweepPairs(inPass, [&](std::uint32_t a, std::uint32_t b) { addPair(a, b, pairs); });
+  } else {
+    // Its queries sort lazily (not on several threads at once): all of them here.
+    queryMoved(0, moveBuffer_.size(), pairs);
+  }
+  return true;
+}
+
+void BroadPhase::queryMoved(std::size_t first, std::size_t last,
+                            std::vector<ProxyPair>& pairs) const {
   auto inPass = [this](std::uint32_t p) { return (flags_[p] & kInPass) != 0; };
   std::visit(
-      [&](auto& index) {
-        using Structure = std::decay_t<decltype(index)>;
-        if constexpr (std::is_same_v<Structure, SweepAndPrune>) {
-          if (index.prefersSweep(moveBuffer_.size())) {
-            index.sweepPairs(inPass,
-                             [&](std::uint32_t a, std::uint32_t b) { addPair(a, b, pairs); });
-            return;
-          }
-        }
-        for (std::uint32_t m : moveBuffer_) {
+      [&](const auto& index) {
+        for (std::size_t k = first; k < last; ++k) {
+          const std::uint32_t m = moveBuffer_[k];
           index.query(fat_[m], [&](std::uint32_t o) {
             // When both moved, the pair is reported from the lower index only.
             if (o == m || (inPass(o) && o < m)) return true;
@@ -247,7 +262,9 @@ void BroadPhase::updatePairs(std::vector<ProxyPair>& pairs) {
         }
       },
       index_);
+}
 
+void BroadPhase::endPairPass() {
   for (std::uint32_t p : moveBuffer_) {
     flags_[p] = static_cast<std::uint8_t>(flags_[p] & ~(kBuffered | kInPass));
   }
@@ -283,6 +300,90 @@ std::optional<BroadPhaseHit> BroadPhase::boxCastClosest(Aabb box, Vec2 translati
     return fraction;
   });
   return best;
+}
+
+BroadPhaseRecords BroadPhase::records() const {
+  BroadPhaseRecords r;
+  const std::uint32_t slots = ids_.capacity();
+  r.generations.reserve(slots);
+  for (std::uint32_t p = 0; p < slots; ++p)
+    r.generations.push_back(ids_.generation(p));
+  r.freeSlots = ids_.freeSlots();
+  r.tight = tight_;
+  r.fat = fat_;
+  r.kinds.reserve(slots);
+  r.buffered.reserve(slots);
+  r.filters.reserve(slots);
+  r.userData.reserve(slots);
+  for (std::uint32_t p = 0; p < slots; ++p) {
+    r.kinds.push_back((flags_[p] & kStatic) != 0 ? ProxyKind::staticProxy
+                                                 : ProxyKind::dynamicProxy);
+    r.buffered.push_back((flags_[p] & kBuffered) != 0 ? 1 : 0);
+    r.filters.push_back(records_[p].filter);
+    r.userData.push_back(records_[p].userData);
+  }
+  r.moveBuffer = moveBuffer_;
+  return r;
+}
+
+Result<BroadPhase> BroadPhase::fromRecords(BroadPhaseConfig config, BroadPhaseRecords r) {
+  Result<BroadPhase> made = create(config);
+  if (!made) return made;
+  const std::size_t slots = r.generations.size();
+  if (slots >= 0x7fffffffu) return fail("BroadPhase::fromRecords: too many proxies (2^31)");
+  if (r.tight.size() != slots || r.fat.size() != slots || r.kinds.size() != slots ||
+      r.buffered.size() != slots || r.filters.size() != slots || r.userData.size() != slots)
+    return fail("BroadPhase::fromRecords: the per-slot arrays differ in length");
+  Result<IdPool> ids = IdPool::fromSlots(std::move(r.generations), std::move(r.freeSlots));
+  if (!ids) return fail("BroadPhase::fromRecords: proxy slots: " + ids.error().message);
+  BroadPhase& bp = made.value();
+  bp.ids_ = std::move(ids).value();
+  bp.records_.resize(slots);
+  bp.flags_.assign(slots, 0);
+  bp.fat_.assign(slots, Aabb{});
+  bp.tight_.assign(slots, Aabb{});
+  for (std::uint32_t p = 0; p < slots; ++p) {
+    if (!bp.ids_.isAlive(p)) {
+      if (r.buffered[p] != 0)
+        return fail("BroadPhase::fromRecords: free slot " + std::to_string(p) + " is buffered");
+      continue;
+    }
+    const std::string name = "proxy " + std::to_string(p);
+    if (Status s = checkBox(r.tight[p], "BroadPhase::fromRecords", (name + " tight box").c_str());
+        !s)
+      return fail(s.message());
+    if (Status s = checkBox(r.fat[p], "BroadPhase::fromRecords", (name + " fat box").c_str()); !s)
+      return fail(s.message());
+    if (!contains(r.fat[p], r.tight[p]))
+      return fail("BroadPhase::fromRecords: " + name + " tight box is outside its fat box");
+    if (r.kinds[p] != ProxyKind::staticProxy && r.kinds[p] != ProxyKind::dynamicProxy)
+      return fail("BroadPhase::fromRecords: " + name + " kind is not a ProxyKind");
+    if (r.buffered[p] > 1)
+      return fail("BroadPhase::fromRecords: " + name + " buffered flag is not 0 or 1");
+    bp.records_[p] = {r.filters[p], r.userData[p]};
+    bp.tight_[p] = r.tight[p];
+    bp.fat_[p] = r.fat[p];
+    bp.flags_[p] = static_cast<std::uint8_t>((r.kinds[p] == ProxyKind::staticProxy ? kStatic : 0) |
+                                             (r.buffered[p] != 0 ? kBuffered : 0));
+    std::visit([&](auto& index) { index.insert(p, bp.fat_[p]); }, bp.index_);
+  }
+  // Every buffered proxy is in the buffer; entries may be stale (a destroyed proxy, a slot
+  // buffered twice after reuse): updatePairs skips those.
+  std::vector<std::uint8_t> listed(slots, 0);
+  for (std::uint32_t p : r.moveBuffer) {
+    if (p >= slots)
+      return fail("BroadPhase::fromRecords: move buffer entry " + std::to_string(p) +
+                  " is beyond the " + std::to_string(slots) + " slots");
+    listed[p] = 1;
+  }
+  for (std::uint32_t p = 0; p < slots; ++p) {
+    if ((bp.flags_[p] & kBuffered) != 0 && listed[p] == 0)
+      return fail("BroadPhase::fromRecords: proxy " + std::to_string(p) +
+                  " is buffered but not in the move buffer");
+  }
+  bp.moveBuffer_ = std::move(r.moveBuffer);
+  if (Status s = bp.validate(); !s) return fail("BroadPhase::fromRecords: " + s.message());
+  return made;
 }
 
 void BroadPhase::rebuild() {

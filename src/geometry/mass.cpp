@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "quack/math/trig.hpp"
+
 namespace quack {
 namespace {
 
@@ -110,11 +112,11 @@ MassProperties computeMass(const Polygon& polygon, float density) {
               rectArea * (len * len + r * r) / 12.0f);
       // Sector at v2 between this edge's normal and the next one's (the exterior angle).
       Vec2 next = polygon.normals[(i + 1) % n];
-      float theta = std::atan2(cross(normal, next), dot(normal, next));
+      float theta = portableAtan2(cross(normal, next), dot(normal, next));
       if (theta <= 0.0f) continue;
       float sectorArea = 0.5f * theta * r * r;
       // Centroid of a sector of angle theta: 4 r sin(theta/2) / (3 theta) along the bisector.
-      float d = 4.0f * r * std::sin(0.5f * theta) / (3.0f * theta);
+      float d = 4.0f * r * portableSin(0.5f * theta) / (3.0f * theta);
       Vec2 bisector = normalize(normal + next);
       float inertiaAtApex = sectorArea * 0.5f * r * r;
       sum.add(sectorArea, v2 + d * bisector, inertiaAtApex - sectorArea * d * d);

@@ -14,6 +14,7 @@
 #include "quack/geometry/bounds.hpp"
 #include "quack/geometry/mass.hpp"
 #include "quack/io/shape_json.hpp"
+#include "quack/math/trig.hpp"
 
 namespace quack {
 namespace {
@@ -458,7 +459,7 @@ Result<ShapeGeometry> randomShape(std::mt19937& rng, const std::vector<std::stri
   std::vector<Vec2> pts;
   for (int i = 0; i < n; ++i) {
     float a = 2.0f * kPi * (static_cast<float>(i) + 0.6f * u(rng)) / static_cast<float>(n);
-    pts.push_back(s * Vec2{std::cos(a), std::sin(a)});
+    pts.push_back(s * Vec2{portableCos(a), portableSin(a)});
   }
   return wrap(makePolygon(pts));
 }

@@ -1,12 +1,11 @@
 #include "quack/io/state.hpp"
 
-#include <charconv>
 #include <cmath>
 #include <string_view>
-#include <system_error>
 
 #include <nlohmann/json.hpp>
 
+#include "quack/io/number_text.hpp"
 #include "quack/io/scene.hpp"
 
 namespace quack {
@@ -45,15 +44,9 @@ Result<double> readDouble(const json& j, const char* key, const std::string& pat
 // A double as the shortest text that reads back as the same double (so a float, widened,
 // comes back bit for bit); integers get a ".0" as nlohmann writes them.
 void appendDouble(std::string& out, double x) {
-  char buf[64];
-  auto [end, ec] = std::to_chars(buf, buf + sizeof buf, x);
-  if (ec != std::errc{}) {
-    out += "0.0";  // unreachable: 64 characters hold any double
-    return;
-  }
-  std::string_view text(buf, static_cast<std::size_t>(end - buf));
-  out += text;
-  if (text.find_first_of(".eEni") == std::string_view::npos) out += ".0";
+  const std::size_t start = out.size();
+  appendShortest(out, x);
+  if (out.find_first_of(".eEni", start) == std::string::npos) out += ".0";
 }
 
 void appendVec(std::string& out, Vec2 v) {
@@ -106,6 +99,54 @@ std::string writeState(const StateFile& state) {
          ", \"hit\": " + std::to_string(state.events.hit) +
          ", \"sensor\": " + std::to_string(state.events.sensor) + "}}\n";
   return out;
+}
+
+void appendEventLines(std::string& out, std::uint64_t step, const StepEvents& events) {
+  const std::string head = "{\"step\": " + std::to_string(step) + ", \"event\": \"";
+  auto pair = [&](const char* kind, const char* a, std::uint32_t ia, const char* b,
+                  std::uint32_t ib) {
+    out += head + kind + "\", \"" + a + "\": " + std::to_string(ia) + ", \"" + b +
+           "\": " + std::to_string(ib);
+  };
+  for (const ContactBeginEvent& e : events.begin) {
+    pair("begin", "a", e.shapeA.index, "b", e.shapeB.index);
+    out += "}\n";
+  }
+  for (const ContactEndEvent& e : events.end) {
+    pair("end", "a", e.shapeA.index, "b", e.shapeB.index);
+    out += "}\n";
+  }
+  for (const ContactHitEvent& e : events.hit) {
+    pair("hit", "a", e.shapeA.index, "b", e.shapeB.index);
+    out += ", \"point\": ";
+    appendVec(out, e.point);
+    out += ", \"normal\": ";
+    appendVec(out, e.normal);
+    out += ", \"speed\": ";
+    appendDouble(out, static_cast<double>(e.approachSpeed));
+    out += "}\n";
+  }
+  for (const SensorEvent& e : events.sensorBegin) {
+    pair("sensor-begin", "sensor", e.sensor.index, "visitor", e.visitor.index);
+    out += "}\n";
+  }
+  for (const SensorEvent& e : events.sensorEnd) {
+    pair("sensor-end", "sensor", e.sensor.index, "visitor", e.visitor.index);
+    out += "}\n";
+  }
+  for (const ToiEvent& e : events.toi) {
+    out += head + "toi\", \"time\": ";
+    appendDouble(out, static_cast<double>(e.time));
+    out += ", \"a\": " + std::to_string(e.shapeA.index) +
+           ", \"b\": " + std::to_string(e.shapeB.index) + ", \"point\": ";
+    appendVec(out, e.point);
+    out += ", \"normal\": ";
+    appendVec(out, e.normal);
+    out += "}\n";
+  }
+  for (BodyId b : events.outOfBounds) {
+    out += head + "out-of-bounds\", \"body\": " + std::to_string(b.index) + "}\n";
+  }
 }
 
 Result<StateFile> parseState(std::string_view text, const std::string& fileName) {

@@ -144,23 +144,44 @@ bool BodyStore::shapesWithinWorld(std::uint32_t body, Transform xf) const {
 
 bool BodyStore::moveBody(BroadPhase& broadPhase, std::uint32_t body, Transform xf, Vec2 center,
                          Vec2 displacement) {
+  Aabb box;
+  if (!placeBody(body, xf, center, box)) return false;
+  followBody(broadPhase, body, box, displacement);
+  return true;
+}
+
+bool BodyStore::placeBody(std::uint32_t body, Transform xf, Vec2 center, Aabb& box) {
   Body& b = bodies[body];
   if (b.shapes.size() == 1) {
-    const Shape& s = shapes[b.shapes[0]];
-    const Aabb box = computeAabb(s.geometry, xf);
+    box = computeAabb(shapes[b.shapes[0]].geometry, xf);
     if (!boxWithinWorld(box)) return false;
-    b.xf = xf;
-    b.center = center;
-    Result<bool> moved = broadPhase.moveProxy(s.proxy, box, displacement);
-    QUACK_ASSERT(moved.ok());
-    (void)moved;
-    return true;
+  } else if (!shapesWithinWorld(body, xf)) {
+    return false;
   }
-  if (!shapesWithinWorld(body, xf)) return false;
   b.xf = xf;
   b.center = center;
-  updateShapeBoxes(broadPhase, body, displacement);
   return true;
+}
+
+bool BodyStore::placeProxy(BroadPhase& broadPhase, std::uint32_t body, const Aabb& box,
+                           Vec2 displacement) const {
+  const Body& b = bodies[body];
+  if (b.shapes.size() != 1) return true;
+  Result<bool> follow = broadPhase.moveProxyInPlace(shapes[b.shapes[0]].proxy, box, displacement);
+  QUACK_ASSERT(follow.ok());
+  return !follow.ok() || follow.value();
+}
+
+void BodyStore::followBody(BroadPhase& broadPhase, std::uint32_t body, const Aabb& box,
+                           Vec2 displacement) const {
+  const Body& b = bodies[body];
+  if (b.shapes.size() != 1) {
+    updateShapeBoxes(broadPhase, body, displacement);
+    return;
+  }
+  Result<bool> moved = broadPhase.moveProxy(shapes[b.shapes[0]].proxy, box, displacement);
+  QUACK_ASSERT(moved.ok());
+  (void)moved;
 }
 
 void BodyStore::updateShapeBoxes(BroadPhase& broadPhase, std::uint32_t body,

@@ -95,6 +95,16 @@ class BodyStore {
   /// box is computed once (the step's hot path: one shape per body is the common case).
   bool moveBody(BroadPhase& broadPhase, std::uint32_t body, Transform worldFromBody, Vec2 center,
                 Vec2 displacement);
+  /// moveBody in parts, for the step's workers. placeBody touches only the body (and so may
+  /// run for many bodies at once): it puts it at the pose unless a shape would leave the
+  /// world, and gives the box of a one-shape body. placeProxy (also for many bodies at once)
+  /// gives a one-shape body's proxy its box when no re-insertion is needed, and returns
+  /// true when followBody must still run. followBody moves the proxies (one thread).
+  bool placeBody(std::uint32_t body, Transform worldFromBody, Vec2 center, Aabb& box);
+  bool placeProxy(BroadPhase& broadPhase, std::uint32_t body, const Aabb& box,
+                  Vec2 displacement) const;
+  void followBody(BroadPhase& broadPhase, std::uint32_t body, const Aabb& box,
+                  Vec2 displacement) const;
 
  private:
   std::uint32_t worldId_;

@@ -85,8 +85,16 @@ void ContactSet::destroy(std::uint32_t index, BodyStore& store, EventDispatcher&
   --count_;
 }
 
-void ContactSet::findNew(BroadPhase& broadPhase, BodyStore& store) {
-  broadPhase.updatePairs(pairScratch_);
+void ContactSet::findNew(BroadPhase& broadPhase, BodyStore& store, TaskRunner& tasks) {
+  // The moved proxies' queries on the workers, each into its own list.
+  pairParts_.resize(static_cast<std::size_t>(tasks.workers()));
+  broadPhase.updatePairs(pairScratch_, pairParts_, [&](std::size_t count, auto&& body) {
+    tasks.parallelFor(static_cast<int>(count), kMinProxiesPerTask,
+                      [&](int first, int last, int participant) {
+                        body(static_cast<std::size_t>(first), static_cast<std::size_t>(last),
+                             static_cast<std::size_t>(participant));
+                      });
+  });
   // Structure-independent order, so contacts (and the solver) run in the same order
   // whichever broad phase found them.
   std::sort(pairScratch_.begin(), pairScratch_.end(), [](const ProxyPair& x, const ProxyPair& y) {
@@ -154,77 +162,120 @@ void ContactSet::markAwake(const BodyStore& store, const std::vector<std::uint64
 }
 
 void ContactSet::update(const WorldDef& def, const BroadPhase& broadPhase, BodyStore& store,
-                        const GhostEdges& edges, EventDispatcher& events) {
+                        const GhostEdges& edges, EventDispatcher& events, TaskRunner& tasks) {
+  // The contacts to look at, in index order.
+  updateList_.clear();
   forEachAwake([&](std::uint32_t i) {
-    Contact& c = contacts[i];
+    const Contact& c = contacts[i];
     if (!c.alive) return;
-    const Shape& sa = store.shapes[c.shapeA];
-    const Shape& sb = store.shapes[c.shapeB];
     // Nothing in it moves (both asleep, or asleep and static): kept as it is, touching or
     // not, with its impulses (docs/world.md, "Sleeping").
+    const Shape& sa = store.shapes[c.shapeA];
+    const Shape& sb = store.shapes[c.shapeB];
     if (!store.bodies[sa.body].awake && !store.bodies[sb.body].awake) return;
-    if (!overlaps(broadPhase.fatBox(sa.proxy), broadPhase.fatBox(sb.proxy))) {
-      destroy(i, store, events, true, true);
-      return;
-    }
-    const Transform xa = store.bodies[sa.body].xf;
-    const Transform xb = store.bodies[sb.body].xf;
-    bool wasTouching = c.touching;
-    if (c.sensor) {
-      c.touching = testOverlap(sa.geometry, xa, sb.geometry, xb);
-      if (c.touching && !wasTouching)
-        events.events.sensorBegin.push_back({store.shapeId(c.shapeA), store.shapeId(c.shapeB)});
-      if (!c.touching && wasTouching) events.contactEnded(store, c, true);
-      return;
-    }
-    const Body& ba = store.bodies[sa.body];
-    const Body& bb = store.bodies[sb.body];
-    c.recycled = c.touching && c.recycleValid && !ba.fast && !bb.fast &&
-                 recycle(c, xa, xb, ba, bb, def.contactRecycleDistance);
-    if (c.recycled) return;  // still touching; impulses, ids and events as they were
-    Manifold old = c.manifold;
-    float oldNormal[kMaxManifoldPoints], oldTangent[kMaxManifoldPoints];
-    std::copy(c.normalImpulse, c.normalImpulse + kMaxManifoldPoints, oldNormal);
-    std::copy(c.tangentImpulse, c.tangentImpulse + kMaxManifoldPoints, oldTangent);
-    c.manifold = c.fn(sa.geometry, xa, sb.geometry, xb, def.speculativeDistance);
-    // Ghost collisions: only contacts with flagged static shapes pay for the check.
-    if (edges.activeShapes() != 0 && (sa.edges.active || sb.edges.active))
-      edges.removeGhostContacts(store, c);
-    // Warm start: a point keeps the impulses of the old point with the same feature id.
-    for (int k = 0; k < c.manifold.pointCount; ++k) {
-      c.normalImpulse[k] = 0.0f;
-      c.tangentImpulse[k] = 0.0f;
-      for (int j = 0; j < old.pointCount; ++j) {
-        if (old.points[j].id == c.manifold.points[k].id) {
-          c.normalImpulse[k] = oldNormal[j];
-          c.tangentImpulse[k] = oldTangent[j];
-          break;
+    updateList_.push_back(i);
+  });
+  updateOutcome_.resize(updateList_.size());
+  // Each contact on its own, on any worker: it reads shapes and bodies and writes only
+  // itself and its outcome (docs/world.md, "Threads").
+  const BodyStore& cstore = store;
+  tasks.parallelFor(
+      static_cast<int>(updateList_.size()), kMinContactsPerTask, [&](int first, int last, int) {
+        for (int k = first; k < last; ++k) {
+          const auto at = static_cast<std::size_t>(k);
+          updateOutcome_[at] = updateOne(contacts[updateList_[at]], def, broadPhase, cstore, edges);
         }
+      });
+  // What changes the set and the events, in contact order whatever the workers did.
+  for (std::size_t k = 0; k < updateList_.size(); ++k) {
+    const std::uint32_t i = updateList_[k];
+    const Contact& c = contacts[i];
+    switch (updateOutcome_[k]) {
+      case Outcome::kept:
+        break;
+      case Outcome::apart:
+        destroy(i, store, events, true, true);
+        break;
+      case Outcome::sensorBegan:
+        events.events.sensorBegin.push_back({store.shapeId(c.shapeA), store.shapeId(c.shapeB)});
+        break;
+      case Outcome::sensorEnded:
+        events.contactEnded(store, c, true);
+        break;
+      case Outcome::began:
+        events.events.begin.push_back({store.shapeId(c.shapeA), store.shapeId(c.shapeB)});
+        began.push_back({store.shapes[c.shapeA].body, store.shapes[c.shapeB].body});
+        break;
+      case Outcome::ended:
+        events.contactEnded(store, c, true);
+        ended.push_back({store.shapes[c.shapeA].body, store.shapes[c.shapeB].body});
+        break;
+    }
+  }
+}
+
+ContactSet::Outcome ContactSet::updateOne(Contact& c, const WorldDef& def,
+                                          const BroadPhase& broadPhase, const BodyStore& store,
+                                          const GhostEdges& edges) {
+  const Shape& sa = store.shapes[c.shapeA];
+  const Shape& sb = store.shapes[c.shapeB];
+  if (!overlaps(broadPhase.fatBox(sa.proxy), broadPhase.fatBox(sb.proxy))) return Outcome::apart;
+  const Transform xa = store.bodies[sa.body].xf;
+  const Transform xb = store.bodies[sb.body].xf;
+  const bool wasTouching = c.touching;
+  if (c.sensor) {
+    c.touching = testOverlap(sa.geometry, xa, sb.geometry, xb);
+    if (c.touching && !wasTouching) return Outcome::sensorBegan;
+    if (!c.touching && wasTouching) return Outcome::sensorEnded;
+    return Outcome::kept;
+  }
+  const Body& ba = store.bodies[sa.body];
+  const Body& bb = store.bodies[sb.body];
+  c.recycled = c.touching && c.recycleValid && !ba.fast && !bb.fast &&
+               recycle(c, xa, xb, ba, bb, def.contactRecycleDistance);
+  if (c.recycled) return Outcome::kept;  // still touching; impulses, ids and events as they were
+  Manifold old = c.manifold;
+  float oldNormal[kMaxManifoldPoints], oldTangent[kMaxManifoldPoints];
+  std::copy(c.normalImpulse, c.normalImpulse + kMaxManifoldPoints, oldNormal);
+  std::copy(c.tangentImpulse, c.tangentImpulse + kMaxManifoldPoints, oldTangent);
+  c.manifold = c.fn(sa.geometry, xa, sb.geometry, xb, def.speculativeDistance);
+  // Ghost collisions: only contacts with flagged static shapes pay for the check.
+  if (edges.activeShapes() != 0 && (sa.edges.active || sb.edges.active))
+    edges.removeGhostContacts(store, c);
+  // Warm start: a point keeps the impulses of the old point with the same feature id.
+  for (int k = 0; k < c.manifold.pointCount; ++k) {
+    c.normalImpulse[k] = 0.0f;
+    c.tangentImpulse[k] = 0.0f;
+    for (int j = 0; j < old.pointCount; ++j) {
+      if (old.points[j].id == c.manifold.points[k].id) {
+        c.normalImpulse[k] = oldNormal[j];
+        c.tangentImpulse[k] = oldTangent[j];
+        break;
       }
     }
-    // The reference for recycling: where each point is fixed on A and on B, and the
-    // separation less the points' (rounding-size) offset along the normal, so that a
-    // recycled contact whose bodies have not moved has exactly this separation.
-    c.cachedA = xa;
-    c.cachedB = xb;
-    c.recycleValid = true;
-    for (int k = 0; k < c.manifold.pointCount; ++k) {
-      const ManifoldPoint& mp = c.manifold.points[k];
-      c.localA[k] = invRotate(xa.q, mp.anchorA);
-      c.localB[k] = invRotate(xb.q, mp.anchorB);
-      const Vec2 d = (xb.p - xa.p) + (rotate(xb.q, c.localB[k]) - rotate(xa.q, c.localA[k]));
-      c.baseSeparation[k] = mp.separation - dot(d, c.manifold.normal);
-    }
-    c.touching = c.manifold.pointCount > 0;
-    if (c.touching && !wasTouching) {
-      events.events.begin.push_back({store.shapeId(c.shapeA), store.shapeId(c.shapeB)});
-      began.push_back({sa.body, sb.body});
-    }
-    if (!c.touching && wasTouching) {
-      events.contactEnded(store, c, true);
-      ended.push_back({sa.body, sb.body});
-    }
-  });
+  }
+  // The reference for recycling: where each point is fixed on A and on B, and the
+  // separation less the points' (rounding-size) offset along the normal, so that a
+  // recycled contact whose bodies have not moved has exactly this separation.
+  c.cachedA = xa;
+  c.cachedB = xb;
+  c.recycleValid = true;
+  deriveRecycleReference(c);
+  c.touching = c.manifold.pointCount > 0;
+  if (c.touching && !wasTouching) return Outcome::began;
+  if (!c.touching && wasTouching) return Outcome::ended;
+  return Outcome::kept;
+}
+
+void deriveRecycleReference(Contact& c) {
+  const Transform xa = c.cachedA, xb = c.cachedB;
+  for (int k = 0; k < c.manifold.pointCount; ++k) {
+    const ManifoldPoint& mp = c.manifold.points[k];
+    c.localA[k] = invRotate(xa.q, mp.anchorA);
+    c.localB[k] = invRotate(xb.q, mp.anchorB);
+    const Vec2 d = (xb.p - xa.p) + (rotate(xb.q, c.localB[k]) - rotate(xa.q, c.localA[k]));
+    c.baseSeparation[k] = mp.separation - dot(d, c.manifold.normal);
+  }
 }
 
 void ContactSet::forgetPoses(const BodyStore& store, std::uint32_t body) {

@@ -20,6 +20,7 @@ namespace quack::detail {
 class BodyStore;
 class EventDispatcher;
 class GhostEdges;
+class TaskRunner;
 
 struct Contact {
   bool alive = false;
@@ -46,6 +47,11 @@ struct Contact {
   Vec2 localA[kMaxManifoldPoints], localB[kMaxManifoldPoints];
   float baseSeparation[kMaxManifoldPoints] = {};
 };
+
+/// The recycling reference of a freshly computed manifold (localA, localB, baseSeparation)
+/// from the manifold and the poses it was computed at (cachedA, cachedB): the narrow phase
+/// sets it so, and a snapshot re-derives it so (snapshot.cpp), bit for bit.
+void deriveRecycleReference(Contact& c);
 
 class ContactSet {
  public:
@@ -85,11 +91,12 @@ class ContactSet {
 
   /// New contacts from the broad phase's new pairs, in an order that does not depend on
   /// the structure.
-  void findNew(BroadPhase& broadPhase, BodyStore& store);
+  void findNew(BroadPhase& broadPhase, BodyStore& store, TaskRunner& tasks);
   /// The narrow phase: manifolds and touching state of every contact; contacts whose fat
-  /// boxes parted are destroyed. Begin and end events go to `events`.
+  /// boxes parted are destroyed. Begin and end events go to `events`. The manifolds are
+  /// computed on the workers; what follows from them is applied in contact order.
   void update(const WorldDef& def, const BroadPhase& broadPhase, BodyStore& store,
-              const GhostEdges& edges, EventDispatcher& events);
+              const GhostEdges& edges, EventDispatcher& events, TaskRunner& tasks);
   /// A body was moved by hand (setTransform): its contacts compute their manifolds anew.
   void forgetPoses(const BodyStore& store, std::uint32_t body);
   /// Every contact computes its manifold anew in the next update.
@@ -106,6 +113,18 @@ class ContactSet {
   Status validate(const BodyStore& store) const;
 
  private:
+  friend class SnapshotCodec;  // snapshot.cpp reads and rebuilds every field
+  // What the narrow phase found for one contact, applied after the parallel part.
+  enum class Outcome : std::uint8_t { kept, apart, sensorBegan, sensorEnded, began, ended };
+  static Outcome updateOne(Contact& c, const WorldDef& def, const BroadPhase& broadPhase,
+                           const BodyStore& store, const GhostEdges& edges);
+  // Smallest share of the narrow phase handed to a worker.
+  static constexpr int kMinContactsPerTask = 64;
+  static constexpr int kMinProxiesPerTask = 64;
+  std::vector<std::vector<ProxyPair>> pairParts_;  // per worker: pairs found
+
+  std::vector<std::uint32_t> updateList_;  // this step's contacts to update
+  std::vector<Outcome> updateOutcome_;     // and what each found
   std::vector<std::uint32_t> free_;
   std::unordered_map<std::uint64_t, std::uint32_t> byPair_;
   std::vector<ProxyPair> pairScratch_;

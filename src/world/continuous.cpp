@@ -1,6 +1,6 @@
-// The continuous phase of a step: swept boxes for fast bodies, time of impact against what
-// they sweep past, and the time-ordered handling of the impacts (the seeds' execution
-// phase). docs/world.md, "Continuous collision", explains the choices.
+// The continuous phase of a step: swept boxes for fast bodies, time of impact between
+// sweeps, and the time-ordered handling of the impacts (the seeds' execution phase).
+// docs/continuous.md, "In the world", explains the choices.
 
 #include <algorithm>
 #include <cmath>
@@ -49,78 +49,178 @@ Aabb ContinuousPhase::sweptBox(const BodyStore& store, const FastBody& f) const 
   return inflate(box, kToiTargetSeparation + kToiTolerance);
 }
 
+std::uint32_t ContinuousPhase::addParticipant(BodyStore& store, std::uint32_t body,
+                                              bool searching) {
+  const Body& b = store.bodies[body];
+  FastBody f;
+  f.body = body;
+  f.searching = searching;
+  if (b.fast) {
+    f.sweep = {b.localCenter, b.startCenter, b.center, b.startAngle, b.endAngle};
+  } else {
+    // A body that is not fast stands at its end-of-step pose (it moved less than half its
+    // thickness: the contact solver has its own motion) until an impact sets it moving.
+    const float angle = b.xf.q.angle();
+    f.sweep = {b.localCenter, b.center, b.center, angle, angle};
+    f.baseV = b.v;
+    f.baseW = b.w;
+  }
+  f.box = sweptBox(store, f);
+  const auto index = static_cast<std::uint32_t>(fast_.size());
+  fast_.push_back(f);
+  participantOf_[body] = index;
+  inMoved_.push_back(false);
+  if (!sorted_.empty()) markMoved(index);  // joined after the index was built
+  return index;
+}
+
+void ContinuousPhase::markMoved(std::uint32_t index) {
+  if (inMoved_[index]) return;
+  inMoved_[index] = true;
+  moved_.push_back(index);
+}
+
+template <class Visit>
+void ContinuousPhase::queryParticipants(Aabb box, Visit&& visit) const {
+  auto first = std::lower_bound(sortedLower_.begin(), sortedLower_.end(), box.lower.x - widest_);
+  for (auto it = first; it != sortedLower_.end() && *it <= box.upper.x; ++it) {
+    const std::uint32_t p = sorted_[static_cast<std::size_t>(it - sortedLower_.begin())];
+    if (!inMoved_[p] && overlaps(fast_[p].box, box)) visit(p);
+  }
+  for (std::uint32_t p : moved_)
+    if (overlaps(fast_[p].box, box)) visit(p);
+}
+
 bool ContinuousPhase::findImpact(const BodyStore& store, const BroadPhase& broadPhase,
                                  const GhostEdges& edges, std::uint32_t fast, bool continuation,
                                  ToiCandidate& best, std::uint32_t onlyBody) {
   const FastBody& f = fast_[fast];
   const Body& body = store.bodies[f.body];
   candidates_.clear();
+  near_.clear();
+  // Static and kinematic shapes, and dynamic bodies that stand still (not followed yet),
+  // come from the broad phase; followed bodies from their swept boxes (a fast body's
+  // broad-phase box is at its end pose, which may be far from where two paths cross).
   auto consider = [&](std::uint32_t s) {
     const Shape& other = store.shapes[s];
     if (other.body == f.body || other.def.sensor) return;
-    const Body& ob = store.bodies[other.body];
-    // Fast bodies meet static and kinematic shapes; bullets meet dynamic non-bullets too,
-    // as those stand at the end of the step (Box2D's rule, read for understanding).
-    if (ob.type == BodyType::dynamicBody && (!body.bullet || ob.bullet)) return;
+    if (participantOf_[other.body] != kNoParticipant) return;
     candidates_.push_back(s);
   };
   if (onlyBody != 0xffffffffu) {
-    for (std::uint32_t s : store.bodies[onlyBody].shapes)
-      consider(s);
+    const std::uint32_t p = participantOf_[onlyBody];
+    if (p != kNoParticipant) {
+      if (p != fast) near_.push_back(p);
+    } else {
+      for (std::uint32_t s : store.bodies[onlyBody].shapes)
+        consider(s);
+    }
   } else {
     broadPhase.queryAabb(f.box, [&](ProxyId, std::uint64_t user) {
       consider(static_cast<std::uint32_t>(user));
       return true;
     });
+    queryParticipants(f.box, [&](std::uint32_t p) {
+      if (p != fast) near_.push_back(p);
+    });
   }
   std::sort(candidates_.begin(), candidates_.end());
+  std::sort(near_.begin(), near_.end());
   bool found = false;
+  // The time of impact of one of this body's shapes (moving with `sweep`, which covers
+  // [from, 1]) with shape s moving with `otherSweep`.
+  auto test = [&](std::uint32_t own, const ShapeProxy& proxy, const Sweep& sweep, float from,
+                  std::uint32_t s, const Sweep& otherSweep, std::uint32_t other,
+                  std::uint32_t otherStamp) {
+    const Shape& shape = store.shapes[own];
+    const Shape& otherShape = store.shapes[s];
+    if (otherShape.def.sensor || !shouldCollide(shape.def.filter, otherShape.def.filter)) return;
+    const ShapeProxy otherProxy = makeProxy(otherShape.geometry);
+    ToiOutput toi = computeToi(proxy, sweep, otherProxy, otherSweep);
+    bool stop = false;
+    if ((toi.status == ToiStatus::hit || toi.status == ToiStatus::failed) && toi.t == 0.0f) {
+      // Already within the target at the start: usually the shape the body hit last
+      // (this step or the step before). Aim at half the present gap, so that the body may
+      // slide along it but not into it. With no gap left to halve the pair is touching:
+      // at the start of the step the contact solver has it; in a continued sweep, stop.
+      if (toi.distance > 4.0f * kToiMinTolerance) {
+        toi = computeToi(proxy, sweep, otherProxy, otherSweep, 1.0f, 0.5f * toi.distance);
+        if (toi.status != ToiStatus::hit && toi.status != ToiStatus::failed) return;
+        stop = toi.t == 0.0f;
+      } else {
+        if (!continuation && from == 0.0f) return;
+        stop = true;
+      }
+    } else if (toi.status == ToiStatus::overlapped && (continuation || from > 0.0f)) {
+      // Overlapping (within the contact solver's slop) at the start of a continued sweep: a
+      // body resting against a wall that an impact now pushes into it. Stop it here, with
+      // an impact, when its sweep moves it deeper; otherwise it is the contact solver's.
+      stop = true;
+    } else if (toi.status != ToiStatus::hit && toi.status != ToiStatus::failed) {
+      return;  // separated, or overlapping at the start of the step (the contact solver's)
+    }
+    if (stop) {
+      // Touching or overlapping at the start: an impact only when the sweeps move the
+      // shapes together there (two bodies resting on each other are the contact solver's).
+      const float t0 = toi.t;
+      auto velocityAt = [&](const Sweep& w) {
+        const Vec2 center = (1.0f - t0) * w.c1 + t0 * w.c2;
+        return (w.c2 - w.c1) + cross(w.a2 - w.a1, toi.point - center);
+      };
+      if (dot(velocityAt(otherSweep) - velocityAt(sweep), toi.normal) >= 0.0f) return;
+    }
+    // A failed search returns the last time proven free: stopping there never tunnels.
+    ToiCandidate c;
+    c.time = from + toi.t * (1.0f - from);
+    c.fast = fast;
+    c.stamp = f.stamp;
+    c.other = other;
+    c.otherStamp = otherStamp;
+    c.shapeA = own;
+    c.shapeB = s;
+    // Ghost collisions: an impact on a flush seam of static geometry, or from behind a
+    // chain, is not a surface (edges.cpp); the discrete contacts handle the real ones.
+    if (edges.activeShapes() != 0 && otherShape.edges.active &&
+        edges.isGhostImpact(store, s, toi.point, -toi.normal))
+      return;
+    c.point = toi.point;
+    c.normal = toi.normal;
+    c.stop = stop || toi.status == ToiStatus::failed;
+    if (!found || earlier(c, best)) best = c;
+    found = true;
+  };
   for (std::uint32_t own : body.shapes) {
     const Shape& shape = store.shapes[own];
     if (shape.def.sensor) continue;
     const ShapeProxy proxy = makeProxy(shape.geometry);
     for (std::uint32_t s : candidates_) {
-      const Shape& other = store.shapes[s];
-      if (!shouldCollide(shape.def.filter, other.def.filter)) continue;
-      const Body& ob = store.bodies[other.body];
+      const Body& ob = store.bodies[store.shapes[s].body];
       const float angle = ob.xf.q.angle();
-      const Sweep still{ob.localCenter, ob.center, ob.center, angle, angle};
-      const ShapeProxy otherProxy = makeProxy(other.geometry);
-      ToiOutput toi = computeToi(proxy, f.sweep, otherProxy, still);
-      bool stop = false;
-      if ((toi.status == ToiStatus::hit || toi.status == ToiStatus::failed) && toi.t == 0.0f) {
-        // Already within the target at the start: usually the shape the body hit last
-        // (this step or the step before). Aim at half the present gap, so that the body may
-        // slide along it but not into it. With no gap left to halve the pair is touching:
-        // at the start of the step the contact solver has it; in a continued sweep, stop.
-        if (toi.distance > 4.0f * kToiMinTolerance) {
-          toi = computeToi(proxy, f.sweep, otherProxy, still, 1.0f, 0.5f * toi.distance);
-          if (toi.status != ToiStatus::hit && toi.status != ToiStatus::failed) continue;
-          stop = toi.t == 0.0f;
-        } else {
-          if (!continuation) continue;
-          stop = true;
-        }
-      } else if (toi.status != ToiStatus::hit && toi.status != ToiStatus::failed) {
-        continue;  // separated, or overlapping from the start (the contact solver's pair)
-      }
-      // A failed search returns the last time proven free: stopping there never tunnels.
-      ToiCandidate c;
-      c.time = f.t0 + toi.t * (1.0f - f.t0);
-      c.fast = fast;
-      c.stamp = f.stamp;
-      c.shapeA = own;
-      c.shapeB = s;
-      // Ghost collisions: an impact on a flush seam of static geometry, or from behind a
-      // chain, is not a surface (edges.cpp); the discrete contacts handle the real ones.
-      if (edges.activeShapes() != 0 && other.edges.active &&
-          edges.isGhostImpact(store, s, toi.point, -toi.normal))
-        continue;
-      c.point = toi.point;
-      c.normal = toi.normal;
-      c.stop = stop || toi.status == ToiStatus::failed;
-      if (!found || earlier(c, best)) best = c;
-      found = true;
+      test(own, proxy, f.sweep, f.t0, s, {ob.localCenter, ob.center, ob.center, angle, angle},
+           kNoParticipant, 0);
+    }
+    for (std::uint32_t p : near_) {
+      const FastBody& g = fast_[p];
+      if (!overlaps(g.box, f.box)) continue;
+      // Both sweeps over the same part of the step: from the later of their starts.
+      const float from = maxf(f.t0, g.t0);
+      auto over = [from](const FastBody& x) {
+        return x.t0 < from ? advance(x.sweep, clampf((from - x.t0) / (1.0f - x.t0), 0.0f, 1.0f))
+                           : x.sweep;
+      };
+      const Sweep mine = over(f), theirs = over(g);
+      // Bounding circles (each body within its maxExtent of its centre of mass): when the
+      // centres, moving linearly, never come within the sum (plus the target and band), no
+      // shape pair can meet. Most neighbours of a crowd end here without a search.
+      const Vec2 offset = theirs.c1 - mine.c1;
+      const Vec2 rate = (theirs.c2 - theirs.c1) - (mine.c2 - mine.c1);
+      const float rr = lengthSquared(rate);
+      const float u = rr > 0.0f ? clampf(-dot(offset, rate) / rr, 0.0f, 1.0f) : 0.0f;
+      const float reach =
+          body.maxExtent + store.bodies[g.body].maxExtent + kToiTargetSeparation + kToiTolerance;
+      if (lengthSquared(offset + u * rate) > reach * reach) continue;
+      for (std::uint32_t s : store.bodies[g.body].shapes)
+        test(own, proxy, mine, from, s, theirs, p, g.stamp);
     }
   }
   return found;
@@ -132,23 +232,39 @@ void ContinuousPhase::run(const WorldDef& def, BodyStore& store,
   pushed.clear();
   if (!def.enableContinuous) return;
   fast_.clear();
-  int bullets = 0;
+  sorted_.clear();
+  sortedLower_.clear();
+  moved_.clear();
+  inMoved_.clear();
+  // Entries are reset after each run (only the participants'), so that a step with a few
+  // fast bodies among many asleep costs nothing per body.
+  if (participantOf_.size() < store.bodies.size())
+    participantOf_.resize(store.bodies.size(), kNoParticipant);
   // Only bodies that moved can be fast (sleeping ones are not).
   for (std::size_t word = 0; word < awake.size(); ++word) {
     for (std::uint64_t bits = awake[word]; bits != 0; bits &= bits - 1) {
       const auto i = static_cast<std::uint32_t>(word * 64 + __builtin_ctzll(bits));
-      Body& b = store.bodies[i];
-      if (!b.fast) continue;
-      b.fast = false;
-      FastBody f;
-      f.body = i;
-      f.sweep = {b.localCenter, b.startCenter, b.center, b.startAngle, b.endAngle};
-      f.box = sweptBox(store, f);
-      bullets += b.bullet ? 1 : 0;
-      fast_.push_back(f);
+      // The flag stays set until the solver's next step: the contact set does not recycle
+      // the manifolds of a body that moved fast (contact_set.cpp).
+      if (store.bodies[i].fast) addParticipant(store, i, true);
     }
   }
   if (fast_.empty()) return;
+  sorted_.resize(fast_.size());
+  for (std::uint32_t i = 0; i < fast_.size(); ++i)
+    sorted_[i] = i;
+  // Ties by index: the order is the same whatever the broad phase.
+  std::sort(sorted_.begin(), sorted_.end(), [&](std::uint32_t x, std::uint32_t y) {
+    const float lx = fast_[x].box.lower.x, ly = fast_[y].box.lower.x;
+    return lx != ly ? lx < ly : x < y;
+  });
+  sortedLower_.resize(sorted_.size());
+  widest_ = 0.0f;
+  for (std::size_t k = 0; k < sorted_.size(); ++k) {
+    const Aabb& box = fast_[sorted_[k]].box;
+    sortedLower_[k] = box.lower.x;
+    widest_ = maxf(widest_, box.upper.x - box.lower.x);
+  }
 
   // A min-heap by time (std's heap functions keep the largest on top: invert the order).
   auto later = [](const ToiCandidate& x, const ToiCandidate& y) { return earlier(y, x); };
@@ -164,37 +280,96 @@ void ContinuousPhase::run(const WorldDef& def, BodyStore& store,
     if (findImpact(store, broadPhase, edges, i, false, c)) push(c);
   }
 
+  // Moves participant p to step fraction `time` (the start of what remains of its sweep).
+  auto moveTo = [&](FastBody& p, float time) {
+    if (p.t0 < time && p.t0 < 1.0f)
+      p.sweep = advance(p.sweep, clampf((time - p.t0) / (1.0f - p.t0), 0.0f, 1.0f));
+    p.t0 = maxf(p.t0, time);
+  };
+  // Sets what remains of p's motion from its present start (c, angle at p.t0): on with the
+  // body's velocity, or held there. Then the body's pose, broad-phase and swept boxes follow.
+  auto resweep = [&](std::uint32_t index, bool hold) {
+    FastBody& p = fast_[index];
+    Body& b = store.bodies[p.body];
+    const Vec2 c = p.sweep.c1;
+    const float angle = p.sweep.a1;
+    const float remaining = (1.0f - p.t0) * dt;
+    if (!hold && remaining > 0.0f) {
+      p.sweep = {b.localCenter, c, c + remaining * (b.v - p.baseV), angle,
+                 angle + remaining * (b.w - p.baseW)};
+    } else {
+      p.sweep = {b.localCenter, c, c, angle, angle};
+    }
+    if (!store.shapesWithinWorld(
+            p.body, makeTransform(p.sweep.c2 - rotate(Rot::fromAngle(p.sweep.a2), b.localCenter),
+                                  p.sweep.a2))) {
+      // The rest of the sweep would leave the world (kMaxCoordinate): stop here, as the
+      // solver does with a body at the edge (StepEvents::outOfBounds).
+      p.sweep = {b.localCenter, c, c, angle, angle};
+      b.v = {};
+      b.w = 0.0f;
+      events.events.outOfBounds.push_back(store.bodyId(p.body));
+    }
+    p.box = sweptBox(store, p);
+    markMoved(index);
+    ++p.stamp;
+    p.bestTime = 2.0f;
+    p.bestBody = 0xffffffffu;
+    // The body ends the step where its new sweep ends; the broad phase follows at once so
+    // that later searches see it there.
+    const Vec2 oldCenter = b.center;
+    b.center = p.sweep.c2;
+    b.xf.q = Rot::fromAngle(p.sweep.a2);
+    b.xf.p = b.center - rotate(b.xf.q, b.localCenter);
+    store.updateShapeBoxes(broadPhase, p.body, b.center - oldCenter);
+  };
+
+  std::vector<std::uint32_t> changed;
   while (!queue_.empty()) {
     std::pop_heap(queue_.begin(), queue_.end(), later);
     const ToiCandidate e = queue_.back();
     queue_.pop_back();
+    if (e.stamp != fast_[e.fast].stamp) continue;  // the sweep changed since this was found
+    const std::uint32_t otherBody = store.shapes[e.shapeB].body;
+    std::uint32_t o = participantOf_[otherBody];
+    if (e.other != o || (o != kNoParticipant && e.otherStamp != fast_[o].stamp)) continue;
+    Body& b = store.bodies[fast_[e.fast].body];
+    Body& ob = store.bodies[otherBody];
+    const bool otherMoves = ob.type == BodyType::dynamicBody &&
+                            (o == kNoParticipant || fast_[o].events < kMaxToiEventsPerBody);
+    // What a still dynamic body's pose already holds of its motion (see FastBody::baseV).
+    const Vec2 otherV = ob.v;
+    const float otherW = ob.w;
     FastBody& f = fast_[e.fast];
-    if (e.stamp != f.stamp) continue;  // the sweep changed since this was found
     f.bestTime = 2.0f;
     f.bestBody = 0xffffffffu;
-    Body& b = store.bodies[f.body];
-    const Shape& other = store.shapes[e.shapeB];
-    Body& ob = store.bodies[other.body];
 
-    // Move the body to the time of impact.
-    const float u = f.t0 < 1.0f ? clampf((e.time - f.t0) / (1.0f - f.t0), 0.0f, 1.0f) : 1.0f;
-    const Sweep at = advance(f.sweep, u);
-    const Vec2 c = at.c1;
-    const float angle = at.a1;
-    events.events.toi.push_back(
-        {e.time, store.shapeId(e.shapeA), store.shapeId(e.shapeB), e.point, e.normal});
+    // Both bodies to the time of impact.
+    moveTo(f, e.time);
+    const Vec2 c = f.sweep.c1;
+    const float angle = f.sweep.a1;
+    Transform otherXf = ob.xf;
+    Vec2 otherCenter = ob.center;
+    if (o != kNoParticipant) {
+      moveTo(fast_[o], e.time);
+      otherCenter = fast_[o].sweep.c1;
+      const Rot q = Rot::fromAngle(fast_[o].sweep.a1);
+      otherXf = {otherCenter - rotate(q, ob.localCenter), q};
+    }
 
-    // Immediate velocity response along the normal (no friction: the next step's contact
-    // has it), so the rest of the step's motion goes where the body would go after the
-    // impact. Restitution as the solver's: the larger of the pair, above the threshold.
-    // The impulse acts at the middle of the contact manifold at the impact pose, so that a
-    // face meeting a face is pushed square (TOI's single witness point is a corner, and an
-    // impulse there would start a spurious spin).
+    // Immediate velocity response at the impact, with both bodies' masses: restitution as
+    // the solver's (the larger of the pair, above the threshold) and Coulomb friction (the
+    // solver's mix) capped by the normal impulse. The impulse acts at the middle of the
+    // contact manifold at the impact poses, so that a face meeting a face is pushed square
+    // (TOI's single witness point is a corner, and an impulse there would start a spurious
+    // spin).
     Vec2 n = e.normal;
     Vec2 hitPoint = e.point;
     const Transform xfAt = {c - rotate(Rot::fromAngle(angle), b.localCenter),
                             Rot::fromAngle(angle)};
-    const Manifold m = quack::collide(store.shapes[e.shapeA].geometry, xfAt, other.geometry, ob.xf,
+    const Shape& shapeA = store.shapes[e.shapeA];
+    const Shape& shapeB = store.shapes[e.shapeB];
+    const Manifold m = quack::collide(shapeA.geometry, xfAt, shapeB.geometry, otherXf,
                                       kToiTargetSeparation + 2.0f * kToiTolerance);
     if (m.pointCount > 0) {
       n = m.normal;
@@ -202,101 +377,109 @@ void ContinuousPhase::run(const WorldDef& def, BodyStore& store,
       if (m.pointCount == 2) hitPoint = 0.5f * (m.points[0].point + m.points[1].point);
     }
     const Vec2 rA = hitPoint - c;
-    const Vec2 rB = hitPoint - ob.center;
-    const bool otherMoves = ob.type == BodyType::dynamicBody;
+    const Vec2 rB = hitPoint - otherCenter;
     const Vec2 vB = ob.v + cross(ob.w, rB);  // zero for static bodies
-    const float vn = dot(vB - (b.v + cross(b.w, rA)), n);
+    const Vec2 dv = vB - (b.v + cross(b.w, rA));
+    const float vn = dot(dv, n);
+    bool impulseApplied = false;
     if (vn < 0.0f) {
-      float e0 = maxf(store.shapes[e.shapeA].def.restitution, other.def.restitution);
+      float e0 = maxf(shapeA.def.restitution, shapeB.def.restitution);
       if (-vn < def.restitutionThreshold) e0 = 0.0f;
       const float rnA = cross(rA, n), rnB = cross(rB, n);
       float k = b.invMass + b.invInertia * rnA * rnA;
       if (otherMoves) k += ob.invMass + ob.invInertia * rnB * rnB;
       if (k > 0.0f) {
-        const Vec2 impulse = (-(1.0f + e0) * vn / k) * n;  // on B; A gets its opposite
+        const float jn = -(1.0f + e0) * vn / k;
+        const Vec2 tangent = rightPerp(n);
+        const float rtA = cross(rA, tangent), rtB = cross(rB, tangent);
+        float kt = b.invMass + b.invInertia * rtA * rtA;
+        if (otherMoves) kt += ob.invMass + ob.invInertia * rtB * rtB;
+        const float mu = std::sqrt(shapeA.def.friction * shapeB.def.friction);
+        const float jt = kt > 0.0f ? clampf(-dot(dv, tangent) / kt, -mu * jn, mu * jn) : 0.0f;
+        const Vec2 impulse = jn * n + jt * tangent;  // on B; A gets its opposite
+        impulseApplied = true;
         b.v -= b.invMass * impulse;
         b.w -= b.invInertia * cross(rA, impulse);
         if (otherMoves) {
           ob.v += ob.invMass * impulse;
           ob.w += ob.invInertia * cross(rB, impulse);
-          pushed.push_back(other.body);
+          pushed.push_back(otherBody);
         }
       }
     }
+    events.events.toi.push_back({e.time, store.shapeId(e.shapeA), store.shapeId(e.shapeB), e.point,
+                                 e.normal, maxf(0.0f, -vn)});
 
-    // The rest of the step: on with the new velocity, or, past the bound, stay here.
-    ++f.events;
-    const float remaining = (1.0f - e.time) * dt;
-    if (f.events < kMaxToiEventsPerBody && !e.stop && remaining > 0.0f) {
-      // A dynamic body hit by a bullet stands at its end-of-step pose for the rest of the
-      // step although the impact set it moving, so the bullet's sweep does not go on
-      // towards it (it would meet the frozen pose again and again); the velocity itself is
-      // kept for the next step.
-      Vec2 sweepVelocity = b.v;
-      const float towards = dot(sweepVelocity, n);
-      if (otherMoves && towards > 0.0f) sweepVelocity -= towards * n;
-      f.sweep = {b.localCenter, c, c + remaining * sweepVelocity, angle, angle + remaining * b.w};
-    } else {
-      f.sweep = {b.localCenter, c, c, angle, angle};
-    }
-    if (!store.shapesWithinWorld(
-            f.body, makeTransform(f.sweep.c2 - rotate(Rot::fromAngle(f.sweep.a2), b.localCenter),
-                                  f.sweep.a2))) {
-      // The rest of the sweep would leave the world (kMaxCoordinate): stop here, as the
-      // solver does with a body at the edge (StepEvents::outOfBounds).
-      f.sweep = {b.localCenter, c, c, angle, angle};
-      b.v = {};
-      b.w = 0.0f;
-      events.events.outOfBounds.push_back(store.bodyId(f.body));
-    }
-    f.t0 = e.time;
-    f.box = sweptBox(store, f);
-    ++f.stamp;
-    // The body ends the step where its new sweep ends; the broad phase follows at once so
-    // that later searches see it there.
-    const Vec2 oldCenter = b.center;
-    b.center = f.sweep.c2;
-    b.xf.q = Rot::fromAngle(f.sweep.a2);
-    b.xf.p = b.center - rotate(b.xf.q, b.localCenter);
-    store.updateShapeBoxes(broadPhase, f.body, b.center - oldCenter);
-
-    // Re-check what this touches: the body's own new sweep, and bullets that may meet the
-    // body's new end pose (only bullets look at dynamic bodies). New events go into the
-    // queue in time order; none is earlier than this one.
-    ToiCandidate next;
-    // A stopped body stays where it is for the rest of the step: nothing more to find.
-    if (f.events < kMaxToiEventsPerBody && !e.stop &&
-        findImpact(store, broadPhase, edges, e.fast, true, next))
-      push(next);
-    if (b.bullet || bullets == 0) continue;
-    const Aabb moved = f.box;
-    for (std::uint32_t g = 0; g < fast_.size(); ++g) {
-      FastBody& bullet = fast_[g];
-      if (g == e.fast || !store.bodies[bullet.body].bullet || bullet.events >= kMaxToiEventsPerBody)
-        continue;
-      if (bullet.bestBody != f.body && !overlaps(bullet.box, moved)) continue;
-      if (bullet.t0 < e.time) {
-        // Only re-parameterised (same path): its queued impact stays valid.
-        bullet.sweep =
-            advance(bullet.sweep, clampf((e.time - bullet.t0) / (1.0f - bullet.t0), 0.0f, 1.0f));
-        bullet.t0 = e.time;
-        bullet.box = sweptBox(store, bullet);
+    // The rest of the step for both: on with the new velocities, or, past the bound, held.
+    changed.clear();
+    auto finishBody = [&](std::uint32_t index, bool stopped) {
+      FastBody& p = fast_[index];
+      ++p.events;
+      const bool capped = p.events >= kMaxToiEventsPerBody;
+      if (capped) events.events.toiCapped.push_back(store.bodyId(p.body));
+      if (capped || stopped) p.searching = false;
+      resweep(index, capped || stopped);
+      changed.push_back(index);
+    };
+    finishBody(e.fast, e.stop);
+    if (otherMoves && impulseApplied) {
+      // A dynamic body an impact sets moving is followed from now on (only then: entries of
+      // others that met it standing still stay valid until it moves, and the re-check below
+      // renews them when it does).
+      if (o == kNoParticipant) {
+        o = addParticipant(store, otherBody, false);
+        fast_[o].baseV = otherV;
+        fast_[o].baseW = otherW;
+        moveTo(fast_[o], e.time);  // it stood still until now: its sweep starts here
       }
-      if (bullet.bestBody == f.body) {
-        // Its impact was with this body, which has moved: search again from scratch.
-        ++bullet.stamp;
-        bullet.bestTime = 2.0f;
-        bullet.bestBody = 0xffffffffu;
-        if (findImpact(store, broadPhase, edges, g, true, next)) push(next);
-      } else if (findImpact(store, broadPhase, edges, g, true, next, f.body) &&
-                 next.time < bullet.bestTime) {
-        // Only this body is new to it: an earlier impact with it goes into the queue beside
-        // the old one (same stamp); whichever comes out first is handled, the other is then
-        // stale.
+      fast_[o].searching = true;  // it looks along its new sweep
+      finishBody(o, false);
+    }
+
+    // Re-check what the changed sweeps touch: their own new sweeps, then every followed
+    // body whose queued impact was with one of them (search again from scratch) or whose
+    // swept box meets a new one (checked against that body alone; an earlier impact goes
+    // into the queue beside its old one, which is then stale). None is earlier than this.
+    for (std::uint32_t index : changed) {
+      ToiCandidate next;
+      if (fast_[index].searching && findImpact(store, broadPhase, edges, index, true, next))
         push(next);
+    }
+    recheck_.clear();
+    for (std::uint32_t index : changed) {
+      queryParticipants(fast_[index].box, [&](std::uint32_t g) { recheck_.push_back(g); });
+    }
+    for (std::uint32_t g = 0; g < fast_.size(); ++g) {
+      const std::uint32_t with = fast_[g].bestBody;
+      if (with == fast_[changed[0]].body || (changed.size() > 1 && with == fast_[changed[1]].body))
+        recheck_.push_back(g);
+    }
+    std::sort(recheck_.begin(), recheck_.end());
+    recheck_.erase(std::unique(recheck_.begin(), recheck_.end()), recheck_.end());
+    for (std::uint32_t g : recheck_) {
+      FastBody& p = fast_[g];
+      if (!p.searching || g == changed[0] || (changed.size() > 1 && g == changed[1])) continue;
+      // Only re-parameterised (same path, and its swept box still holds it): its queued
+      // impact stays valid.
+      moveTo(p, e.time);
+      for (std::uint32_t index : changed) {
+        const std::uint32_t moved = fast_[index].body;
+        ToiCandidate next;
+        if (p.bestBody == moved) {
+          ++p.stamp;
+          p.bestTime = 2.0f;
+          p.bestBody = 0xffffffffu;
+          if (findImpact(store, broadPhase, edges, g, true, next)) push(next);
+        } else if (overlaps(p.box, fast_[index].box) &&
+                   findImpact(store, broadPhase, edges, g, true, next, moved) &&
+                   next.time < p.bestTime) {
+          push(next);
+        }
       }
     }
   }
+  for (const FastBody& f : fast_)
+    participantOf_[f.body] = kNoParticipant;
 }
 
 }  // namespace quack::detail

@@ -32,6 +32,7 @@ void EventDispatcher::beginStep() {
   events.sensorBegin.clear();
   events.toi.clear();
   events.outOfBounds.clear();
+  events.toiCapped.clear();
 }
 
 void EventDispatcher::contactEnded(const BodyStore& store, const Contact& c, bool inStep) {
@@ -51,10 +52,10 @@ void EventDispatcher::contactEnded(const BodyStore& store, const Contact& c, boo
 }
 
 void EventDispatcher::add(Kind kind, std::uint64_t a, std::uint64_t b,
-                          World::ContactCallback contact, World::HitCallback hit,
-                          bool fromCallback) {
+                          World::ContactCallback contact, World::HitCallback hit, bool fromCallback,
+                          World::ImpactCallback impact) {
   (fromCallback ? pending_ : callbacks_)
-      .push_back({kind, a, b, std::move(contact), std::move(hit)});
+      .push_back({kind, a, b, std::move(contact), std::move(hit), std::move(impact)});
 }
 
 void EventDispatcher::dispatch(World& world, const BodyStore& store) {
@@ -101,6 +102,18 @@ void EventDispatcher::dispatch(World& world, const BodyStore& store) {
       } else if (matches(category(e.shapeB), cb.categoriesA) &&
                  matches(category(e.shapeA), cb.categoriesB)) {
         cb.hit(world, e, true);
+      }
+    }
+  }
+  for (const Callback& cb : callbacks_) {
+    if (cb.kind != Kind::impact) continue;
+    for (const ToiEvent& e : events.toi) {
+      if (matches(category(e.shapeA), cb.categoriesA) &&
+          matches(category(e.shapeB), cb.categoriesB)) {
+        cb.impact(world, e, false);
+      } else if (matches(category(e.shapeB), cb.categoriesA) &&
+                 matches(category(e.shapeA), cb.categoriesB)) {
+        cb.impact(world, e, true);
       }
     }
   }

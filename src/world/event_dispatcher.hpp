@@ -16,12 +16,13 @@ struct Contact;
 
 class EventDispatcher {
  public:
-  enum class Kind { begin, end, hit, sensorBegin, sensorEnd };
+  enum class Kind { begin, end, hit, sensorBegin, sensorEnd, impact };
   struct Callback {
     Kind kind;
     std::uint64_t categoriesA, categoriesB;
     World::ContactCallback contact;
     World::HitCallback hit;
+    World::ImpactCallback impact;
   };
 
   StepEvents events;
@@ -32,12 +33,13 @@ class EventDispatcher {
   /// the next step's. The shapes' categories are kept for selecting callbacks.
   void contactEnded(const BodyStore& store, const Contact& c, bool inStep);
   void add(Kind kind, std::uint64_t a, std::uint64_t b, World::ContactCallback contact,
-           World::HitCallback hit, bool fromCallback);
+           World::HitCallback hit, bool fromCallback, World::ImpactCallback impact = {});
   /// Calls the callbacks, in event order, kind by kind (begin, end, sensor begin, sensor
-  /// end, hit); then takes in callbacks registered meanwhile.
+  /// end, hit, impact); then takes in callbacks registered meanwhile.
   void dispatch(World& world, const BodyStore& store);
 
  private:
+  friend class SnapshotCodec;  // snapshot.cpp reads and rebuilds every field
   struct PendingEnd {
     ShapeId shapeA, shapeB;
     std::uint64_t categoryA = 0, categoryB = 0;

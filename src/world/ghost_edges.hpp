@@ -65,6 +65,7 @@ class GhostEdges {
                      Vec2 normal) const;
 
  private:
+  friend class SnapshotCodec;  // snapshot.cpp reads and rebuilds every field
   bool dirty_ = false;
   std::size_t activeShapes_ = 0;
 };

@@ -67,6 +67,7 @@ class IslandSet {
   Status validate(const BodyStore& store, const ContactSet& contacts) const;
 
  private:
+  friend class SnapshotCodec;  // snapshot.cpp reads and rebuilds every field
   std::uint32_t newIsland();
   void freeIsland(std::uint32_t id);
   void setAwakeBit(std::uint32_t body, bool awake);

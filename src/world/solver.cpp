@@ -12,8 +12,10 @@
 #include "body_store.hpp"
 #include "contact_set.hpp"
 #include "event_dispatcher.hpp"
+#include "quack/math/trig.hpp"
 #include "quack/world/world.hpp"
 #include "simd.hpp"
+#include "task_runner.hpp"
 
 namespace quack::detail {
 namespace {
@@ -268,6 +270,10 @@ template <class F>
 // contacts than that go to the overflow set, solved one constraint per block, in order.
 constexpr int kColors = 24;
 constexpr int kOverflow = kColors;
+// Smallest shares of work handed to a worker: below these a task costs more than it saves.
+constexpr int kMinBlocks = 16;
+constexpr int kMinSlots = 256;
+constexpr int kMinWords = 8;  // of 64 bodies
 
 }  // namespace
 
@@ -286,16 +292,30 @@ struct SolverScratch {
   std::vector<float> turned;            // by slot: rotation this step as an angle, radians
   std::vector<std::uint32_t> slotBody;  // slot -> body index
   std::vector<std::int32_t> bodySlot;   // body index -> slot (0: static or dead)
+  std::vector<std::uint32_t> wordSlot;  // word of the awake bits -> its first slot
   std::vector<std::uint32_t> touching;  // touching contacts, in index order
   struct Pair {
     std::uint32_t bodyA, bodyB;  // body indices
     std::int32_t slotA, slotB;   // their slots
     bool dynamicA, dynamicB;
   };
-  std::vector<Pair> pairs;               // per touching contact
-  std::vector<std::uint32_t> lane;       // per touching contact: block * width + lane
-  std::vector<std::uint8_t> color;       // per touching contact: colour, or kOverflow
-  std::vector<std::uint64_t> colorBits;  // kColors bitsets of slots
+  std::vector<Pair> pairs;                // per touching contact
+  std::vector<std::uint32_t> lane;        // per touching contact: block * width + lane
+  std::vector<std::uint8_t> color;        // per touching contact: colour, or kOverflow
+  std::vector<std::int32_t> laneContact;  // per block lane: the touching contact, or -1
+  std::vector<std::uint64_t> colorBits;   // kColors bitsets of slots
+  std::vector<int> stageBlocks;           // the step's job: blocks per stage
+  struct Placed {
+    Aabb box;     // of a one-shape body
+    bool inside;  // the world holds it
+    bool follow;  // its proxies must be moved on one thread
+  };
+  std::vector<Placed> placed;  // by slot: where the step left the body
+  struct Hit {
+    std::int8_t point;  // the manifold point of the strongest hit, or -1: none
+    float speed;
+  };
+  std::vector<Hit> hits;  // per touching contact
   std::vector<ContactBlock<FloatW>> wide;
   std::vector<ContactBlock<FloatS>> narrow;
 };
@@ -363,7 +383,7 @@ template <class F>
     if (perColor[c] > 0) stats.colors = c + 1;
   }
   colorStart[kColors] = next;
-  blocks.assign(next, ContactBlock<F>{});
+  blocks.resize(next);  // cleared as they are prepared, on the workers
   std::size_t fill[kColors + 1] = {};
   s.lane.resize(s.touching.size());
   for (std::size_t k = 0; k < s.touching.size(); ++k) {
@@ -446,9 +466,9 @@ void prepareLane(ContactBlock<F>& b, int lane, const Contact& c, const Body& bod
 }
 
 // Gravity, forces and damping for one sub-step (implicit damping: any damping is stable).
-[[gnu::noinline]] void integrateVelocities(SolverScratch& s) {
+[[gnu::noinline]] void integrateVelocities(SolverScratch& s, std::size_t first, std::size_t last) {
   BodyState* states = s.states.data();
-  for (std::size_t slot = 1; slot < s.states.size(); ++slot) {
+  for (std::size_t slot = first; slot < last; ++slot) {
     const SlotSim& m = s.sims[slot];
     if (!m.dynamic) continue;
     BodyState& st = states[slot];
@@ -468,10 +488,11 @@ void prepareLane(ContactBlock<F>& b, int lane, const Contact& c, const Body& bod
 }
 
 // Moves every body by its velocity for one sub-step.
-[[gnu::noinline]] void integratePositions(SolverScratch& s, float h, float maxRotation) {
+[[gnu::noinline]] void integratePositions(SolverScratch& s, std::size_t first, std::size_t last,
+                                          float h, float maxRotation) {
   BodyState* states = s.states.data();
   const float invH = 1.0f / h;
-  for (std::size_t slot = 1; slot < s.states.size(); ++slot) {
+  for (std::size_t slot = first; slot < last; ++slot) {
     BodyState& st = states[slot];
     if (absf(h * st.w) > maxRotation) st.w = (st.w > 0.0f ? maxRotation : -maxRotation) * invH;
     const Rot q = integrateRotation(Rot{st.qc, st.qs}, h * st.w);
@@ -480,23 +501,28 @@ void prepareLane(ContactBlock<F>& b, int lane, const Contact& c, const Body& bod
     // integrateRotation turns by atan(h w), not h w; below 0.01 rad the two differ by
     // under 4e-7 rad, so the arctangent is only paid for fast spinners.
     const float turn = h * st.w;
-    s.turned[slot] += absf(turn) < 0.01f ? turn : std::atan(turn);
+    s.turned[slot] += absf(turn) < 0.01f ? turn : portableAtan(turn);
     st.dpx += h * st.vx;
     st.dpy += h * st.vy;
   }
 }
 
 template <class F>
-[[gnu::noinline]] void prepareAll(SolverScratch& s, std::vector<ContactBlock<F>>& blocks,
-                                  const BodyStore& store, const ContactSet& contactSet,
-                                  const StepParams& params) {
+[[gnu::noinline]] void prepareBlocks(SolverScratch& s, std::vector<ContactBlock<F>>& blocks,
+                                     std::size_t first, std::size_t last, const BodyStore& store,
+                                     const ContactSet& contactSet, const StepParams& params) {
   constexpr int W = F::width;
   const std::vector<Contact>& contacts = contactSet.contacts;
-  for (std::size_t k = 0; k < s.touching.size(); ++k) {
-    const Contact& c = contacts[s.touching[k]];
-    const SolverScratch::Pair& pair = s.pairs[k];
-    prepareLane(blocks[s.lane[k] / W], static_cast<int>(s.lane[k] % W), c, store.bodies[pair.bodyA],
-                store.bodies[pair.bodyB], pair, s.states[pair.slotA], s.states[pair.slotB], params);
+  for (std::size_t bi = first; bi < last; ++bi) {
+    blocks[bi] = ContactBlock<F>{};
+    for (int lane = 0; lane < W; ++lane) {
+      const std::int32_t k = s.laneContact[bi * W + static_cast<std::size_t>(lane)];
+      if (k < 0) continue;
+      const Contact& c = contacts[s.touching[static_cast<std::size_t>(k)]];
+      const SolverScratch::Pair& pair = s.pairs[static_cast<std::size_t>(k)];
+      prepareLane(blocks[bi], lane, c, store.bodies[pair.bodyA], store.bodies[pair.bodyB], pair,
+                  s.states[pair.slotA], s.states[pair.slotB], params);
+    }
   }
 }
 
@@ -504,11 +530,10 @@ template <class F>
 // events (in contact order).
 template <class F>
 [[gnu::noinline]] void storeImpulses(SolverScratch& s, const std::vector<ContactBlock<F>>& blocks,
-                                     const WorldDef& def, const BodyStore& store,
-                                     ContactSet& contactSet, EventDispatcher& events) {
+                                     const WorldDef& def, std::vector<Contact>& contacts,
+                                     std::size_t first, std::size_t last) {
   constexpr int W = F::width;
-  std::vector<Contact>& contacts = contactSet.contacts;
-  for (std::size_t k = 0; k < s.touching.size(); ++k) {
+  for (std::size_t k = first; k < last; ++k) {
     Contact& c = contacts[s.touching[k]];
     const ContactBlock<F>& b = blocks[s.lane[k] / W];
     const std::size_t lane = s.lane[k] % W;
@@ -525,10 +550,19 @@ template <class F>
         at = j;
       }
     }
-    if (at >= 0) {
-      events.events.hit.push_back({store.shapeId(c.shapeA), store.shapeId(c.shapeB),
-                                   c.manifold.points[at].point, c.manifold.normal, strongest});
-    }
+    s.hits[k] = {static_cast<std::int8_t>(at), strongest};
+  }
+}
+
+// Hit events, in contact order.
+void reportHits(const SolverScratch& s, const BodyStore& store, const ContactSet& contactSet,
+                EventDispatcher& events) {
+  for (std::size_t k = 0; k < s.touching.size(); ++k) {
+    const SolverScratch::Hit hit = s.hits[k];
+    if (hit.point < 0) continue;
+    const Contact& c = contactSet.contacts[s.touching[k]];
+    events.events.hit.push_back({store.shapeId(c.shapeA), store.shapeId(c.shapeB),
+                                 c.manifold.points[hit.point].point, c.manifold.normal, hit.speed});
   }
 }
 
@@ -537,23 +571,106 @@ template <class F>
 template <class F>
 void runStep(SolverScratch& s, std::vector<ContactBlock<F>>& blocks, const WorldDef& def,
              BodyStore& store, ContactSet& contactSet, EventDispatcher& events,
-             const StepParams& params, int substeps, Solver::Stats& stats) {
+             const StepParams& params, int substeps, Solver::Stats& stats, TaskRunner& tasks) {
+  constexpr int W = F::width;
   std::size_t colorStart[kColors + 1];
   const std::size_t blockCount = layoutBlocks<F>(s, blocks, colorStart, stats);
-  prepareAll(s, blocks, store, contactSet, params);
+  // Which contact each lane holds, so that blocks can be prepared apart (a block's lanes
+  // share its write masks).
+  s.laneContact.assign(blockCount * W, -1);
+  for (std::size_t k = 0; k < s.touching.size(); ++k)
+    s.laneContact[s.lane[k]] = static_cast<std::int32_t>(k);
   ContactBlock<F>* all = blocks.data();
   BodyState* states = s.states.data();
+
+  // The step as one job of stages (task_runner.hpp). A pass over the constraints is the
+  // overflow set (one block: its constraints share bodies), then each colour, whose blocks
+  // the workers share (no two constraints of a colour share a dynamic body).
+  enum class Kind : std::uint8_t {
+    prepare,
+    velocities,
+    warm,
+    solve,
+    positions,
+    relax,
+    bounce,
+    impulses
+  };
+  struct Stage {
+    Kind kind;
+    std::uint8_t odd;     // the sub-step's solve order
+    std::uint32_t first;  // first contact block (or slot) of the stage
+    std::uint32_t count;  // contact blocks (or slots) in it
+    std::uint32_t size;   // of them per task block
+  };
+  std::vector<Stage> stages;  // a hundred or so
+  std::vector<int>& stageBlocks = s.stageBlocks;
+  stages.clear();
+  stageBlocks.clear();
+  auto add = [&](Kind kind, bool odd, std::size_t first, std::size_t count, int minRange) {
+    if (count == 0) return;
+    const int size = tasks.rangeSize(static_cast<int>(count), minRange);
+    stages.push_back({kind, static_cast<std::uint8_t>(odd), static_cast<std::uint32_t>(first),
+                      static_cast<std::uint32_t>(count), static_cast<std::uint32_t>(size)});
+    stageBlocks.push_back((static_cast<int>(count) + size - 1) / size);
+  };
+  auto addPass = [&](Kind kind, bool odd) {
+    if (colorStart[0] != 0) {
+      stages.push_back({kind, static_cast<std::uint8_t>(odd), 0,
+                        static_cast<std::uint32_t>(colorStart[0]),
+                        static_cast<std::uint32_t>(colorStart[0])});
+      stageBlocks.push_back(1);
+    }
+    for (int c = 0; c < kColors; ++c)
+      add(kind, odd, colorStart[c], colorStart[c + 1] - colorStart[c], kMinBlocks);
+  };
+  const std::size_t slots = s.states.size() - 1;  // slot 0 is the resting dummy
+  add(Kind::prepare, false, 0, blockCount, kMinBlocks);
   for (int stepIndex = 0; stepIndex < substeps; ++stepIndex) {
-    integrateVelocities(s);
-    warmStart(all, blockCount, states);
-    solveContacts<true>(all, blockCount, states, params.invH, params.pushMax, (stepIndex & 1) != 0);
-    integratePositions(s, params.h, def.maxRotationPerSubstep);
+    const bool odd = (stepIndex & 1) != 0;
+    add(Kind::velocities, false, 1, slots, kMinSlots);
+    addPass(Kind::warm, false);
+    addPass(Kind::solve, odd);
+    add(Kind::positions, false, 1, slots, kMinSlots);
     // Relax: remove the velocity the soft push added, so it does not become bounce.
-    solveContacts<false>(all, blockCount, states, params.invH, params.pushMax,
-                         (stepIndex & 1) == 0);
+    addPass(Kind::relax, !odd);
   }
-  applyRestitution(all, blockCount, states, params.restitutionThreshold);
-  storeImpulses(s, blocks, def, store, contactSet, events);
+  addPass(Kind::bounce, false);
+  s.hits.resize(s.touching.size());
+  add(Kind::impulses, false, 0, s.touching.size(), kMinSlots);
+
+  tasks.runStages(stageBlocks, [&](int stage, int block, int) {
+    const Stage& st = stages[static_cast<std::size_t>(stage)];
+    const std::size_t first = st.first + static_cast<std::size_t>(block) * st.size;
+    const std::size_t count = std::min<std::size_t>(st.size, st.first + st.count - first);
+    switch (st.kind) {
+      case Kind::prepare:
+        prepareBlocks(s, blocks, first, first + count, store, contactSet, params);
+        break;
+      case Kind::velocities:
+        integrateVelocities(s, first, first + count);
+        break;
+      case Kind::warm:
+        warmStart(all + first, count, states);
+        break;
+      case Kind::solve:
+        solveContacts<true>(all + first, count, states, params.invH, params.pushMax, st.odd != 0);
+        break;
+      case Kind::positions:
+        integratePositions(s, first, first + count, params.h, def.maxRotationPerSubstep);
+        break;
+      case Kind::relax:
+        solveContacts<false>(all + first, count, states, params.invH, params.pushMax, st.odd != 0);
+        break;
+      case Kind::bounce:
+        applyRestitution(all + first, count, states, params.restitutionThreshold);
+        break;
+      case Kind::impulses:
+        storeImpulses(s, blocks, def, contactSet.contacts, first, first + count);
+        break;
+    }
+  });
+  reportHits(s, store, contactSet, events);
 }
 
 }  // namespace
@@ -567,7 +684,7 @@ const char* Solver::simdPath() noexcept {
 
 void Solver::solve(const WorldDef& def, BodyStore& store, ContactSet& contactSet,
                    const std::vector<std::uint64_t>& awake, BroadPhase& broadPhase,
-                   EventDispatcher& events, float dt, int substeps) {
+                   EventDispatcher& events, float dt, int substeps, TaskRunner& tasks) {
   SolverScratch& s = *scratch_;
   std::vector<Body>& bodies = store.bodies;
   const std::vector<Shape>& shapes = store.shapes;
@@ -583,37 +700,52 @@ void Solver::solve(const WorldDef& def, BodyStore& store, ContactSet& contactSet
   params.restitutionThreshold = def.restitutionThreshold;
 
   // The moving bodies' state, contiguous: slot 0 is the resting body static bodies read.
-  s.states.assign(1, BodyState{});
-  s.sims.assign(1, SlotSim{});
-  s.slotBody.assign(1, 0);
+  // The awake set in body order (sleeping bodies, like static ones, read slot 0): each word
+  // of the awake bits gets its slots from a running count, then the words fill their slots
+  // on the workers.
   const float h = params.h;
-  s.bodySlot.assign(bodies.size(), 0);
-  // The awake set, in body order (sleeping bodies, like static ones, read slot 0).
+  s.wordSlot.resize(awake.size() + 1);
+  std::size_t slotCount = 1;
   for (std::size_t word = 0; word < awake.size(); ++word) {
-    for (std::uint64_t bits = awake[word]; bits != 0; bits &= bits - 1) {
-      const auto i = static_cast<std::uint32_t>(word * 64 + __builtin_ctzll(bits));
-      const Body& b = bodies[i];
-      s.bodySlot[i] = static_cast<std::int32_t>(s.states.size());
-      s.slotBody.push_back(i);
-      BodyState st;
-      st.vx = b.v.x;
-      st.vy = b.v.y;
-      // A dynamic body without rotational inertia (zero density, or segments only) does not
-      // turn, whatever spin it was given.
-      st.w = (b.type == BodyType::dynamicBody && b.invInertia == 0.0f) ? 0.0f : b.w;
-      s.states.push_back(st);
-      SlotSim m;
-      m.dynamic = b.type == BodyType::dynamicBody;
-      m.gravityDv = (h * b.gravityScale) * def.gravity;
-      m.forced = b.force.x != 0.0f || b.force.y != 0.0f;
-      m.forceDv = (h * b.invMass) * b.force;
-      m.torqued = b.torque != 0.0f;
-      m.torqueDw = h * b.invInertia * b.torque;
-      m.linearScale = 1.0f / (1.0f + h * b.linearDamping);
-      m.angularDivisor = 1.0f + h * b.angularDamping;
-      s.sims.push_back(m);
-    }
+    s.wordSlot[word] = static_cast<std::uint32_t>(slotCount);
+    slotCount += static_cast<std::size_t>(__builtin_popcountll(awake[word]));
   }
+  s.states.resize(slotCount);
+  s.sims.resize(slotCount);
+  s.slotBody.resize(slotCount);
+  s.states[0] = BodyState{};
+  s.sims[0] = SlotSim{};
+  s.slotBody[0] = 0;
+  s.bodySlot.assign(bodies.size(), 0);
+  tasks.parallelFor(static_cast<int>(awake.size()), kMinWords, [&](int first, int last, int) {
+    for (auto word = static_cast<std::size_t>(first); word < static_cast<std::size_t>(last);
+         ++word) {
+      std::size_t slot = s.wordSlot[word];
+      for (std::uint64_t bits = awake[word]; bits != 0; bits &= bits - 1, ++slot) {
+        const auto i = static_cast<std::uint32_t>(word * 64 + __builtin_ctzll(bits));
+        const Body& b = bodies[i];
+        s.bodySlot[i] = static_cast<std::int32_t>(slot);
+        s.slotBody[slot] = i;
+        BodyState& st = s.states[slot];
+        st = BodyState{};
+        st.vx = b.v.x;
+        st.vy = b.v.y;
+        // A dynamic body without rotational inertia (zero density, or segments only) does
+        // not turn, whatever spin it was given.
+        st.w = (b.type == BodyType::dynamicBody && b.invInertia == 0.0f) ? 0.0f : b.w;
+        SlotSim& m = s.sims[slot];
+        m = SlotSim{};
+        m.dynamic = b.type == BodyType::dynamicBody;
+        m.gravityDv = (h * b.gravityScale) * def.gravity;
+        m.forced = b.force.x != 0.0f || b.force.y != 0.0f;
+        m.forceDv = (h * b.invMass) * b.force;
+        m.torqued = b.torque != 0.0f;
+        m.torqueDw = h * b.invInertia * b.torque;
+        m.linearScale = 1.0f / (1.0f + h * b.linearDamping);
+        m.angularDivisor = 1.0f + h * b.angularDamping;
+      }
+    }
+  });
   s.turned.assign(s.states.size(), 0.0f);
 
   // Touching contacts (a dynamic body in every one), in contact order.
@@ -632,41 +764,60 @@ void Solver::solve(const WorldDef& def, BodyStore& store, ContactSet& contactSet
   stats_.constraints = s.touching.size();
 
   if (def.scalarSolver) {
-    runStep(s, s.narrow, def, store, contactSet, events, params, substeps, stats_);
+    runStep(s, s.narrow, def, store, contactSet, events, params, substeps, stats_, tasks);
   } else {
-    runStep(s, s.wide, def, store, contactSet, events, params, substeps, stats_);
+    runStep(s, s.wide, def, store, contactSet, events, params, substeps, stats_, tasks);
   }
 
-  // Finalise bodies and move their proxies.
+  // Finalise bodies (on the workers: each writes its own body), then move their proxies
+  // and report those stopped at the edge of the world, in slot order.
+  s.placed.resize(s.states.size());
+  tasks.parallelFor(
+      static_cast<int>(s.states.size()) - 1, kMinSlots, [&](int first, int last, int) {
+        for (auto slot = static_cast<std::size_t>(first) + 1;
+             slot <= static_cast<std::size_t>(last); ++slot) {
+          const std::uint32_t i = s.slotBody[slot];
+          Body& b = bodies[i];
+          const BodyState& st = s.states[slot];
+          const Vec2 dp{st.dpx, st.dpy};
+          // Forces act through one step.
+          b.force = {};
+          b.torque = 0.0f;
+          // Restitution may have sped a body up after the last clamp.
+          b.v = clampSpeed(Vec2{st.vx, st.vy});
+          b.w = clampf(st.w, -kMaxAngularSpeed, kMaxAngularSpeed);
+          const float turned = s.turned[slot];
+          // Continuous collision wants the sweeps of fast bodies (world.hpp, kCcdFastFraction).
+          b.fast = b.type == BodyType::dynamicBody && def.enableContinuous && b.maxExtent > 0.0f &&
+                   (b.bullet ||
+                    length(dp) + absf(turned) * b.maxExtent > kCcdFastFraction * b.minExtent);
+          if (b.fast) {
+            b.startCenter = b.center;
+            b.startAngle = b.xf.q.angle();
+            b.endAngle = b.startAngle + turned;
+          }
+          const Vec2 center = b.center + dp;
+          const Rot q = normalizeRot(mulRot(Rot{st.qc, st.qs}, b.xf.q));
+          const Transform xf{center - rotate(q, b.localCenter), q};
+          SolverScratch::Placed& p = s.placed[slot];
+          p.inside = store.placeBody(i, xf, center, p.box);
+          p.follow = p.inside && store.placeProxy(broadPhase, i, p.box, dp);
+          if (!p.inside) {
+            // The edge of the world (world.hpp, kMaxCoordinate): the body stays where the step
+            // began, stopped, and the game is told (StepEvents::outOfBounds).
+            b.v = {};
+            b.w = 0.0f;
+            b.fast = false;
+          }
+        }
+      });
   for (std::size_t slot = 1; slot < s.states.size(); ++slot) {
     const std::uint32_t i = s.slotBody[slot];
-    Body& b = bodies[i];
-    const BodyState& st = s.states[slot];
-    const Vec2 dp{st.dpx, st.dpy};
-    // Forces act through one step.
-    b.force = {};
-    b.torque = 0.0f;
-    // Restitution may have sped a body up after the last clamp.
-    b.v = clampSpeed(Vec2{st.vx, st.vy});
-    b.w = clampf(st.w, -kMaxAngularSpeed, kMaxAngularSpeed);
-    const float turned = s.turned[slot];
-    // Continuous collision wants the sweeps of fast bodies (world.hpp, kCcdFastFraction).
-    b.fast = b.type == BodyType::dynamicBody && def.enableContinuous && b.maxExtent > 0.0f &&
-             (b.bullet || length(dp) + absf(turned) * b.maxExtent > kCcdFastFraction * b.minExtent);
-    if (b.fast) {
-      b.startCenter = b.center;
-      b.startAngle = b.xf.q.angle();
-      b.endAngle = b.startAngle + turned;
-    }
-    const Vec2 center = b.center + dp;
-    const Rot q = normalizeRot(mulRot(Rot{st.qc, st.qs}, b.xf.q));
-    const Transform xf{center - rotate(q, b.localCenter), q};
-    if (!store.moveBody(broadPhase, i, xf, center, dp)) {
-      // The edge of the world (world.hpp, kMaxCoordinate): the body stays where the step
-      // began, stopped, and the game is told (StepEvents::outOfBounds).
-      b.v = {};
-      b.w = 0.0f;
-      b.fast = false;
+    const SolverScratch::Placed& p = s.placed[slot];
+    if (p.follow) {
+      const BodyState& st = s.states[slot];
+      store.followBody(broadPhase, i, p.box, Vec2{st.dpx, st.dpy});
+    } else if (!p.inside) {
       events.events.outOfBounds.push_back(store.bodyId(i));
     }
   }

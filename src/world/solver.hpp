@@ -22,6 +22,7 @@ namespace quack::detail {
 class BodyStore;
 class ContactSet;
 class EventDispatcher;
+class TaskRunner;
 
 // Soft-constraint coefficients for one sub-step (Catto, "Solver2D", 2024; the soft step of
 // Box2D v3): a spring of `hertz` with damping ratio zeta, implicit in the sub-step h.
@@ -40,7 +41,7 @@ class Solver {
   /// `awake`: a bit per body index for the bodies that move (IslandSet::awakeBits).
   void solve(const WorldDef& def, BodyStore& store, ContactSet& contacts,
              const std::vector<std::uint64_t>& awake, BroadPhase& broadPhase,
-             EventDispatcher& events, float dt, int substeps);
+             EventDispatcher& events, float dt, int substeps, TaskRunner& tasks);
 
   Solver();
   ~Solver();

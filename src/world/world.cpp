@@ -10,6 +10,23 @@
 #include "quack/geometry/bounds.hpp"
 #include "world_state.hpp"
 
+namespace quack::detail {
+namespace {
+std::atomic<int> testWorkerCount{0};
+}  // namespace
+void setTestWorkerCount(int workers) noexcept {
+  testWorkerCount.store(workers < 1 ? 0 : (workers > kMaxWorkers ? kMaxWorkers : workers),
+                        std::memory_order_relaxed);
+}
+int effectiveWorkerCount(const WorldDef& def) noexcept {
+  if (def.workerCount == 1 && def.enqueueTask == nullptr) {
+    const int forTests = testWorkerCount.load(std::memory_order_relaxed);
+    if (forTests > 1) return forTests;
+  }
+  return def.workerCount;
+}
+}  // namespace quack::detail
+
 namespace quack {
 
 using detail::Body;
@@ -33,6 +50,10 @@ std::string describe(Vec2 v) {
   return "(" + std::to_string(v.x) + ", " + std::to_string(v.y) + ")";
 }
 
+}  // namespace
+
+namespace detail {
+
 // World ids: unique in the process, never 0 (the null handle's), so a handle from one world
 // is refused by every other.
 std::uint32_t nextWorldId() {
@@ -42,14 +63,7 @@ std::uint32_t nextWorldId() {
   return id;
 }
 
-}  // namespace
-
-World::World(std::unique_ptr<detail::WorldState> state) : s_(std::move(state)) {}
-World::World(World&&) noexcept = default;
-World& World::operator=(World&&) noexcept = default;
-World::~World() = default;
-
-Result<World> World::create(const WorldDef& def) {
+Status checkWorldDef(const WorldDef& def) {
   if (!isFinite(def.gravity)) return fail("WorldDef.gravity is not finite");
   if (length(def.gravity) > kMaxGravity)
     return fail("WorldDef.gravity " + describe(def.gravity) +
@@ -72,11 +86,31 @@ Result<World> World::create(const WorldDef& def) {
   if (!isFinite(def.maxRotationPerSubstep) || def.maxRotationPerSubstep <= 0.0f) {
     return fail("WorldDef.maxRotationPerSubstep must be finite and > 0");
   }
+  if (def.workerCount < 1 || def.workerCount > kMaxWorkers)
+    return fail("WorldDef.workerCount must be in 1..kMaxWorkers (64), got " +
+                std::to_string(def.workerCount));
+  if ((def.enqueueTask == nullptr) != (def.finishTask == nullptr)) {
+    return fail(std::string("WorldDef.enqueueTask and WorldDef.finishTask come together; only ") +
+                (def.enqueueTask != nullptr ? "enqueueTask" : "finishTask") + " was given");
+  }
+  return {};
+}
+
+}  // namespace detail
+
+World::World(std::unique_ptr<detail::WorldState> state) : s_(std::move(state)) {}
+World::World(World&&) noexcept = default;
+World& World::operator=(World&&) noexcept = default;
+World::~World() = default;
+
+Result<World> World::create(const WorldDef& def) {
+  if (Status s = detail::checkWorldDef(def); !s) return fail(s.message());
   BroadPhaseConfig config;
   config.kind = def.broadPhase;
   Result<BroadPhase> bp = BroadPhase::create(config);
   if (!bp) return fail("broad phase: " + bp.error().message);
-  return World(std::make_unique<detail::WorldState>(def, std::move(bp).value(), nextWorldId()));
+  return World(
+      std::make_unique<detail::WorldState>(def, std::move(bp).value(), detail::nextWorldId()));
 }
 
 const WorldDef& World::def() const noexcept {
@@ -317,7 +351,7 @@ StepStatus World::step(float dt, int substeps) {
   w.events.beginStep();
 
   // bodies -> broad phase -> contact set -> solver -> continuous phase -> events
-  w.contacts.findNew(w.broadPhase, w.store);
+  w.contacts.findNew(w.broadPhase, w.store, w.tasks);
   for (std::uint32_t b : w.contacts.toWake)
     w.islands.wake(w.store, b);
   w.contacts.toWake.clear();
@@ -330,13 +364,13 @@ StepStatus World::step(float dt, int substeps) {
     // recycled across the change.
     w.contacts.forgetAllPoses();
   }
-  w.contacts.update(w.def, w.broadPhase, w.store, w.edges, w.events);
+  w.contacts.update(w.def, w.broadPhase, w.store, w.edges, w.events, w.tasks);
   // Contacts that began touching join islands, and wake the sleeping ones they reach
   // (whose contacts, unchanged while they slept, the solver now takes too).
   w.islands.applyContactChanges(w.store, w.contacts);
   w.contacts.markAwake(w.store, w.islands.awakeBits(), w.islands.awakeCount(), bodyCount);
   w.solver.solve(w.def, w.store, w.contacts, w.islands.awakeBits(), w.broadPhase, w.events, dt,
-                 substeps);
+                 substeps, w.tasks);
   w.continuous.run(w.def, w.store, w.islands.awakeBits(), w.broadPhase, w.edges, w.events, dt);
   // A bullet may have hit a sleeping body: it moves now.
   for (std::uint32_t b : w.continuous.pushed)
@@ -377,6 +411,10 @@ void World::onContactEnd(std::uint64_t a, std::uint64_t b, ContactCallback f) {
 }
 void World::onHit(std::uint64_t a, std::uint64_t b, HitCallback f) {
   s_->events.add(detail::EventDispatcher::Kind::hit, a, b, {}, std::move(f), s_->inCallbacks);
+}
+void World::onImpact(std::uint64_t a, std::uint64_t b, ImpactCallback f) {
+  s_->events.add(detail::EventDispatcher::Kind::impact, a, b, {}, {}, s_->inCallbacks,
+                 std::move(f));
 }
 void World::onSensorBegin(std::uint64_t a, std::uint64_t b, ContactCallback f) {
   s_->events.add(detail::EventDispatcher::Kind::sensorBegin, a, b, std::move(f), {},

@@ -149,6 +149,10 @@ const char* World::simdPath() noexcept {
   return detail::Solver::simdPath();
 }
 
+int World::workerCount() const noexcept {
+  return s_->tasks.workers();
+}
+
 World::SolverStats World::solverStats() const noexcept {
   const auto& st = s_->solver.stats();
   return {st.colors, st.constraints, st.overflow};

@@ -15,12 +15,18 @@
 #include "quack/collision/proxy.hpp"
 #include "quack/world/world.hpp"
 #include "solver.hpp"
+#include "task_runner.hpp"
 
 namespace quack::detail {
 
+// WorldDef::workerCount, or the test suites' override (tasks.hpp, setTestWorkerCount).
+int effectiveWorkerCount(const WorldDef& def) noexcept;
+
 struct WorldState {
   WorldState(const WorldDef& d, BroadPhase bp, std::uint32_t worldId)
-      : def(d), broadPhase(std::move(bp)), store(worldId) {}
+      : def(d), broadPhase(std::move(bp)), store(worldId) {
+    tasks.configure(effectiveWorkerCount(d), d.enqueueTask, d.finishTask, d.userTaskContext);
+  }
 
   WorldDef def;
   BroadPhase broadPhase;
@@ -31,6 +37,7 @@ struct WorldState {
   Solver solver;
   ContinuousPhase continuous;
   EventDispatcher events;
+  TaskRunner tasks;
 
   // Destruction asked for inside a callback waits until the callbacks are done.
   std::vector<std::uint32_t> pendingBodyDestroy;
@@ -40,5 +47,10 @@ struct WorldState {
   bool inStep = false;
   bool inCallbacks = false;
 };
+
+// A new world id: unique in the process, never 0 (world.cpp).
+std::uint32_t nextWorldId();
+// The checks World::create makes of a WorldDef, each failing with a message naming the field.
+Status checkWorldDef(const WorldDef& def);
 
 }  // namespace quack::detail

@@ -80,3 +80,13 @@ file(GLOB parts ${OUT}/*.part*)
 if(parts)
   message(FATAL_ERROR "temporaries left behind: ${parts}")
 endif()
+
+# --threads: 1..64, refused by name otherwise.
+foreach(bad 0 65 two)
+  execute_process(COMMAND ${QUACK} run ${SRC}/scenes/pyramid.json --threads ${bad} --out ${OUT}/s.json
+                  RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
+  string(FIND "${err}" "--threads: ${bad} is not" at)
+  if(NOT rc EQUAL 2 OR at EQUAL -1)
+    message(FATAL_ERROR "unexpected answer to --threads ${bad} (${rc}): ${err}")
+  endif()
+endforeach()

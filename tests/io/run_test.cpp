@@ -18,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include "quack/io/state.hpp"
+
 namespace quack::app {
 namespace {
 
@@ -234,6 +236,27 @@ TEST_F(Run, SignalWhileWritingRemovesTemporariesAndExits130Or143) {
   EXPECT_EQ(now.sa_handler, SIG_DFL);
 }
 
+// --threads: the state file is the same to the byte on any number of workers, and the
+// summary and timing file say how many ran (docs/world.md, "Threads").
+TEST_F(Run, ThreadsChangeNothingButTheSpeed) {
+  RunOptions o = options("rain.json", 90);
+  o.threads = 1;
+  ASSERT_EQ(run(o), kRunOk) << err_.str();
+  const std::string one = read(at("state.json"));
+  EXPECT_NE(out_.str().find(", 1 thread)"), std::string::npos) << out_.str();
+  for (int threads : {2, 3}) {
+    out_.str("");
+    o.threads = threads;
+    o.out = at("state" + std::to_string(threads) + ".json");
+    o.timing = at("timing" + std::to_string(threads) + ".json");
+    ASSERT_EQ(run(o), kRunOk) << err_.str();
+    EXPECT_EQ(read(o.out), one) << threads << " threads";
+    EXPECT_NE(out_.str().find(", " + std::to_string(threads) + " threads)"), std::string::npos)
+        << out_.str();
+    EXPECT_NE(read(o.timing).find("\"threads\": " + std::to_string(threads)), std::string::npos);
+  }
+}
+
 // Issue 14: `timing` made two identical runs' state files differ. The state file is a pure
 // function of the scene and the step count; timing goes to the summary and `--timing`.
 TEST_F(Run, TwoRunsWriteByteIdenticalStateFilesAndTimingGoesElsewhere) {
@@ -252,6 +275,42 @@ TEST_F(Run, TwoRunsWriteByteIdenticalStateFilesAndTimingGoesElsewhere) {
   ASSERT_EQ(run(o), kRunOk) << err_.str();
   EXPECT_EQ(read(at("again.json")), first);
   EXPECT_EQ(first.find("timing"), std::string::npos);
+}
+
+// Issue 19: the event list (--events) is written beside the state, one line per event,
+// agrees with the state file's totals, and two runs write the same bytes.
+TEST_F(Run, EventListAgreesWithTheTotalsAndRepeatsByteForByte) {
+  RunOptions o = options("bullets.json", 120);
+  o.events = at("events.jsonl");
+  ASSERT_EQ(run(o), kRunOk) << err_.str();
+  EXPECT_NE(out_.str().find("event log " + at("events.jsonl")), std::string::npos) << out_.str();
+  const std::string events = read(at("events.jsonl"));
+  Result<StateFile> state = parseState(read(at("state.json")), "state.json");
+  ASSERT_TRUE(state.ok()) << state.error().message;
+  auto count = [&](const std::string& kind) {
+    std::size_t n = 0;
+    const std::string key = "\"event\": \"" + kind + "\"";
+    for (std::size_t pos = events.find(key); pos != std::string::npos;
+         pos = events.find(key, pos + 1))
+      ++n;
+    return n;
+  };
+  EXPECT_EQ(count("begin"), state->events.begin);
+  EXPECT_EQ(count("end"), state->events.end);
+  EXPECT_EQ(count("hit"), state->events.hit);
+  EXPECT_EQ(count("sensor-begin"), state->events.sensor);
+  EXPECT_GT(count("toi"), 0u);  // the bullets reach the walls through the continuous phase
+  EXPECT_GT(state->events.begin, 0u);
+  // Every line is a JSON object with a step number.
+  std::istringstream lines(events);
+  std::size_t n = 0;
+  for (std::string line; std::getline(lines, line); ++n)
+    ASSERT_EQ(line.rfind("{\"step\": ", 0), 0u) << line;
+  EXPECT_GT(n, 0u);
+  o.out = at("again.json");
+  o.events = at("again.jsonl");
+  ASSERT_EQ(run(o), kRunOk) << err_.str();
+  EXPECT_EQ(read(at("again.jsonl")), events);
 }
 
 // Issue 15: 10^6 bodies gave no progress while building and writing, and "0 steps/s".

@@ -25,6 +25,35 @@ TEST(State, RoundTripsExactly) {
   EXPECT_EQ(writeState(back.value()), text);
 }
 
+// The event list's lines, worked out by hand: every kind, in the documented order, numbers
+// as state files print them.
+TEST(State, EventLinesByHand) {
+  StepEvents e;
+  e.hit.push_back({ShapeId{4, 1, 1}, ShapeId{9, 1, 1}, Vec2{0.5f, -1.0f}, Vec2{0.0f, 1.0f}, 2.25f});
+  e.begin.push_back({ShapeId{4, 1, 1}, ShapeId{9, 1, 1}});
+  e.end.push_back({ShapeId{1, 3, 1}, ShapeId{2, 1, 1}});
+  e.sensorBegin.push_back({ShapeId{2, 1, 1}, ShapeId{7, 1, 1}});
+  e.sensorEnd.push_back({ShapeId{2, 1, 1}, ShapeId{8, 1, 1}});
+  e.toi.push_back({0.25f, ShapeId{5, 1, 1}, ShapeId{0, 1, 1}, Vec2{0.1f, 3.0f}, Vec2{-1.0f, 0.0f}});
+  e.outOfBounds.push_back(BodyId{6, 1, 1});
+  std::string out = "before\n";
+  appendEventLines(out, 3, e);
+  EXPECT_EQ(out,
+            "before\n"
+            "{\"step\": 3, \"event\": \"begin\", \"a\": 4, \"b\": 9}\n"
+            "{\"step\": 3, \"event\": \"end\", \"a\": 1, \"b\": 2}\n"
+            "{\"step\": 3, \"event\": \"hit\", \"a\": 4, \"b\": 9, \"point\": [0.5, -1.0], "
+            "\"normal\": [0.0, 1.0], \"speed\": 2.25}\n"
+            "{\"step\": 3, \"event\": \"sensor-begin\", \"sensor\": 2, \"visitor\": 7}\n"
+            "{\"step\": 3, \"event\": \"sensor-end\", \"sensor\": 2, \"visitor\": 8}\n"
+            "{\"step\": 3, \"event\": \"toi\", \"time\": 0.25, \"a\": 5, \"b\": 0, "
+            "\"point\": [0.10000000149011612, 3.0], \"normal\": [-1.0, 0.0]}\n"
+            "{\"step\": 3, \"event\": \"out-of-bounds\", \"body\": 6}\n");
+  std::string none;
+  appendEventLines(none, 4, StepEvents{});
+  EXPECT_EQ(none, "");
+}
+
 TEST(State, BadStateFilesAreNamed) {
   EXPECT_FALSE(parseState("[]", "s").ok());
   Result<StateFile> r = parseState(R"({"time": 1, "steps": 2, "bodies": [{"name": "a", "pos": [0]}],

@@ -209,11 +209,17 @@ TEST(Ccd, BulletIsRecheckedAgainstABodyThatAnEarlierEventMoved) {
   ShapeId bulletShape = world.createShape(bullet, {}, makeCircle({}, 0.01f).value()).value();
   ASSERT_TRUE(testing::stepAndValidate(world));
   const auto& toi = world.events().toi;
-  ASSERT_EQ(toi.size(), 2u);
+  // The box at the wall, then the bullet and the box (found by either sweep: both are
+  // followed now, issue 18), then possibly the box, set moving by the bullet, at the wall
+  // again.
+  ASSERT_GE(toi.size(), 2u);
   EXPECT_EQ(toi[0].shapeA, boxShape);
   EXPECT_EQ(world.body(toi[0].shapeB), wall);
-  EXPECT_EQ(toi[1].shapeA, bulletShape);
-  EXPECT_EQ(toi[1].shapeB, boxShape);
+  const bool boxFirst = toi[1].shapeA == boxShape;
+  EXPECT_EQ(boxFirst ? toi[1].shapeB : toi[1].shapeA, bulletShape);
+  EXPECT_EQ(boxFirst ? toi[1].shapeA : toi[1].shapeB, boxShape);
+  for (std::size_t i = 1; i < toi.size(); ++i)
+    EXPECT_LE(toi[i - 1].time, toi[i].time);
   EXPECT_LT(toi[0].time, toi[1].time);
   EXPECT_LT(world.position(box).x, 0.0f);
   EXPECT_GT(world.position(bullet).y, world.position(box).y);

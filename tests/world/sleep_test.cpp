@@ -228,7 +228,12 @@ TEST(Sleep, DeterministicWithSleepingOnWhateverTheBroadPhase) {
         // Wake part of it by hand half way.
         ASSERT_TRUE(world.applyLinearImpulse(all[5], {2, 0}, world.position(all[5])).ok());
       }
-      if (sleptAt == 0 && world.awakeBodyCount() < 20) sleptAt = static_cast<std::size_t>(s);
+      // Most of it sleeps: balls still rolling on the flat ground roll on for ever (there is
+      // no rolling resistance), and how many do depends on how the pile fell, so the bar is
+      // half the bodies, not a fixed count (10 of 30 balls roll on here since the continuous
+      // phase and Quack's own trigonometry changed the fall).
+      if (sleptAt == 0 && 2 * world.awakeBodyCount() < world.bodyCount())
+        sleptAt = static_cast<std::size_t>(s);
     }
     EXPECT_GT(sleptAt, 0u);
     if (first == 0) first = world.stateHash();

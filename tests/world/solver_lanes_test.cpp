@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <random>
@@ -76,6 +77,7 @@ void buildLaneScene(World& world) {
 struct LaneRun {
   std::vector<std::uint64_t> hashes;  // after every step
   World::SolverStats largest;         // the step with the most overflow
+  std::size_t mostConstraints = 0;    // over all steps
   std::size_t awake = 0, bodies = 0;  // at the end
 };
 
@@ -90,6 +92,7 @@ LaneRun runScene(bool scalar, int steps, BroadPhaseKind kind = BroadPhaseKind::t
     r.hashes.push_back(world.stateHash());
     const World::SolverStats st = world.solverStats();
     if (st.overflow >= r.largest.overflow) r.largest = st;
+    r.mostConstraints = std::max(r.mostConstraints, st.constraints);
   }
   EXPECT_TRUE(testing::valid(world));
   r.awake = world.awakeBodyCount();
@@ -106,7 +109,9 @@ TEST(SolverLanes, SimdAndScalarGiveTheSameBitsEveryStep) {
               simd.largest.colors, simd.largest.constraints, simd.largest.overflow);
   // The scene exercises what it is meant to: several colours, and an overflow set.
   EXPECT_GT(simd.largest.colors, 3);
-  EXPECT_GT(simd.largest.constraints, 200u);
+  // (The most constraints of any step: the count at the step of most overflow depends on
+  // how the rain lands, which the continuous phase between moving bodies changed.)
+  EXPECT_GT(simd.mostConstraints, 200u);
   EXPECT_GT(simd.largest.overflow, 0u);
   EXPECT_EQ(simd.largest.overflow, scalar.largest.overflow);
   for (int s = 0; s < kSteps; ++s)
@@ -137,7 +142,7 @@ TEST(SolverLanes, SameBitsWhateverTheBroadPhase) {
 // (the library is built with -ffp-contract=off; docs/world.md, "Determinism"). A change
 // that alters the physics on purpose changes it too: QUACK_PRINT_GOLDEN=1 prints the new
 // value, to be put here with the reason in the commit message.
-constexpr std::uint64_t kGoldenHash = 0x7c77493d2bb22406;
+constexpr std::uint64_t kGoldenHash = 0x0a9a42a45d7300cb;
 
 TEST(SolverLanes, GoldenHashOnEveryBuild) {
   const LaneRun r = runScene(false, 600);

@@ -126,6 +126,23 @@ struct BroadPhaseStats {
   float areaRatio = 0.0f;
 };
 
+/// Every record of a `BroadPhase` that decides what it reports from now on, slot by slot
+/// (index = ProxyId::index): the proxies' generations and free slots, boxes, kinds, filters,
+/// user data and the move buffer. The structure's own shape (tree nodes, cells, sorted
+/// arrays) is not part of it: pairs, boxes and every query's hits depend only on these
+/// records; only the order in which a structure visits its hits does (docs/determinism.md,
+/// "Snapshots"). Entries of free slots are ignored.
+struct BroadPhaseRecords {
+  std::vector<std::uint32_t> generations;  ///< per slot, never 0
+  std::vector<std::uint32_t> freeSlots;    ///< in release order (IdPool::freeSlots)
+  std::vector<Aabb> tight, fat;            ///< per slot, world frame
+  std::vector<ProxyKind> kinds;            ///< per slot
+  std::vector<std::uint8_t> buffered;      ///< per slot: 1 while in the move buffer
+  std::vector<Filter> filters;             ///< per slot
+  std::vector<std::uint64_t> userData;     ///< per slot
+  std::vector<std::uint32_t> moveBuffer;   ///< slots, in order (may hold stale entries)
+};
+
 class BroadPhase {
  public:
   /// A broad phase using `config`; fails on a non-finite or negative margin or displacement
@@ -148,20 +165,22 @@ class BroadPhase {
   /// Fails on a bad id, box or displacement.
   Result<bool> moveProxy(ProxyId id, Aabb box, Vec2 displacement) {
     // The per-proxy-per-step path is inline; every rejection goes out of line.
-    if (!isValid(id) || !isAcceptableBox(box) || !(absf(displacement.x) <= kMaxDisplacement) ||
-        !(absf(displacement.y) <= kMaxDisplacement)) {
-      return rejectMove(id, box, displacement);
-    }
+    if (!isAcceptableMove(id, box, displacement)) return rejectMove(id, box, displacement);
     const std::uint32_t p = id.index;
     tight_[p] = box;
-    const Aabb wanted =
-        sweep(inflate(box, config_.margin), config_.displacementScale * displacement);
-    const Aabb fat = fat_[p];
-    if (contains(fat, box) && contains(inflate(wanted, kShrinkMargins * config_.margin), fat)) {
-      return false;
-    }
-    reinsert(p, wanted);
+    if (staysInPlace(p, box, displacement)) return false;
+    reinsert(p, wantedBox(box, displacement));
     return true;
+  }
+  /// moveProxy's common case, for many proxies moved from several threads at once (each
+  /// proxy by one thread, nothing else changing meanwhile): it records the tight box and
+  /// returns false when the fat box still holds it; true means moveProxy must follow (on one
+  /// thread) to re-insert the proxy. Rejects what moveProxy rejects.
+  Result<bool> moveProxyInPlace(ProxyId id, Aabb box, Vec2 displacement) {
+    if (!isAcceptableMove(id, box, displacement)) return rejectMove(id, box, displacement);
+    const std::uint32_t p = id.index;
+    tight_[p] = box;
+    return !staysInPlace(p, box, displacement);
   }
   /// Replaces a proxy's filter and buffers it, so the next `updatePairs` re-reports its
   /// pairs under the new rules.
@@ -191,6 +210,16 @@ class BroadPhase {
   /// Replaces the contents of `pairs` with this step's candidate pairs (see the contract
   /// above) and empties the move buffer.
   void updatePairs(std::vector<ProxyPair>& pairs);
+  /// updatePairs with the moved proxies' queries spread over threads. `parallelFor(count,
+  /// body)` must call body(begin, end, part) for ranges covering [0, count) once, each
+  /// with a `part` below parts.size(), no two at once with the same part; each part's pairs
+  /// go to parts[part] and then, part after part, to `pairs`. The pairs are those of
+  /// updatePairs, in an order that depends on the split (sort them for determinism), and
+  /// the user pair filter may be called from several threads at once. Sweep-and-prune,
+  /// whose queries sort lazily, runs on the calling thread.
+  template <class ParallelFor>
+  void updatePairs(std::vector<ProxyPair>& pairs, std::vector<std::vector<ProxyPair>>& parts,
+                   ParallelFor&& parallelFor);
 
   /// Calls `visit(ProxyId, userData) -> bool` for each proxy whose tight box overlaps `box`
   /// (touching counts); return false to stop.
@@ -224,6 +253,15 @@ class BroadPhase {
   /// The first tight box the moving box meets, if any (ties: any one).
   std::optional<BroadPhaseHit> boxCastClosest(Aabb box, Vec2 translation) const;
 
+  /// A copy of every record (see BroadPhaseRecords), for saving.
+  BroadPhaseRecords records() const;
+  /// A broad phase with `config` holding exactly `records`: the same proxies (ids and
+  /// generations), boxes, filters and move buffer, the live proxies inserted into a new
+  /// structure in index order. Fails, naming the slot and the field, on arrays of different
+  /// lengths, a bad free list, an invalid box, a tight box outside its fat box, a buffered
+  /// flag that disagrees with the move buffer or a move-buffer entry beyond the slots.
+  static Result<BroadPhase> fromRecords(BroadPhaseConfig config, BroadPhaseRecords records);
+
   /// Rebuilds the structure from scratch (the tree by binned SAH): after a bulk load.
   void rebuild();
   /// Sizes and quality figures.
@@ -252,6 +290,10 @@ class BroadPhase {
   static constexpr float kMaxDisplacement = 3.402823466e38f;
 
   // Finite, not inverted and within kMaxCoordinate: six comparisons, all false for NaN.
+  bool isAcceptableMove(ProxyId id, Aabb box, Vec2 displacement) const noexcept {
+    return isValid(id) && isAcceptableBox(box) && absf(displacement.x) <= kMaxDisplacement &&
+           absf(displacement.y) <= kMaxDisplacement;
+  }
   static bool isAcceptableBox(Aabb b) noexcept {
     return b.lower.x <= b.upper.x && b.lower.y <= b.upper.y && b.lower.x >= -kMaxCoordinate &&
            b.lower.y >= -kMaxCoordinate && b.upper.x <= kMaxCoordinate &&
@@ -261,9 +303,25 @@ class BroadPhase {
   explicit BroadPhase(BroadPhaseConfig config);
   Error rejectMove(ProxyId id, Aabb box, Vec2 displacement) const;
   void reinsert(std::uint32_t proxy, Aabb wanted);
+  Aabb wantedBox(Aabb box, Vec2 displacement) const noexcept {
+    return sweep(inflate(box, config_.margin), config_.displacementScale * displacement);
+  }
+  // The fat box still holds the tight box and is not much larger than needed.
+  bool staysInPlace(std::uint32_t p, Aabb box, Vec2 displacement) const noexcept {
+    const Aabb fat = fat_[p];
+    return contains(fat, box) &&
+           contains(inflate(wantedBox(box, displacement), kShrinkMargins * config_.margin), fat);
+  }
   Status checkId(ProxyId id, const char* function) const;
   void buffer(std::uint32_t proxy);
   void addPair(std::uint32_t a, std::uint32_t b, std::vector<ProxyPair>& pairs) const;
+  // updatePairs in parts: the move buffer deduplicated and flagged; the pairs by a sweep
+  // (true) or nothing (false: query the moved proxies); the pairs of moved proxies
+  // [first, last); the flags cleared.
+  void beginPairPass();
+  bool sweepPairPass(std::vector<ProxyPair>& pairs);
+  void queryMoved(std::size_t first, std::size_t last, std::vector<ProxyPair>& pairs) const;
+  void endPairPass();
   ProxyId idOf(std::uint32_t proxy) const noexcept { return {proxy, ids_.generation(proxy)}; }
 
   template <class Callback>
@@ -280,6 +338,24 @@ class BroadPhase {
   PairFilterFn pairFilter_ = nullptr;
   void* pairFilterContext_ = nullptr;
 };
+
+template <class ParallelFor>
+void BroadPhase::updatePairs(std::vector<ProxyPair>& pairs,
+                             std::vector<std::vector<ProxyPair>>& parts,
+                             ParallelFor&& parallelFor) {
+  pairs.clear();
+  beginPairPass();
+  if (!sweepPairPass(pairs)) {
+    for (std::vector<ProxyPair>& part : parts)
+      part.clear();
+    parallelFor(moveBuffer_.size(), [&](std::size_t begin, std::size_t end, std::size_t part) {
+      queryMoved(begin, end, parts[part]);
+    });
+    for (const std::vector<ProxyPair>& part : parts)
+      pairs.insert(pairs.end(), part.begin(), part.end());
+  }
+  endPairPass();
+}
 
 template <class Visit>
 void BroadPhase::queryAabb(Aabb box, Visit&& visit) const {

@@ -81,6 +81,33 @@ class IdPool {
            free_.capacity() * sizeof(std::uint32_t);
   }
 
+  /// The free slots, in the order `release` freed them (the last is reused first).
+  const std::vector<std::uint32_t>& freeSlots() const noexcept { return free_; }
+
+  /// The pool whose slots have these generations and whose free list is `freeSlots` (in
+  /// release order); every other slot is live. For restoring a saved pool (World::restore):
+  /// fails, naming the problem, on a generation of 0, a free slot out of range or listed
+  /// twice.
+  static Result<IdPool> fromSlots(std::vector<std::uint32_t> generations,
+                                  std::vector<std::uint32_t> freeSlots) {
+    IdPool pool;
+    pool.alive_.assign(generations.size(), 1);
+    for (std::size_t i = 0; i < generations.size(); ++i) {
+      if (generations[i] == 0) return fail("slot " + std::to_string(i) + " has generation 0");
+    }
+    for (std::uint32_t i : freeSlots) {
+      if (i >= generations.size())
+        return fail("free slot " + std::to_string(i) + " is beyond the " +
+                    std::to_string(generations.size()) + " slots");
+      if (pool.alive_[i] == 0) return fail("free slot " + std::to_string(i) + " is listed twice");
+      pool.alive_[i] = 0;
+    }
+    pool.liveCount_ = static_cast<std::uint32_t>(generations.size() - freeSlots.size());
+    pool.generations_ = std::move(generations);
+    pool.free_ = std::move(freeSlots);
+    return pool;
+  }
+
   /// Every free slot is dead and listed once, live + free = capacity.
   Status validate() const {
     std::uint32_t live = 0;

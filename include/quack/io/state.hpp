@@ -20,6 +20,7 @@
 
 #include "quack/core/result.hpp"
 #include "quack/math/vec2.hpp"
+#include "quack/world/types.hpp"
 
 namespace quack {
 
@@ -55,5 +56,19 @@ StateFile captureState(const SceneWorld& scene, const EventTotals& events);
 std::string writeState(const StateFile& state);
 /// Reads a state file back; errors name the file and the JSON path.
 Result<StateFile> parseState(std::string_view text, const std::string& fileName);
+
+/// Appends one step's events as event-list lines (`quack run --events`), one JSON object a
+/// line, in the world's order: contact begin, end, hit, sensor begin, sensor end,
+/// time of impact, out of bounds. Shapes and bodies are named by their id's index (the same
+/// on every build: ids are handed out in creation order); numbers print exactly as in state
+/// files, so two builds that agree on the events write the same bytes. `step` counts from 1.
+///
+///   {"step": 3, "event": "begin", "a": 4, "b": 9}
+///   {"step": 3, "event": "end", "a": 4, "b": 9}
+///   {"step": 3, "event": "hit", "a": 4, "b": 9, "point": [x, y], "normal": [x, y], "speed": v}
+///   {"step": 3, "event": "sensor-begin", "sensor": 2, "visitor": 7}   (and "sensor-end")
+///   {"step": 3, "event": "toi", "time": t, "a": 4, "b": 9, "point": [x, y], "normal": [x, y]}
+///   {"step": 3, "event": "out-of-bounds", "body": 5}
+void appendEventLines(std::string& out, std::uint64_t step, const StepEvents& events);
 
 }  // namespace quack

@@ -1,6 +1,7 @@
 #pragma once
 /// `Rot`: a rotation stored as cosine and sine.
 
+#include "quack/math/trig.hpp"
 #include "quack/math/vec2.hpp"
 
 namespace quack {
@@ -10,10 +11,13 @@ struct Rot {
   float c = 1.0f;
   float s = 0.0f;
 
-  /// Rotation by `radians`, counter-clockwise.
-  static Rot fromAngle(float radians) noexcept { return {std::cos(radians), std::sin(radians)}; }
-  /// Angle in (-pi, pi].
-  float angle() const noexcept { return std::atan2(s, c); }
+  /// Rotation by `radians`, counter-clockwise. Quack's own cosine and sine
+  /// (quack/math/trig.hpp): the same bits on every platform.
+  static Rot fromAngle(float radians) noexcept {
+    return {portableCos(radians), portableSin(radians)};
+  }
+  /// Angle in (-pi, pi], by Quack's own atan2 (the same bits on every platform).
+  float angle() const noexcept { return portableAtan2(s, c); }
   friend constexpr bool operator==(Rot, Rot) noexcept = default;
 };
 

@@ -45,10 +45,10 @@ struct BodyDef {
   float linearDamping = 0.0f;    ///< 1/s, >= 0
   float angularDamping = 0.0f;   ///< 1/s, >= 0
   float gravityScale = 1.0f;
-  /// Continuous collision against dynamic bodies too, and always, however slowly it moves.
-  /// Every dynamic body already gets continuous collision against static and kinematic
-  /// shapes in any step where it moves more than kCcdFastFraction of its thickness
-  /// (docs/world.md, "Continuous collision").
+  /// Continuous collision in every step, however slowly it moves. Every dynamic body already
+  /// gets continuous collision (against static, kinematic and dynamic shapes, sweep against
+  /// sweep) in any step where it moves more than kCcdFastFraction of its thickness
+  /// (docs/continuous.md, "In the world").
   bool bullet = false;
   /// May this body fall asleep (docs/world.md, "Sleeping")? A body that may not keeps every
   /// body it touches awake.
@@ -93,15 +93,18 @@ struct SensorEvent {
   ShapeId sensor, visitor;
 };
 
-/// A time-of-impact event of the continuous phase: a fast body's shape reached another shape
-/// during the step, the body was stopped there and its velocity answered (see
-/// docs/world.md, "Continuous collision").
+/// A time-of-impact event of the continuous phase: a shape of a fast body (or of a body an
+/// impact set moving) reached another shape during the step; both bodies were moved to that
+/// time and their velocities answered (see docs/continuous.md, "In the world").
 struct ToiEvent {
   float time = 0.0f;  ///< fraction of the step, in [0, 1]
-  ShapeId shapeA;     ///< the fast body's shape
-  ShapeId shapeB;     ///< the shape it reached
+  ShapeId shapeA;     ///< the shape of the body whose sweep found the impact
+  ShapeId shapeB;     ///< the shape it reached (static, kinematic, or on a moving body)
   Vec2 point;         ///< on shape A's surface at the time of impact, world frame
   Vec2 normal;        ///< unit, from A to B, world frame
+  /// m/s, >= 0: how fast the bodies approached along the normal at the impact point, just
+  /// before the impact's impulse (zero when they were already parting there).
+  float approachSpeed = 0.0f;
 };
 
 /// The events of one step.
@@ -117,6 +120,10 @@ struct StepEvents {
   /// edge of the world): each was held at its pose from the start of the step with zero
   /// velocity, and is listed once per step in which that happened, in index order.
   std::vector<BodyId> outOfBounds;
+  /// Bodies that reached kMaxToiEventsPerBody impacts in this step (the continuous phase's
+  /// bound): each was held where its last impact left it for the rest of the step, and met
+  /// by others as if it could not move. In the order they reached the bound.
+  std::vector<BodyId> toiCapped;
 };
 
 }  // namespace quack

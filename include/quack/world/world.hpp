@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "quack/collision/manifold.hpp"
+#include "quack/world/tasks.hpp"
 #include "quack/world/types.hpp"
 
 namespace quack {
@@ -92,6 +93,14 @@ struct WorldDef {
   /// Sleeping (docs/world.md, "Sleeping"): islands of bodies at rest stop being simulated
   /// until something wakes them. Off: every body is simulated every step.
   bool enableSleep = true;
+  /// Threads (docs/world.md, "Threads"; quack/world/tasks.hpp): how many workers run a step,
+  /// 1..kMaxWorkers. With enqueueTask and finishTask (both or neither) the game's job system
+  /// runs them; without, a pool of workerCount - 1 threads owned by the world does, the
+  /// thread that calls step being the first worker. The same bits whatever the count.
+  int workerCount = 1;
+  EnqueueTaskFn enqueueTask = nullptr;
+  FinishTaskFn finishTask = nullptr;
+  void* userTaskContext = nullptr;  ///< passed to enqueueTask and finishTask
 };
 
 /// Two edges of static polygons whose ends are this close (metres), running opposite ways,
@@ -193,6 +202,25 @@ class StepStatus {
  private:
   Status status_;
 };
+
+/// What World::snapshot saves (docs/determinism.md, "Snapshots").
+enum class SnapshotKind : std::uint8_t {
+  /// Everything that decides future steps: the settings, every body and shape (static
+  /// geometry included), contacts with their warm-start impulses, islands and sleep, the
+  /// broad phase's proxies and move buffer, handles' generations. Restores into any world.
+  full,
+  /// Only what changes while shapes and static geometry do not (body motion and sleep,
+  /// contacts, islands, moving proxies), for rollback: restores only into a world whose
+  /// static structure (settings, bodies and shapes, static poses, handles) is the one the
+  /// snapshot was taken from, which a fingerprint checks.
+  dynamic,
+};
+/// "full" or "dynamic".
+const char* toString(SnapshotKind kind) noexcept;
+
+/// The snapshot format's version (docs/determinism.md, "Snapshots"): snapshots of another
+/// version are refused. Bumped whenever the layout, or the arithmetic of a step, changes.
+inline constexpr std::uint32_t kSnapshotFormatVersion = 1;
 
 /// Which shapes a query sees: those whose filter accepts this one (see shouldCollide).
 struct QueryFilter {
@@ -323,7 +351,33 @@ class World {
   std::uint64_t stepCount() const noexcept;
   double time() const noexcept;
 
+  // ---- snapshots (docs/determinism.md, "Snapshots") -------------------------------------
+  /// The world's state as bytes: stepping the world restored from them gives the same bits
+  /// (stateHash, state files, events) as stepping this one, for any broad phase, with or
+  /// without sleep. Callbacks and the last step's event lists are not saved. Fails when
+  /// called during a step or from a callback.
+  Result<std::vector<std::uint8_t>> snapshot(SnapshotKind kind = SnapshotKind::full) const;
+  /// Puts the world back in the state a snapshot saved. Handles (BodyId, ShapeId) valid when
+  /// the snapshot was taken are valid again, with this world's id; the callbacks stay as
+  /// they are; events() is empty until the next step (references from events() and
+  /// broadPhase() taken before are invalidated). A dynamic snapshot needs this world to
+  /// have the snapshot's static structure. Refused, with a message naming what is wrong,
+  /// and leaving the world unchanged: bytes that are not a snapshot, truncated or corrupted
+  /// (checksum), of another format version or another build's constants, a dynamic
+  /// snapshot of another structure, or contents that fail validation; and a call during a
+  /// step or from a callback. The world keeps its own workers and task callbacks (they do
+  /// not change the bits).
+  Status restore(std::span<const std::uint8_t> bytes);
+  /// A new world from a full snapshot (a dynamic one is refused: it needs a world to
+  /// restore into). Its handles have the old ones' indices and generations and the new
+  /// world's id (take them again through bodies() and shapes()). It runs on one worker
+  /// (threads are not part of a snapshot); restore into a world made with the workers
+  /// wanted to have more.
+  static Result<World> fromSnapshot(std::span<const std::uint8_t> bytes);
+
   // ---- callbacks (called at the end of each step, in event order) -----------------------
+  // Always on the thread that called `step`, after the step's parallel work, one at a time,
+  // whatever WorldDef::workerCount is.
   // A callback registered from inside a callback takes effect from the next step.
   /// Category masks select the shapes: a callback runs for an event whose first shape has a
   /// category in `categoriesA` and whose second has one in `categoriesB` (tried both ways
@@ -334,6 +388,10 @@ class World {
   void onContactBegin(std::uint64_t categoriesA, std::uint64_t categoriesB, ContactCallback f);
   void onContactEnd(std::uint64_t categoriesA, std::uint64_t categoriesB, ContactCallback f);
   void onHit(std::uint64_t categoriesA, std::uint64_t categoriesB, HitCallback f);
+  /// Impacts of the continuous phase (StepEvents::toi), in time order: (world, event,
+  /// swapped), swapped true when the event's shape B matched `categoriesA`.
+  using ImpactCallback = std::function<void(World&, const ToiEvent& impact, bool swapped)>;
+  void onImpact(std::uint64_t categoriesA, std::uint64_t categoriesB, ImpactCallback f);
   /// Sensor callbacks: (world, sensor, visitor), selected by the sensor's and visitor's
   /// categories.
   void onSensorBegin(std::uint64_t sensorCategories, std::uint64_t visitorCategories,
@@ -379,6 +437,10 @@ class World {
     std::size_t overflow = 0;
   };
   SolverStats solverStats() const noexcept;
+  /// The workers the step's work is spread over: WorldDef::workerCount, or fewer when the
+  /// system would not start the pool's threads (a WebAssembly build without threads). The
+  /// result is the same to the bit for any number (docs/world.md, "Threads").
+  int workerCount() const noexcept;
   /// Checks every cross-reference: handles and free slots, each shape on its body's list and
   /// in the broad phase under its own index with its box at the body's pose, each contact's
   /// shapes live and listing it, the pair map, counts, finite body state. For tests (call it
