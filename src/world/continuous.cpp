@@ -36,7 +36,10 @@ Aabb ContinuousPhase::sweptBox(const BodyStore& store, const FastBody& f) const 
     // Any point of the body stays within maxExtent of the centre, whatever the rotation.
     box = inflate(Aabb{minv(f.sweep.c1, f.sweep.c2), maxv(f.sweep.c1, f.sweep.c2)}, b.maxExtent);
   } else {
-    const Transform start = transformAt(f.sweep, 0.0f), end = transformAt(f.sweep, 1.0f);
+    // Not turning: one rotation for both ends (transformAt's at t = 0 and t = 1, computed once).
+    const Rot q = Rot::fromAngle(f.sweep.a1);
+    const Transform start{f.sweep.c1 - rotate(q, f.sweep.localCenter), q};
+    const Transform end{f.sweep.c2 - rotate(q, f.sweep.localCenter), q};
     bool first = true;
     for (std::uint32_t s : b.shapes) {
       Aabb u = merge(computeAabb(store.shapes[s].geometry, start),
@@ -69,23 +72,27 @@ std::uint32_t ContinuousPhase::addParticipant(BodyStore& store, std::uint32_t bo
   const auto index = static_cast<std::uint32_t>(fast_.size());
   fast_.push_back(f);
   participantOf_[body] = index;
-  inMoved_.push_back(false);
+  inMoved_.push_back(0);
   if (!sorted_.empty()) markMoved(index);  // joined after the index was built
   return index;
 }
 
 void ContinuousPhase::markMoved(std::uint32_t index) {
   if (inMoved_[index]) return;
-  inMoved_[index] = true;
+  inMoved_[index] = 1;
   moved_.push_back(index);
 }
 
 template <class Visit>
 void ContinuousPhase::queryParticipants(Aabb box, Visit&& visit) const {
-  auto first = std::lower_bound(sortedLower_.begin(), sortedLower_.end(), box.lower.x - widest_);
-  for (auto it = first; it != sortedLower_.end() && *it <= box.upper.x; ++it) {
-    const std::uint32_t p = sorted_[static_cast<std::size_t>(it - sortedLower_.begin())];
-    if (!inMoved_[p] && overlaps(fast_[p].box, box)) visit(p);
+  const auto first = static_cast<std::size_t>(
+      std::lower_bound(sortedLower_.begin(), sortedLower_.end(), box.lower.x - widest_) -
+      sortedLower_.begin());
+  // A participant not in moved_ still has the box it was sorted with.
+  for (std::size_t k = first; k < sortedBoxes_.size() && sortedLower_[k] <= box.upper.x; ++k) {
+    if (!overlaps(sortedBoxes_[k], box)) continue;
+    const std::uint32_t p = sorted_[k];
+    if (!inMoved_[p]) visit(p);
   }
   for (std::uint32_t p : moved_)
     if (overlaps(fast_[p].box, box)) visit(p);
@@ -124,8 +131,8 @@ bool ContinuousPhase::findImpact(const BodyStore& store, const BroadPhase& broad
       if (p != fast) near_.push_back(p);
     });
   }
-  std::sort(candidates_.begin(), candidates_.end());
-  std::sort(near_.begin(), near_.end());
+  // Not sorted: `best` is the earliest by (time, shapeA, shapeB), a total order over the
+  // pairs tested (each at most once), so the order they are tested in cannot change it.
   bool found = false;
   // The time of impact of one of this body's shapes (moving with `sweep`, which covers
   // [from, 1]) with shape s moving with `otherSweep`.
@@ -234,12 +241,16 @@ void ContinuousPhase::run(const WorldDef& def, BodyStore& store,
   fast_.clear();
   sorted_.clear();
   sortedLower_.clear();
+  sortedBoxes_.clear();
+  waitNodes_.clear();
   moved_.clear();
   inMoved_.clear();
   // Entries are reset after each run (only the participants'), so that a step with a few
   // fast bodies among many asleep costs nothing per body.
-  if (participantOf_.size() < store.bodies.size())
+  if (participantOf_.size() < store.bodies.size()) {
     participantOf_.resize(store.bodies.size(), kNoParticipant);
+    waitHead_.resize(store.bodies.size(), kNoParticipant);
+  }
   // Only bodies that moved can be fast (sleeping ones are not).
   for (std::size_t word = 0; word < awake.size(); ++word) {
     for (std::uint64_t bits = awake[word]; bits != 0; bits &= bits - 1) {
@@ -259,10 +270,12 @@ void ContinuousPhase::run(const WorldDef& def, BodyStore& store,
     return lx != ly ? lx < ly : x < y;
   });
   sortedLower_.resize(sorted_.size());
+  sortedBoxes_.resize(sorted_.size());
   widest_ = 0.0f;
   for (std::size_t k = 0; k < sorted_.size(); ++k) {
     const Aabb& box = fast_[sorted_[k]].box;
     sortedLower_[k] = box.lower.x;
+    sortedBoxes_[k] = box;
     widest_ = maxf(widest_, box.upper.x - box.lower.x);
   }
 
@@ -270,8 +283,14 @@ void ContinuousPhase::run(const WorldDef& def, BodyStore& store,
   auto later = [](const ToiCandidate& x, const ToiCandidate& y) { return earlier(y, x); };
   queue_.clear();
   auto push = [&](const ToiCandidate& c) {
+    const std::uint32_t with = store.shapes[c.shapeB].body;
     fast_[c.fast].bestTime = c.time;
-    fast_[c.fast].bestBody = store.shapes[c.shapeB].body;
+    fast_[c.fast].bestBody = with;
+    // Only a dynamic body can change during the phase (become or be a participant).
+    if (store.bodies[with].type == BodyType::dynamicBody) {
+      waitNodes_.push_back({c.fast, with, waitHead_[with]});
+      waitHead_[with] = static_cast<std::uint32_t>(waitNodes_.size() - 1);
+    }
     queue_.push_back(c);
     std::push_heap(queue_.begin(), queue_.end(), later);
   };
@@ -449,10 +468,15 @@ void ContinuousPhase::run(const WorldDef& def, BodyStore& store,
     for (std::uint32_t index : changed) {
       queryParticipants(fast_[index].box, [&](std::uint32_t g) { recheck_.push_back(g); });
     }
-    for (std::uint32_t g = 0; g < fast_.size(); ++g) {
-      const std::uint32_t with = fast_[g].bestBody;
-      if (with == fast_[changed[0]].body || (changed.size() > 1 && with == fast_[changed[1]].body))
-        recheck_.push_back(g);
+    for (std::uint32_t index : changed) {
+      const std::uint32_t body = fast_[index].body;
+      for (std::uint32_t node = waitHead_[body]; node != kNoParticipant;
+           node = waitNodes_[node].next) {
+        const std::uint32_t g = waitNodes_[node].participant;
+        if (fast_[g].bestBody == body) recheck_.push_back(g);
+      }
+      // Everyone still waiting is re-checked below, and queues its new impact afresh.
+      waitHead_[body] = kNoParticipant;
     }
     std::sort(recheck_.begin(), recheck_.end());
     recheck_.erase(std::unique(recheck_.begin(), recheck_.end()), recheck_.end());
@@ -480,6 +504,8 @@ void ContinuousPhase::run(const WorldDef& def, BodyStore& store,
   }
   for (const FastBody& f : fast_)
     participantOf_[f.body] = kNoParticipant;
+  for (const WaitNode& node : waitNodes_)
+    waitHead_[node.body] = kNoParticipant;
 }
 
 }  // namespace quack::detail

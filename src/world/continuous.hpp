@@ -89,13 +89,23 @@ class ContinuousPhase {
   // the phase in inserts alone (1,000 bullets); the sort is a few microseconds.
   std::vector<std::uint32_t> sorted_;
   std::vector<float> sortedLower_;  // lower x of sorted_'s boxes, for the binary search
+  std::vector<Aabb> sortedBoxes_;   // sorted_'s boxes as they were sorted, scanned in place
   std::vector<std::uint32_t> moved_;
-  std::vector<bool> inMoved_;
+  std::vector<std::uint8_t> inMoved_;
   float widest_ = 0.0f;                    // widest box in sorted_, metres
   std::vector<ToiCandidate> queue_;        // a binary heap, earliest on top
   std::vector<std::uint32_t> candidates_;  // shapes near one sweep
   std::vector<std::uint32_t> near_;        // participants near one sweep
   std::vector<std::uint32_t> recheck_;     // participants to re-check after an impact
+  // Who waits on whom: for each dynamic body, a list (through waitNodes_, newest first) of
+  // the participants whose queued impact was with it when queued. An impact that changes the
+  // body re-searches those still waiting on it (bestBody) instead of scanning every
+  // participant; entries whose participant has since queued another impact are skipped.
+  struct WaitNode {
+    std::uint32_t participant, body, next;
+  };
+  std::vector<std::uint32_t> waitHead_;  // per body index: first node, or kNoParticipant
+  std::vector<WaitNode> waitNodes_;
 };
 
 }  // namespace quack::detail
