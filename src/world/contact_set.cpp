@@ -164,17 +164,21 @@ void ContactSet::markAwake(const BodyStore& store, const std::vector<std::uint64
 void ContactSet::update(const WorldDef& def, const BroadPhase& broadPhase, BodyStore& store,
                         const GhostEdges& edges, EventDispatcher& events, TaskRunner& tasks) {
   // The contacts to look at, in index order.
-  updateList_.clear();
-  forEachAwake([&](std::uint32_t i) {
-    const Contact& c = contacts[i];
-    if (!c.alive) return;
-    // Nothing in it moves (both asleep, or asleep and static): kept as it is, touching or
-    // not, with its impulses (docs/world.md, "Sleeping").
-    const Shape& sa = store.shapes[c.shapeA];
-    const Shape& sb = store.shapes[c.shapeB];
-    if (!store.bodies[sa.body].awake && !store.bodies[sb.body].awake) return;
-    updateList_.push_back(i);
-  });
+  // Gathered on the workers (scattered reads of contacts, shapes and bodies), joined in order.
+  const BodyStore& readStore = store;
+  tasks.gather(awakeWordCount(), kMinWordsPerTask, updateParts_, updateList_,
+               [&](int first, int last, std::vector<std::uint32_t>& list) {
+                 forEachAwakeIn(first, last, [&](std::uint32_t i) {
+                   const Contact& c = contacts[i];
+                   if (!c.alive) return;
+                   // Nothing in it moves (both asleep, or asleep and static): kept as it is,
+                   // touching or not, with its impulses (docs/world.md, "Sleeping").
+                   const Shape& sa = readStore.shapes[c.shapeA];
+                   const Shape& sb = readStore.shapes[c.shapeB];
+                   if (!readStore.bodies[sa.body].awake && !readStore.bodies[sb.body].awake) return;
+                   list.push_back(i);
+                 });
+               });
   updateOutcome_.resize(updateList_.size());
   // Each contact on its own, on any worker: it reads shapes and bodies and writes only
   // itself and its outcome (docs/world.md, "Threads").

@@ -4,6 +4,7 @@
 // touching state each step (with warm-start impulses matched by feature id), and reports
 // begin and end to the event dispatcher.
 
+#include <algorithm>
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
@@ -85,6 +86,24 @@ class ContactSet {
       for (std::uint64_t bits = awake_[w]; bits != 0; bits &= bits - 1)
         f(static_cast<std::uint32_t>(w * 64 + static_cast<std::size_t>(__builtin_ctzll(bits))));
   }
+  /// forEachAwake in words of 64 contact indices: the words to split among workers, and
+  /// f(index) for the chosen contacts of words [first, last), in index order.
+  int awakeWordCount() const noexcept {
+    return static_cast<int>(allAwake_ ? (contacts.size() + 63) / 64 : awake_.size());
+  }
+  template <class F>
+  void forEachAwakeIn(int first, int last, F f) const {
+    for (auto w = static_cast<std::size_t>(first); w < static_cast<std::size_t>(last); ++w) {
+      if (allAwake_) {
+        const std::size_t end = std::min(contacts.size(), (w + 1) * 64);
+        for (std::size_t i = w * 64; i < end; ++i)
+          f(static_cast<std::uint32_t>(i));
+      } else {
+        for (std::uint64_t bits = awake_[w]; bits != 0; bits &= bits - 1)
+          f(static_cast<std::uint32_t>(w * 64 + static_cast<std::size_t>(__builtin_ctzll(bits))));
+      }
+    }
+  }
   std::size_t touchingCount() const noexcept;
   /// The contact of a pair of shapes, if any (index into `contacts`).
   const std::uint32_t* find(std::uint32_t shapeA, std::uint32_t shapeB) const;
@@ -120,11 +139,13 @@ class ContactSet {
                            const BodyStore& store, const GhostEdges& edges);
   // Smallest share of the narrow phase handed to a worker.
   static constexpr int kMinContactsPerTask = 64;
+  static constexpr int kMinWordsPerTask = 8;  // of 64 contacts, for the gathers
   static constexpr int kMinProxiesPerTask = 64;
   std::vector<std::vector<ProxyPair>> pairParts_;  // per worker: pairs found
 
-  std::vector<std::uint32_t> updateList_;  // this step's contacts to update
-  std::vector<Outcome> updateOutcome_;     // and what each found
+  std::vector<std::uint32_t> updateList_;                // this step's contacts to update
+  std::vector<std::vector<std::uint32_t>> updateParts_;  // updateList_ gathered per range
+  std::vector<Outcome> updateOutcome_;                   // and what each found
   std::vector<std::uint32_t> free_;
   std::unordered_map<std::uint64_t, std::uint32_t> byPair_;
   std::vector<ProxyPair> pairScratch_;

@@ -295,16 +295,18 @@ struct SolverScratch {
   std::vector<std::uint32_t> wordSlot;  // word of the awake bits -> its first slot
   std::vector<std::uint32_t> touching;  // touching contacts, in index order
   struct Pair {
+    std::uint32_t contact;       // index into the contact set
     std::uint32_t bodyA, bodyB;  // body indices
     std::int32_t slotA, slotB;   // their slots
     bool dynamicA, dynamicB;
   };
-  std::vector<Pair> pairs;                // per touching contact
-  std::vector<std::uint32_t> lane;        // per touching contact: block * width + lane
-  std::vector<std::uint8_t> color;        // per touching contact: colour, or kOverflow
-  std::vector<std::int32_t> laneContact;  // per block lane: the touching contact, or -1
-  std::vector<std::uint64_t> colorBits;   // kColors bitsets of slots
-  std::vector<int> stageBlocks;           // the step's job: blocks per stage
+  std::vector<Pair> pairs;                   // per touching contact
+  std::vector<std::vector<Pair>> pairParts;  // pairs gathered per range of contacts
+  std::vector<std::uint32_t> lane;           // per touching contact: block * width + lane
+  std::vector<std::uint8_t> color;           // per touching contact: colour, or kOverflow
+  std::vector<std::int32_t> laneContact;     // per block lane: the touching contact, or -1
+  std::vector<std::uint64_t> colorBits;      // kColors bitsets of slots
+  std::vector<int> stageBlocks;              // the step's job: blocks per stage
   struct Placed {
     Aabb box;     // of a one-shape body
     bool inside;  // the world holds it
@@ -749,18 +751,23 @@ void Solver::solve(const WorldDef& def, BodyStore& store, ContactSet& contactSet
   s.turned.assign(s.states.size(), 0.0f);
 
   // Touching contacts (a dynamic body in every one), in contact order.
-  s.touching.clear();
-  s.pairs.clear();
-  contactSet.forEachAwake([&](std::uint32_t ci) {
-    const Contact& c = contacts[ci];
-    if (!c.alive || !c.touching || c.sensor) return;
-    const std::uint32_t a = shapes[c.shapeA].body, b = shapes[c.shapeB].body;
-    const std::int32_t sa = s.bodySlot[a], sb = s.bodySlot[b];
-    // Solved when a dynamic body in it is awake (contacts of sleeping bodies rest).
-    if (!s.sims[sa].dynamic && !s.sims[sb].dynamic) return;
-    s.touching.push_back(ci);
-    s.pairs.push_back({a, b, sa, sb, s.sims[sa].dynamic, s.sims[sb].dynamic});
-  });
+  // Gathered on the workers (scattered reads of contacts and shapes), joined in order.
+  tasks.gather(contactSet.awakeWordCount(), kMinWords, s.pairParts, s.pairs,
+               [&](int first, int last, std::vector<SolverScratch::Pair>& list) {
+                 contactSet.forEachAwakeIn(first, last, [&](std::uint32_t ci) {
+                   const Contact& c = contacts[ci];
+                   if (!c.alive || !c.touching || c.sensor) return;
+                   const std::uint32_t a = shapes[c.shapeA].body, b = shapes[c.shapeB].body;
+                   const std::int32_t sa = s.bodySlot[a], sb = s.bodySlot[b];
+                   // Solved when a dynamic body in it is awake (contacts of sleeping bodies
+                   // rest).
+                   if (!s.sims[sa].dynamic && !s.sims[sb].dynamic) return;
+                   list.push_back({ci, a, b, sa, sb, s.sims[sa].dynamic, s.sims[sb].dynamic});
+                 });
+               });
+  s.touching.resize(s.pairs.size());
+  for (std::size_t k = 0; k < s.pairs.size(); ++k)
+    s.touching[k] = s.pairs[k].contact;
   stats_.constraints = s.touching.size();
 
   if (def.scalarSolver) {

@@ -113,6 +113,39 @@ class TaskRunner {
   /// Items per block for `count` items: a few blocks per worker, none below minRange.
   int rangeSize(int count, int minRange) const noexcept;
 
+  /// Gathers items in order on the workers: f(begin, end, part) over [0, count) in ranges of
+  /// rangeSize(count, minRange), each appending what it finds to its own part (reused from
+  /// call to call), then the parts joined in range order into `out`. The result is what one
+  /// pass over [0, count) would append, whatever the workers did.
+  template <class T, class F>
+  void gather(int count, int minRange, std::vector<std::vector<T>>& parts, std::vector<T>& out,
+              F&& f) {
+    out.clear();
+    if (count <= 0) return;
+    const int size = rangeSize(count, minRange);
+    const int ranges = (count + size - 1) / size;
+    if (ranges == 1) {
+      f(0, count, out);
+      return;
+    }
+    if (parts.size() < static_cast<std::size_t>(ranges))
+      parts.resize(static_cast<std::size_t>(ranges));
+    blocks_.assign(1, ranges);
+    runStages(blocks_, [&](int, int block, int) {
+      std::vector<T>& part = parts[static_cast<std::size_t>(block)];
+      part.clear();
+      const int begin = block * size;
+      f(begin, begin + size < count ? begin + size : count, part);
+    });
+    std::size_t total = 0;
+    for (int r = 0; r < ranges; ++r)
+      total += parts[static_cast<std::size_t>(r)].size();
+    out.reserve(total);
+    for (int r = 0; r < ranges; ++r)
+      out.insert(out.end(), parts[static_cast<std::size_t>(r)].begin(),
+                 parts[static_cast<std::size_t>(r)].end());
+  }
+
  private:
   void run(Job& job, const std::vector<int>& blockCounts);
   // One worker: every block in order, here. Never inlined, so that a profile of a
