@@ -209,6 +209,12 @@ std::vector<float> toFloats(const Values& a, std::size_t n) {
   return out;
 }
 
+py::object toiTuple(py::module_& m, py::object world, const ToiEvent& e) {
+  return m.attr("ToiEvent")(static_cast<double>(e.time), ShapeHandle{world, e.shapeA},
+                            ShapeHandle{world, e.shapeB}, toTuple(e.point), toTuple(e.normal),
+                            static_cast<double>(e.approachSpeed));
+}
+
 py::object hitTuple(py::module_& m, py::object world, const ContactHitEvent& e) {
   return m.attr("HitEvent")(ShapeHandle{world, e.shapeA}, ShapeHandle{world, e.shapeB},
                             toTuple(e.point), toTuple(e.normal),
@@ -333,12 +339,13 @@ void registerWorld(py::module_& m) {
   py::exec(R"py(
 import collections as _collections
 Events = _collections.namedtuple(
-    "Events", "begin end hit sensor_begin sensor_end toi out_of_bounds")
+    "Events", "begin end hit sensor_begin sensor_end toi out_of_bounds toi_capped")
 Events.__doc__ = ("The events of the last step: begin, end (lists of (shape_a, shape_b)), hit "
-                  "(HitEvent), sensor_begin, sensor_end ((sensor, visitor)), toi (ToiEvent), "
-                  "out_of_bounds (bodies held at the edge of the world).")
+                  "(HitEvent), sensor_begin, sensor_end ((sensor, visitor)), toi (ToiEvent, "
+                  "in time order), out_of_bounds (bodies held at the edge of the world), "
+                  "toi_capped (bodies that used up their impacts for the step).")
 HitEvent = _collections.namedtuple("HitEvent", "shape_a shape_b point normal approach_speed")
-ToiEvent = _collections.namedtuple("ToiEvent", "time shape_a shape_b point normal")
+ToiEvent = _collections.namedtuple("ToiEvent", "time shape_a shape_b point normal approach_speed")
 RayHit = _collections.namedtuple("RayHit", "shape body point normal fraction")
 ShapeOverlap = _collections.namedtuple("ShapeOverlap", "shape body depth depenetration")
 ShapeCastHit = _collections.namedtuple("ShapeCastHit", "shape body point normal fraction")
@@ -691,20 +698,21 @@ del _t, _collections
                     py::make_tuple(ShapeHandle{self, x.*first}, ShapeHandle{self, x.*second}));
               return out;
             };
-            py::list hits, tois, outs;
+            py::list hits, tois, outs, capped;
             for (const ContactHitEvent& h : e.hit)
               hits.append(hitTuple(m, self, h));
             for (const ToiEvent& t : e.toi)
-              tois.append(m.attr("ToiEvent")(
-                  static_cast<double>(t.time), ShapeHandle{self, t.shapeA},
-                  ShapeHandle{self, t.shapeB}, toTuple(t.point), toTuple(t.normal)));
+              tois.append(toiTuple(m, self, t));
             for (BodyId b : e.outOfBounds)
               outs.append(BodyHandle{self, b});
+            for (BodyId b : e.toiCapped)
+              capped.append(BodyHandle{self, b});
             return m.attr("Events")(
                 pairs(e.begin, &ContactBeginEvent::shapeA, &ContactBeginEvent::shapeB),
                 pairs(e.end, &ContactEndEvent::shapeA, &ContactEndEvent::shapeB), hits,
                 pairs(e.sensorBegin, &SensorEvent::sensor, &SensorEvent::visitor),
-                pairs(e.sensorEnd, &SensorEvent::sensor, &SensorEvent::visitor), tois, outs);
+                pairs(e.sensorEnd, &SensorEvent::sensor, &SensorEvent::visitor), tois, outs,
+                capped);
           },
           "The events of the last step (quack.Events). Shapes destroyed since are stale handles.")
       .def(
@@ -759,6 +767,26 @@ del _t, _collections
           py::arg("categories_b") = ~std::uint64_t{0},
           "fn(hit, swapped) for each quack.HitEvent between the categories; swapped says the "
           "event's shape_a is the one in categories_b.")
+      .def(
+          "on_impact",
+          [](PyWorld& w, py::function fn, std::uint64_t a, std::uint64_t b) {
+            w.checkIdle();
+            const std::size_t slot = w.callables.size();
+            w.callables.push_back(std::move(fn));
+            PyWorld* self = &w;
+            w.world().onImpact(a, b, [self, slot](World&, const ToiEvent& impact, bool swapped) {
+              runCallback(*self, [&] {
+                if (self->callables[slot].is_none()) return;
+                py::module_ quackModule = py::module_::import("quack");
+                py::object world = selfObject(*self);
+                self->callables[slot](toiTuple(quackModule, world, impact), swapped);
+              });
+            });
+          },
+          py::arg("fn"), py::arg("categories_a") = ~std::uint64_t{0},
+          py::arg("categories_b") = ~std::uint64_t{0},
+          "fn(impact, swapped) for each quack.ToiEvent (continuous collision) between the "
+          "categories, in time order; swapped as for on_hit.")
       .def(
           "get_positions",
           [](PyWorld& w, py::handle bodies) {

@@ -13,10 +13,15 @@
 #include "event_dispatcher.hpp"
 #include "ghost_edges.hpp"
 #include "quack/world/world.hpp"
+#include "task_runner.hpp"
 #include "world_state.hpp"
 
 namespace quack::detail {
 namespace {
+
+// Fast bodies per task block of the first searches (each a broad-phase query and a few
+// time-of-impact searches: a few microseconds).
+constexpr int kMinSearchesPerTask = 32;
 
 // Earliest first; ties by the shapes' indices, so the order never depends on the broad
 // phase (determinism across structures).
@@ -98,11 +103,14 @@ void ContinuousPhase::queryParticipants(Aabb box, Visit&& visit) const {
     if (overlaps(fast_[p].box, box)) visit(p);
 }
 
-bool ContinuousPhase::findImpact(const BodyStore& store, const BroadPhase& broadPhase,
-                                 const GhostEdges& edges, std::uint32_t fast, bool continuation,
-                                 ToiCandidate& best, std::uint32_t onlyBody) {
+bool ContinuousPhase::findImpactWith(SearchScratch& scratch, const BodyStore& store,
+                                     const BroadPhase& broadPhase, const GhostEdges& edges,
+                                     std::uint32_t fast, bool continuation, ToiCandidate& best,
+                                     std::uint32_t onlyBody) const {
   const FastBody& f = fast_[fast];
   const Body& body = store.bodies[f.body];
+  std::vector<std::uint32_t>& candidates_ = scratch.candidates;
+  std::vector<std::uint32_t>& near_ = scratch.near;
   candidates_.clear();
   near_.clear();
   // Static and kinematic shapes, and dynamic bodies that stand still (not followed yet),
@@ -235,7 +243,8 @@ bool ContinuousPhase::findImpact(const BodyStore& store, const BroadPhase& broad
 
 void ContinuousPhase::run(const WorldDef& def, BodyStore& store,
                           const std::vector<std::uint64_t>& awake, BroadPhase& broadPhase,
-                          const GhostEdges& edges, EventDispatcher& events, float dt) {
+                          const GhostEdges& edges, EventDispatcher& events, float dt,
+                          TaskRunner& tasks) {
   pushed.clear();
   if (!def.enableContinuous) return;
   fast_.clear();
@@ -294,10 +303,32 @@ void ContinuousPhase::run(const WorldDef& def, BodyStore& store,
     queue_.push_back(c);
     std::push_heap(queue_.begin(), queue_.end(), later);
   };
-  for (std::uint32_t i = 0; i < fast_.size(); ++i) {
-    ToiCandidate c;
-    if (findImpact(store, broadPhase, edges, i, false, c)) push(c);
-  }
+  // The first searches, on the workers (each reads the step's state, and writes its own
+  // result and its worker's scratch), then queued in participant order.
+  if (scratch_.size() < static_cast<std::size_t>(tasks.workers()))
+    scratch_.resize(static_cast<std::size_t>(tasks.workers()));
+  first_.resize(fast_.size());
+  firstFound_.resize(fast_.size());
+  const BodyStore& readStore = store;
+  const BroadPhase& readBroadPhase = broadPhase;
+  // Sweep-and-prune restores its order lazily, in its first query after changes (the
+  // solver has just moved proxies): one query here, so that those on the workers only read.
+  if (tasks.workers() > 1)
+    broadPhase.queryAabb(fast_[0].box, [](ProxyId, std::uint64_t) { return false; });
+  tasks.parallelFor(static_cast<int>(fast_.size()), kMinSearchesPerTask,
+                    [&](int begin, int end, int participant) {
+                      SearchScratch& scratch = scratch_[static_cast<std::size_t>(participant)];
+                      for (int i = begin; i < end; ++i) {
+                        const auto at = static_cast<std::size_t>(i);
+                        firstFound_[at] = findImpactWith(scratch, readStore, readBroadPhase, edges,
+                                                         static_cast<std::uint32_t>(i), false,
+                                                         first_[at], 0xffffffffu)
+                                              ? 1
+                                              : 0;
+                      }
+                    });
+  for (std::size_t i = 0; i < fast_.size(); ++i)
+    if (firstFound_[i] != 0) push(first_[i]);
 
   // Moves participant p to step fraction `time` (the start of what remains of its sweep).
   auto moveTo = [&](FastBody& p, float time) {

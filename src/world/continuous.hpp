@@ -20,6 +20,7 @@ namespace quack::detail {
 class BodyStore;
 class EventDispatcher;
 class GhostEdges;
+class TaskRunner;
 
 inline constexpr std::uint32_t kNoParticipant = 0xffffffffu;
 
@@ -60,8 +61,11 @@ class ContinuousPhase {
  public:
   /// Handles the impacts of the bodies the solver flagged fast, in time order.
   /// `awake`: a bit per body index for the bodies that moved (IslandSet::awakeBits).
+  /// The first search of every fast body runs on the workers (each reads the step's state
+  /// and writes only its own result); the queue is filled in participant order.
   void run(const WorldDef& def, BodyStore& store, const std::vector<std::uint64_t>& awake,
-           BroadPhase& broadPhase, const GhostEdges& edges, EventDispatcher& events, float dt);
+           BroadPhase& broadPhase, const GhostEdges& edges, EventDispatcher& events, float dt,
+           TaskRunner& tasks);
 
   /// Dynamic bodies an impact set moving in the last run (some may be asleep: the world
   /// wakes them).
@@ -70,9 +74,20 @@ class ContinuousPhase {
  private:
   Aabb sweptBox(const BodyStore& store, const FastBody& f) const;
   std::uint32_t addParticipant(BodyStore& store, std::uint32_t body, bool searching);
+  // What one search gathers before it tests: shapes and participants near the sweep.
+  struct SearchScratch {
+    std::vector<std::uint32_t> candidates;  // shapes near one sweep
+    std::vector<std::uint32_t> near;        // participants near one sweep
+  };
   bool findImpact(const BodyStore& store, const BroadPhase& broadPhase, const GhostEdges& edges,
                   std::uint32_t fast, bool continuation, ToiCandidate& best,
-                  std::uint32_t onlyBody = 0xffffffffu);
+                  std::uint32_t onlyBody = 0xffffffffu) {
+    return findImpactWith(scratch_[0], store, broadPhase, edges, fast, continuation, best,
+                          onlyBody);
+  }
+  bool findImpactWith(SearchScratch& scratch, const BodyStore& store, const BroadPhase& broadPhase,
+                      const GhostEdges& edges, std::uint32_t fast, bool continuation,
+                      ToiCandidate& best, std::uint32_t onlyBody) const;
 
   // The participants whose swept boxes overlap `box` (not in any order).
   template <class Visit>
@@ -94,8 +109,9 @@ class ContinuousPhase {
   std::vector<std::uint8_t> inMoved_;
   float widest_ = 0.0f;                    // widest box in sorted_, metres
   std::vector<ToiCandidate> queue_;        // a binary heap, earliest on top
-  std::vector<std::uint32_t> candidates_;  // shapes near one sweep
-  std::vector<std::uint32_t> near_;        // participants near one sweep
+  std::vector<SearchScratch> scratch_{1};  // per worker
+  std::vector<ToiCandidate> first_;        // the first searches' results, per participant
+  std::vector<std::uint8_t> firstFound_;   // and whether each found one
   std::vector<std::uint32_t> recheck_;     // participants to re-check after an impact
   // Who waits on whom: for each dynamic body, a list (through waitNodes_, newest first) of
   // the participants whose queued impact was with it when queued. An impact that changes the

@@ -8,9 +8,14 @@
 #include "body_store.hpp"
 #include "contact_set.hpp"
 #include "quack/world/world.hpp"
+#include "task_runner.hpp"
 
 namespace quack::detail {
+
 namespace {
+
+// Words of 64 bodies per task block of the rest-time update.
+constexpr int kMinWordsPerTask = 8;
 
 bool isDynamic(const BodyStore& store, std::uint32_t body) {
   return store.bodyAlive(body) && store.bodies[body].type == BodyType::dynamicBody;
@@ -268,7 +273,7 @@ void IslandSet::split(BodyStore& store, const ContactSet& contacts, std::uint32_
 }
 
 void IslandSet::updateSleep(const WorldDef& def, BodyStore& store, const ContactSet& contacts,
-                            float dt) {
+                            float dt, TaskRunner& tasks) {
   if (!def.enableSleep) return;
   ++step_;
   auto forEachAwake = [&](auto f) {
@@ -281,19 +286,24 @@ void IslandSet::updateSleep(const WorldDef& def, BodyStore& store, const Contact
       }
     }
   };
-  // Rest times.
-  forEachAwake([&](std::uint32_t body) {
-    Body& b = store.bodies[body];
-    if (b.type == BodyType::kinematicBody) {
-      // A kinematic body rests only when it does not move at all: a slow platform keeps
-      // going.
-      const bool moving = b.v.x != 0.0f || b.v.y != 0.0f || b.w != 0.0f;
-      b.sleepTime = (moving || !b.enableSleep) ? 0.0f : b.sleepTime + dt;
-      return;
-    }
-    const float speed = maxf(length(b.v), b.maxExtent * absf(b.w));
-    b.sleepTime = (!b.enableSleep || speed > b.sleepThreshold) ? 0.0f : b.sleepTime + dt;
-  });
+  // Rest times, on the workers (each body its own).
+  tasks.parallelFor(
+      static_cast<int>(awakeBits_.size()), kMinWordsPerTask, [&](int first, int last, int) {
+        for (auto w = static_cast<std::size_t>(first); w < static_cast<std::size_t>(last); ++w) {
+          for (std::uint64_t bits = awakeBits_[w]; bits != 0; bits &= bits - 1) {
+            Body& b = store.bodies[w * 64 + static_cast<std::size_t>(__builtin_ctzll(bits))];
+            if (b.type == BodyType::kinematicBody) {
+              // A kinematic body rests only when it does not move at all: a
+              // slow platform keeps going.
+              const bool moving = b.v.x != 0.0f || b.v.y != 0.0f || b.w != 0.0f;
+              b.sleepTime = (moving || !b.enableSleep) ? 0.0f : b.sleepTime + dt;
+              continue;
+            }
+            const float speed = maxf(length(b.v), b.maxExtent * absf(b.w));
+            b.sleepTime = (!b.enableSleep || speed > b.sleepThreshold) ? 0.0f : b.sleepTime + dt;
+          }
+        }
+      });
   // A moving kinematic body keeps the bodies on it awake (and wakes one put to sleep by
   // hand: a crate does not hang in the air while its lift goes on).
   forEachAwake([&](std::uint32_t body) {

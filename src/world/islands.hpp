@@ -21,6 +21,7 @@ namespace quack::detail {
 
 class BodyStore;
 class ContactSet;
+class TaskRunner;
 
 inline constexpr std::uint32_t kNoIsland = 0xffffffffu;
 
@@ -52,7 +53,9 @@ class IslandSet {
   void sleepNow(BodyStore& store, const ContactSet& contacts, std::uint32_t body);
   /// The end of a step: each awake body's rest time, then islands that rested long enough
   /// go to sleep (splitting one marked island first, if one wants to).
-  void updateSleep(const WorldDef& def, BodyStore& store, const ContactSet& contacts, float dt);
+  /// The bodies' rest times are updated on the workers (each writes its own body).
+  void updateSleep(const WorldDef& def, BodyStore& store, const ContactSet& contacts, float dt,
+                   TaskRunner& tasks);
 
   /// The bodies that move this step (live, not static, awake), a bit per body index.
   const std::vector<std::uint64_t>& awakeBits() const noexcept { return awakeBits_; }

@@ -371,12 +371,13 @@ StepStatus World::step(float dt, int substeps) {
   w.contacts.markAwake(w.store, w.islands.awakeBits(), w.islands.awakeCount(), bodyCount);
   w.solver.solve(w.def, w.store, w.contacts, w.islands.awakeBits(), w.broadPhase, w.events, dt,
                  substeps, w.tasks);
-  w.continuous.run(w.def, w.store, w.islands.awakeBits(), w.broadPhase, w.edges, w.events, dt);
+  w.continuous.run(w.def, w.store, w.islands.awakeBits(), w.broadPhase, w.edges, w.events, dt,
+                   w.tasks);
   // A bullet may have hit a sleeping body: it moves now.
   for (std::uint32_t b : w.continuous.pushed)
     w.islands.wake(w.store, b);
   w.islands.applyContactChanges(w.store, w.contacts);
-  w.islands.updateSleep(w.def, w.store, w.contacts, dt);
+  w.islands.updateSleep(w.def, w.store, w.contacts, dt, w.tasks);
   // The solver and the continuous phase may both have stopped a body at the edge.
   std::vector<BodyId>& held = w.events.events.outOfBounds;
   std::sort(held.begin(), held.end(), [](BodyId a, BodyId b) { return a.index < b.index; });

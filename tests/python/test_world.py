@@ -166,6 +166,33 @@ def test_hit_and_sensor_callbacks():
     assert len(hits) >= 1 and hits[0][0] > 1.0
 
 
+
+def test_impacts_between_bullets_come_as_events_and_callbacks():
+    """Two bullets fired head-on at 500 m/s each (the C++ CcdDynamic test's closed form, here
+    only what the binding must carry): one impact, approach speed 1,000 m/s along the line of
+    centres, the same event through Events.toi and on_impact, and they never pass."""
+    w = quack.World(gravity=(0, 0))
+    a = w.create_body(pos=(-5, 0), vel=(500, 0), bullet=True)
+    b = w.create_body(pos=(5, 0), vel=(-500, 0), bullet=True)
+    w.create_shape(a, quack.circle(radius=0.05), restitution=1.0, friction=0.0, category=2)
+    w.create_shape(b, quack.circle(radius=0.05), restitution=1.0, friction=0.0, category=4)
+    called, tois = [], []
+    w.on_impact(lambda impact, swapped: called.append((impact, swapped)), 2, 4)
+    for _ in range(2):
+        w.step()
+        ev = w.events()
+        tois.extend(ev.toi)
+        assert ev.toi_capped == []
+    assert len(tois) == 1
+    t = tois[0]
+    assert 0.0 <= t.time <= 1.0
+    assert t.approach_speed == pytest.approx(1000.0, rel=1e-3)
+    assert abs(t.normal[0]) == pytest.approx(1.0, abs=1e-3)
+    assert [c[0] for c in called] == tois
+    assert a.position[0] < b.position[0]
+    assert a.velocity[0] < 0 < b.velocity[0]
+
+
 class Boom(Exception):
     pass
 
