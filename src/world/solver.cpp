@@ -305,7 +305,7 @@ struct SolverScratch {
   std::vector<std::uint32_t> lane;           // per touching contact: block * width + lane
   std::vector<std::uint8_t> color;           // per touching contact: colour, or kOverflow
   std::vector<std::int32_t> laneContact;     // per block lane: the touching contact, or -1
-  std::vector<std::uint64_t> colorBits;      // kColors bitsets of slots
+  std::vector<std::uint32_t> slotColors;     // per slot: the colours its body is in
   std::vector<int> stageBlocks;              // the step's job: blocks per stage
   struct Placed {
     Aabb box;     // of a one-shape body
@@ -336,16 +336,15 @@ template <class F>
 [[gnu::noinline]] std::size_t layoutBlocks(SolverScratch& s, std::vector<ContactBlock<F>>& blocks,
                                            std::size_t* colorStart, Solver::Stats& stats) {
   constexpr int W = F::width;
-  const std::size_t words = (s.states.size() + 63) / 64;
-  s.colorBits.assign(static_cast<std::size_t>(kColors) * words, 0);
+  // Per slot, the colours its body is already in (bit c); a constraint takes the lowest
+  // colour free in both of its dynamic bodies, colour 0 only when both are dynamic.
+  static_assert(kColors <= 32, "a slot's colours are a 32-bit mask");
+  constexpr std::uint32_t kAllColors =
+      kColors == 32 ? ~std::uint32_t{0} : (std::uint32_t{1} << kColors) - 1u;
+  s.slotColors.assign(s.states.size(), 0);
+  std::uint32_t* used = s.slotColors.data();
   std::size_t perColor[kColors + 1] = {};
   s.color.resize(s.touching.size());
-  auto taken = [&](int c, std::int32_t slot) {
-    return (s.colorBits[c * words + (slot >> 6)] >> (slot & 63)) & 1u;
-  };
-  auto take = [&](int c, std::int32_t slot) {
-    s.colorBits[c * words + (slot >> 6)] |= std::uint64_t{1} << (slot & 63);
-  };
   for (std::size_t k = 0; k < s.touching.size(); ++k) {
     const SolverScratch::Pair& pair = s.pairs[k];
     const bool dynA = pair.dynamicA, dynB = pair.dynamicB;
@@ -354,22 +353,18 @@ template <class F>
     if (!dynA && !dynB) {
       color = 0;  // not made by the world (a dynamic body is in every contact); harmless
     } else if (dynA && dynB) {
-      for (int ci = 0; ci < kColors; ++ci) {
-        if (!taken(ci, sa) && !taken(ci, sb)) {
-          take(ci, sa);
-          take(ci, sb);
-          color = ci;
-          break;
-        }
+      const std::uint32_t free = ~(used[sa] | used[sb]) & kAllColors;
+      if (free != 0) {
+        color = __builtin_ctz(free);
+        used[sa] |= std::uint32_t{1} << color;
+        used[sb] |= std::uint32_t{1} << color;
       }
     } else {
       const std::int32_t d = dynA ? sa : sb;
-      for (int ci = 1; ci < kColors; ++ci) {
-        if (!taken(ci, d)) {
-          take(ci, d);
-          color = ci;
-          break;
-        }
+      const std::uint32_t free = ~used[d] & kAllColors & ~std::uint32_t{1};
+      if (free != 0) {
+        color = __builtin_ctz(free);
+        used[d] |= std::uint32_t{1} << color;
       }
     }
     s.color[k] = static_cast<std::uint8_t>(color);
