@@ -313,8 +313,9 @@ void ContinuousPhase::run(const WorldDef& def, BodyStore& store,
   const BroadPhase& readBroadPhase = broadPhase;
   // Sweep-and-prune restores its order lazily, in its first query after changes (the
   // solver has just moved proxies): one query here, so that those on the workers only read.
+  // (Any valid box flushes it; an empty one at the origin always is valid.)
   if (tasks.workers() > 1)
-    broadPhase.queryAabb(fast_[0].box, [](ProxyId, std::uint64_t) { return false; });
+    broadPhase.queryAabb(Aabb{}, [](ProxyId, std::uint64_t) { return false; });
   tasks.parallelFor(static_cast<int>(fast_.size()), kMinSearchesPerTask,
                     [&](int begin, int end, int participant) {
                       SearchScratch& scratch = scratch_[static_cast<std::size_t>(participant)];
@@ -490,15 +491,10 @@ void ContinuousPhase::run(const WorldDef& def, BodyStore& store,
     // body whose queued impact was with one of them (search again from scratch) or whose
     // swept box meets a new one (checked against that body alone; an earlier impact goes
     // into the queue beside its old one, which is then stale). None is earlier than this.
-    for (std::uint32_t index : changed) {
-      ToiCandidate next;
-      if (fast_[index].searching && findImpact(store, broadPhase, edges, index, true, next))
-        push(next);
-    }
+    // Those waiting on a changed body are taken from its list first, and the list emptied
+    // (each is re-checked below and queues afresh), so that what the changed bodies' own
+    // searches queue next (one may wait on the other) stays listed.
     recheck_.clear();
-    for (std::uint32_t index : changed) {
-      queryParticipants(fast_[index].box, [&](std::uint32_t g) { recheck_.push_back(g); });
-    }
     for (std::uint32_t index : changed) {
       const std::uint32_t body = fast_[index].body;
       for (std::uint32_t node = waitHead_[body]; node != kNoParticipant;
@@ -506,8 +502,15 @@ void ContinuousPhase::run(const WorldDef& def, BodyStore& store,
         const std::uint32_t g = waitNodes_[node].participant;
         if (fast_[g].bestBody == body) recheck_.push_back(g);
       }
-      // Everyone still waiting is re-checked below, and queues its new impact afresh.
       waitHead_[body] = kNoParticipant;
+    }
+    for (std::uint32_t index : changed) {
+      ToiCandidate next;
+      if (fast_[index].searching && findImpact(store, broadPhase, edges, index, true, next))
+        push(next);
+    }
+    for (std::uint32_t index : changed) {
+      queryParticipants(fast_[index].box, [&](std::uint32_t g) { recheck_.push_back(g); });
     }
     std::sort(recheck_.begin(), recheck_.end());
     recheck_.erase(std::unique(recheck_.begin(), recheck_.end()), recheck_.end());

@@ -273,7 +273,7 @@ constexpr int kOverflow = kColors;
 // Smallest shares of work handed to a worker: below these a task costs more than it saves.
 constexpr int kMinBlocks = 16;
 constexpr int kMinSlots = 256;
-constexpr int kMinWords = 8;  // of 64 bodies
+constexpr int kMinWords = 8;  // of 64 bodies (or 64 contacts, in the touching gather)
 
 }  // namespace
 

@@ -102,14 +102,20 @@ void TaskPool::workerLoop(int worker) {
     }
     seen = gen;
     if (quit_.load()) return;
-    job_.load(std::memory_order_acquire)->participate(worker);
-    left_.fetch_sub(1, std::memory_order_release);
+    // Join the job only while it is open: the caller does not wait for a thread that has not
+    // arrived (a sleeping thread's wake-up would cost every job of a small world tens of
+    // microseconds). Entering, then reading `open_` (and the caller closing, then reading
+    // `inside_`), both sequentially consistent, means that either this thread sees the job
+    // closed or the caller sees it inside and waits for it.
+    inside_.fetch_add(1);
+    if (open_.load()) job_.load(std::memory_order_acquire)->participate(worker);
+    inside_.fetch_sub(1, std::memory_order_release);
   }
 }
 
 void TaskPool::run(Job& job) {
-  left_.store(static_cast<int>(threads_.size()), std::memory_order_relaxed);
   job_.store(&job, std::memory_order_relaxed);
+  open_.store(true);
   {
     // Under the lock, so that a thread about to sleep sees the new generation or the
     // notification.
@@ -118,9 +124,11 @@ void TaskPool::run(Job& job) {
   }
   wake_.notify_all();
   job.participate(0);
-  // The job lives on the caller's stack: every thread must be out of it.
+  // Every block is done. The job lives on the caller's stack: close it, then wait for the
+  // threads inside it to leave (a thread that arrives later sees it closed).
+  open_.store(false);
   int spins = 0;
-  while (left_.load(std::memory_order_acquire) != 0)
+  while (inside_.load() != 0)
     backOff(spins);
 }
 

@@ -63,7 +63,8 @@ class TaskPool {
 
   std::vector<std::thread> threads_;
   std::atomic<Job*> job_{nullptr};
-  std::atomic<int> left_{0};  // threads still in the current job
+  std::atomic<bool> open_{false};  // threads may join job_
+  std::atomic<int> inside_{0};     // threads that joined (or are deciding whether to)
   std::atomic<std::uint32_t> generation_{0};
   std::atomic<bool> quit_{false};
   std::mutex mutex_;
@@ -81,7 +82,12 @@ class TaskRunner {
   /// it. With one worker the blocks simply run in order on this thread.
   template <class F>
   void runStages(const std::vector<int>& blockCounts, F&& exec) {
-    if (workers_ <= 1) {
+    // A job with no stage of two blocks or more has nothing to share: here, without waking
+    // the other workers (a small world would otherwise pay their wake-up every job).
+    bool shared = false;
+    for (int n : blockCounts)
+      shared = shared || n > 1;
+    if (workers_ <= 1 || !shared) {
       runHere(blockCounts, exec);
       return;
     }
