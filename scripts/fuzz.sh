@@ -17,10 +17,12 @@ for fuzzer in $targets; do
   # Each starts from its committed seeds, kept in the repository: the scene parser from
   # fuzz/scene_seeds (every sample scene and the regression inputs of tests/io/bad_scenes),
   # the narrow phase from fuzz/narrowphase_seeds (query lines); the snapshot fuzzer makes
-  # its seed snapshots at start-up (fuzz/snapshot_fuzzer.cpp); new finds go to $corpus.
+  # its seed snapshots at start-up (fuzz/snapshot_fuzzer.cpp) and takes the inputs that once
+  # failed from fuzz/snapshot_seeds (edits of those snapshots); new finds go to $corpus.
   seeds=""
   [ "$fuzzer" = scene_fuzzer ] && seeds=fuzz/scene_seeds
   [ "$fuzzer" = narrowphase_fuzzer ] && seeds=fuzz/narrowphase_seeds
+  [ "$fuzzer" = snapshot_fuzzer ] && seeds=fuzz/snapshot_seeds
   echo "fuzz: $fuzzer for ${seconds}s"
   # shellcheck disable=SC2086
   # Crashes and out-of-memory inputs go to build/fuzz/, not the source tree.
