@@ -184,12 +184,14 @@ void ContactSet::update(const WorldDef& def, const BroadPhase& broadPhase, BodyS
   // itself and its outcome (docs/world.md, "Threads").
   const BodyStore& cstore = store;
   tasks.parallelFor(
-      static_cast<int>(updateList_.size()), kMinContactsPerTask, [&](int first, int last, int) {
+      static_cast<int>(updateList_.size()), kMinContactsPerTask,
+      [&](int first, int last, int) {
         for (int k = first; k < last; ++k) {
           const auto at = static_cast<std::size_t>(k);
           updateOutcome_[at] = updateOne(contacts[updateList_[at]], def, broadPhase, cstore, edges);
         }
-      });
+      },
+      TaskRunner::kHeavyRangesPerWorker);
   // What changes the set and the events, in contact order whatever the workers did.
   for (std::size_t k = 0; k < updateList_.size(); ++k) {
     const std::uint32_t i = updateList_[k];

@@ -604,9 +604,10 @@ void runStep(SolverScratch& s, std::vector<ContactBlock<F>>& blocks, const World
   std::vector<int>& stageBlocks = s.stageBlocks;
   stages.clear();
   stageBlocks.clear();
-  auto add = [&](Kind kind, bool odd, std::size_t first, std::size_t count, int minRange) {
+  auto add = [&](Kind kind, bool odd, std::size_t first, std::size_t count, int minRange,
+                 int perWorker = TaskRunner::kRangesPerWorker) {
     if (count == 0) return;
-    const int size = tasks.rangeSize(static_cast<int>(count), minRange);
+    const int size = tasks.rangeSize(static_cast<int>(count), minRange, perWorker);
     stages.push_back({kind, static_cast<std::uint8_t>(odd), static_cast<std::uint32_t>(first),
                       static_cast<std::uint32_t>(count), static_cast<std::uint32_t>(size)});
     stageBlocks.push_back((static_cast<int>(count) + size - 1) / size);
@@ -622,7 +623,7 @@ void runStep(SolverScratch& s, std::vector<ContactBlock<F>>& blocks, const World
       add(kind, odd, colorStart[c], colorStart[c + 1] - colorStart[c], kMinBlocks);
   };
   const std::size_t slots = s.states.size() - 1;  // slot 0 is the resting dummy
-  add(Kind::prepare, false, 0, blockCount, kMinBlocks);
+  add(Kind::prepare, false, 0, blockCount, kMinBlocks, TaskRunner::kHeavyRangesPerWorker);
   for (int stepIndex = 0; stepIndex < substeps; ++stepIndex) {
     const bool odd = (stepIndex & 1) != 0;
     add(Kind::velocities, false, 1, slots, kMinSlots);
@@ -775,7 +776,8 @@ void Solver::solve(const WorldDef& def, BodyStore& store, ContactSet& contactSet
   // and report those stopped at the edge of the world, in slot order.
   s.placed.resize(s.states.size());
   tasks.parallelFor(
-      static_cast<int>(s.states.size()) - 1, kMinSlots, [&](int first, int last, int) {
+      static_cast<int>(s.states.size()) - 1, kMinSlots,
+      [&](int first, int last, int) {
         for (auto slot = static_cast<std::size_t>(first) + 1;
              slot <= static_cast<std::size_t>(last); ++slot) {
           const std::uint32_t i = s.slotBody[slot];
@@ -812,7 +814,8 @@ void Solver::solve(const WorldDef& def, BodyStore& store, ContactSet& contactSet
             b.fast = false;
           }
         }
-      });
+      },
+      TaskRunner::kHeavyRangesPerWorker);
   for (std::size_t slot = 1; slot < s.states.size(); ++slot) {
     const std::uint32_t i = s.slotBody[slot];
     const SolverScratch::Placed& p = s.placed[slot];

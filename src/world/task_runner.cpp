@@ -146,8 +146,8 @@ void TaskRunner::configure(int workers, EnqueueTaskFn enqueue, FinishTaskFn fini
   }
 }
 
-int TaskRunner::rangeSize(int count, int minRange) const noexcept {
-  const int blocks = std::max(1, 4 * workers_);
+int TaskRunner::rangeSize(int count, int minRange, int perWorker) const noexcept {
+  const int blocks = std::max(1, perWorker * workers_);
   return std::max(std::max(minRange, 1), (count + blocks - 1) / blocks);
 }
 

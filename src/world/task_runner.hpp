@@ -100,11 +100,12 @@ class TaskRunner {
     run(job, blockCounts);
   }
 
-  /// f(begin, end, participant) over [0, count) in ranges of at least minRange items.
+  /// f(begin, end, participant) over [0, count) in ranges of at least minRange items,
+  /// about `perWorker` ranges per worker (see rangeSize).
   template <class F>
-  void parallelFor(int count, int minRange, F&& f) {
+  void parallelFor(int count, int minRange, F&& f, int perWorker = kRangesPerWorker) {
     if (count <= 0) return;
-    const int size = rangeSize(count, minRange);
+    const int size = rangeSize(count, minRange, perWorker);
     if (size >= count) {
       f(0, count, 0);
       return;
@@ -116,8 +117,19 @@ class TaskRunner {
     });
   }
 
-  /// Items per block for `count` items: a few blocks per worker, none below minRange.
-  int rangeSize(int count, int minRange) const noexcept;
+  /// Ranges per worker of a stage of light work: more ranges balance the workers better at
+  /// the stage's end, and cost a claim each.
+  static constexpr int kRangesPerWorker = 4;
+  /// Ranges per worker of a heavy stage (a tenth of a step or more: preparing constraints,
+  /// updating manifolds, placing bodies), where the wait for the last range dominates. On
+  /// the 100-row pyramid on 2 workers, with 4 ranges a worker the first worker to finish
+  /// preparing waited a fifth of the stage for the other (measured with rdtsc around each
+  /// stage's wait); with 16, about 2%. The pyramid's 2-worker speed-up went from
+  /// 1.66-1.79x to 1.70-1.80x (docs/world.md, "Threads").
+  static constexpr int kHeavyRangesPerWorker = 16;
+
+  /// Items per block for `count` items: `perWorker` blocks per worker, none below minRange.
+  int rangeSize(int count, int minRange, int perWorker = kRangesPerWorker) const noexcept;
 
   /// Gathers items in order on the workers: f(begin, end, part) over [0, count) in ranges of
   /// rangeSize(count, minRange), each appending what it finds to its own part (reused from
