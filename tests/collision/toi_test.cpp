@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -25,6 +26,23 @@ Sweep moving(Vec2 from, float angleFrom, Vec2 to, float angleTo) {
 float distanceAt(const ShapeProxy& a, const Sweep& sa, const ShapeProxy& b, const Sweep& sb,
                  float t) {
   return computeDistance(a, transformAt(sa, t), b, transformAt(sb, t)).distance;
+}
+
+// The answer against `samples` + 1 samples of the exact distance along the sweeps: never
+// closer than the target before out.t, and not `separated` when a sample is closer.
+void expectAgreesWithSampling(const ShapeProxy& a, const Sweep& sa, const ShapeProxy& b,
+                              const Sweep& sb, const ToiOutput& out, int samples) {
+  for (int k = 0; k <= samples; ++k) {
+    const float t = static_cast<float>(k) / static_cast<float>(samples);
+    const float d = distanceAt(a, sa, b, sb, t);
+    if (t < out.t) {
+      ASSERT_GT(d, kToiTargetSeparation - 1e-4f)
+          << "closer than the target at t = " << t << " before " << out.t;
+    } else if (d < kToiTargetSeparation - 1e-4f) {
+      ASSERT_NE(out.status, ToiStatus::separated) << "separated, but close at t = " << t;
+      return;
+    }
+  }
 }
 
 TEST(Toi, CircleThroughABox) {
@@ -206,17 +224,8 @@ TEST(Toi, AgreesWithDenseSampling) {
       EXPECT_GE(d, kToiTargetSeparation - 1e-4f);
       EXPECT_LT(d, kToiTargetSeparation + kToiTolerance + 1e-4f);
     }
-    for (int k = 0; k <= kSamples; ++k) {
-      const float t = static_cast<float>(k) / kSamples;
-      const float d = distanceAt(a, sweepA, b, sweepB, t);
-      if (t < out.t) {
-        ASSERT_GT(d, kToiTargetSeparation - 1e-4f)
-            << "closer than the target at t = " << t << " before " << out.t;
-      } else if (d < kToiTargetSeparation - 1e-4f) {
-        ASSERT_NE(out.status, ToiStatus::separated) << "separated, but close at t = " << t;
-        break;
-      }
-    }
+    expectAgreesWithSampling(a, sweepA, b, sweepB, out, kSamples);
+    if (::testing::Test::HasFatalFailure()) return;
   }
   RecordProperty("hit", counts[0]);
   RecordProperty("separated", counts[1]);
@@ -262,17 +271,8 @@ TEST(Toi, OneShapeTurningAgreesWithDenseSampling) {
       EXPECT_GE(d, kToiTargetSeparation - 1e-4f);
       EXPECT_LT(d, kToiTargetSeparation + kToiTolerance + 1e-4f);
     }
-    for (int k = 0; k <= kSamples; ++k) {
-      const float t = static_cast<float>(k) / kSamples;
-      const float d = distanceAt(a, sweepA, b, sweepB, t);
-      if (t < out.t) {
-        ASSERT_GT(d, kToiTargetSeparation - 1e-4f)
-            << "closer than the target at t = " << t << " before " << out.t;
-      } else if (d < kToiTargetSeparation - 1e-4f) {
-        ASSERT_NE(out.status, ToiStatus::separated) << "separated, but close at t = " << t;
-        break;
-      }
-    }
+    expectAgreesWithSampling(a, sweepA, b, sweepB, out, kSamples);
+    if (::testing::Test::HasFatalFailure()) return;
   }
   RecordProperty("hit", counts[0]);
   RecordProperty("separated", counts[1]);
@@ -280,6 +280,108 @@ TEST(Toi, OneShapeTurningAgreesWithDenseSampling) {
   EXPECT_GT(counts[0], 100);
   EXPECT_GT(counts[1], 30);
   EXPECT_LE(counts[3], 4);
+}
+
+// The bounds that answer before any distance evaluation (issue 18): the shapes' circles
+// about their centres of mass, and a still shape's edge lines against the other's circle.
+// They may settle only pairs that stay beyond the accepted band throughout; what they
+// settle is checked against 1,001 samples of the exact distance, with the still shape's
+// points given counter-clockwise, clockwise and shuffled (a proxy's points may come in any
+// order; an edge's line is taken through the support along its normal, so any order gives
+// true bounds, if fewer of them).
+TEST(Toi, BoundsSettleOnlyPairsThatStayApart) {
+  // Hand-worked: a 1 m rod (half-extent 0.500016 m about its centre) beside a wall whose
+  // face is at x = -0.005, its centre moving from x = -0.6 to -0.55 while it makes half a
+  // turn. Its circle stays 0.544984 - 0.5 = 0.044984 m from the face line at the end: the
+  // edge bound settles it, with no GJK call, and that is the distance reported.
+  const Polygon wallBox = makeBox(0.005f, 2.0f).value(), rodBox = makeBox(0.5f, 0.004f).value();
+  const ShapeProxy wall = makeProxy(wallBox), rod = makeProxy(rodBox);  // they view the boxes
+  const ToiOutput apart =
+      computeToi(wall, still({}, 0), rod, moving({-0.6f, 0.3f}, 0.3f, {-0.55f, 0.3f}, 0.3f + kPi));
+  EXPECT_EQ(apart.status, ToiStatus::separated);
+  EXPECT_EQ(apart.iterations, 0);
+  EXPECT_EQ(apart.t, 1.0f);
+  const float extent = std::sqrt(0.5f * 0.5f + 0.004f * 0.004f);
+  EXPECT_NEAR(apart.distance, 0.545f - extent, 1e-6f);
+  // Its centre 0.45 m from the wall, turning from upright to level: the tip reaches past
+  // the face (to x = 0.05), so nothing may settle it; the search finds the impact.
+  const Sweep turning = moving({-0.45f, 0.3f}, 0.5f * kPi, {-0.45f, 0.3f}, kPi);
+  const ToiOutput close = computeToi(wall, still({}, 0), rod, turning);
+  ASSERT_EQ(close.status, ToiStatus::hit);
+  EXPECT_GT(close.iterations, 0);
+  EXPECT_GT(close.t, 0.0f);
+  EXPECT_LT(close.t, 1.0f);
+  expectAgreesWithSampling(wall, still({}, 0), rod, turning, close, 1000);
+  // Circles: a disc passing 2 m from a unit disc's centre.
+  const ShapeProxy unit = makeProxy(makeCircle({}, 1.0f).value());
+  const ShapeProxy half = makeProxy(makeCircle({}, 0.5f).value());
+  const ToiOutput past = computeToi(unit, still({}, 0), half, moving({-5, 2}, 0, {5, 2}, 3));
+  EXPECT_EQ(past.status, ToiStatus::separated);
+  EXPECT_EQ(past.iterations, 0);
+  EXPECT_NEAR(past.distance, std::sqrt(29.0f) - 1.5f, 1e-5f);  // at t = 1, centre (5, 2)
+
+  const unsigned seed = 7019;
+  std::mt19937 rng(seed);
+  const ShapeType stillKinds[] = {ShapeType::capsule, ShapeType::segment, ShapeType::polygon};
+  const ShapeType kinds[] = {ShapeType::circle, ShapeType::capsule, ShapeType::segment,
+                             ShapeType::polygon};
+  int settled = 0, byEdges = 0, searched = 0;
+  for (int trial = 0; trial < 600; ++trial) {
+    SCOPED_TRACE("seed " + std::to_string(seed) + " trial " + std::to_string(trial));
+    const ShapeGeometry sa = testing::randomShape(rng, stillKinds[trial % 3], 2.0f);
+    const ShapeGeometry sb = testing::randomShape(rng, kinds[(trial / 3) % 4], 0.7f);
+    const ShapeProxy given = makeProxy(sa);
+    Vec2 points[kMaxPolygonVertices];
+    const int count = given.count();
+    std::copy(given.points(), given.points() + count, points);
+    const int order = (trial / 12) % 3;  // as given (counter-clockwise), reversed, shuffled
+    if (order == 1) std::reverse(points, points + count);
+    if (order == 2) std::shuffle(points, points + count, rng);
+    const ShapeProxy a = ShapeProxy::fromPoints(points, count, given.radius());
+    const ShapeProxy b = makeProxy(sb);
+    const float angleA = testing::uniform(rng, -kPi, kPi);
+    const Sweep sweepA = still({testing::uniform(rng, -0.3f, 0.3f), 0.0f}, angleA);
+    const float heading = testing::uniform(rng, -kPi, kPi);
+    const Vec2 c1 = testing::uniform(rng, 1.0f, 4.0f) * Vec2{std::cos(heading), std::sin(heading)};
+    const Vec2 c2 =
+        c1 + Vec2{testing::uniform(rng, -0.5f, 0.5f), testing::uniform(rng, -0.5f, 0.5f)};
+    const float a1 = testing::uniform(rng, -kPi, kPi);
+    const Vec2 lc{testing::uniform(rng, -0.2f, 0.2f), testing::uniform(rng, -0.2f, 0.2f)};
+    const Sweep sweepB{lc, c1, c2, a1, a1 + testing::uniform(rng, -2 * kPi, 2 * kPi)};
+    const ToiOutput out = computeToi(a, sweepA, b, sweepB);
+    ASSERT_NE(out.status, ToiStatus::invalidInput);
+    expectAgreesWithSampling(a, sweepA, b, sweepB, out, 1000);
+    if (::testing::Test::HasFatalFailure()) return;
+    if (out.iterations > 0 || out.status != ToiStatus::separated) {
+      ++searched;
+      continue;
+    }
+    ++settled;
+    // Settled: beyond the band at every sample, and the distance a lower bound at t = 1.
+    float least = std::numeric_limits<float>::infinity();
+    for (int k = 0; k <= 1000; ++k)
+      least = std::min(least, distanceAt(a, sweepA, b, sweepB, static_cast<float>(k) / 1000.0f));
+    EXPECT_GE(least, kToiTargetSeparation + kToiTolerance);
+    EXPECT_GE(out.distance, kToiTargetSeparation);
+    EXPECT_LE(out.distance, distanceAt(a, sweepA, b, sweepB, 1.0f) + 1e-4f);
+    // Which bound settled it: the circles could not when they come within reach.
+    const float reach = computeMaxExtent(a, sweepA.localCenter) +
+                        computeMaxExtent(b, sweepB.localCenter) + kToiTargetSeparation +
+                        2.0f * kToiTolerance;
+    bool circlesMeet = false;
+    for (int k = 0; k <= 1000 && !circlesMeet; ++k) {
+      const float t = static_cast<float>(k) / 1000.0f;
+      circlesMeet =
+          length((1.0f - t) * (sweepB.c1 - sweepA.c1) + t * (sweepB.c2 - sweepA.c2)) < reach;
+    }
+    if (circlesMeet) ++byEdges;
+  }
+  RecordProperty("settled", settled);
+  RecordProperty("settled_by_edges", byEdges);
+  RecordProperty("searched", searched);
+  EXPECT_GT(byEdges, 30);
+  EXPECT_GT(settled - byEdges, 30);
+  EXPECT_GT(searched, 100);
 }
 
 TEST(Toi, SwapAndRigidMotion) {

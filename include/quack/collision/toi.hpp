@@ -88,9 +88,12 @@ const char* toString(ToiStatus status) noexcept;
 /// Result of `computeToi`. World frame, at time `t` of the sweeps.
 struct ToiOutput {
   ToiStatus status = ToiStatus::separated;
-  float t = 0.0f;         ///< sweep fraction in [0, tMax]
-  float distance = 0.0f;  ///< between the shapes at t (hit: in [target, target + tol])
-  Vec2 point;             ///< on A's surface, nearest B, at t (overlapped: deepest in B)
+  float t = 0.0f;  ///< sweep fraction in [0, tMax]
+  /// Between the shapes at t (hit: in [target, target + tol]). Separated: at least the
+  /// target; the distance at the search's last evaluation, or, when bounds settled the
+  /// query with no evaluation (iterations 0), a lower bound on the distance at tMax.
+  float distance = 0.0f;
+  Vec2 point;  ///< on A's surface, nearest B, at t (overlapped: deepest in B)
   /// Unit, from A to B at t (overlapped: EPA's direction to move B out; never zero). Zero
   /// when separated.
   Vec2 normal;
