@@ -52,25 +52,14 @@ void buildLaneScene(World& world) {
   // A rain of mixed shapes over the slope and the plank.
   std::mt19937 rng(11);
   std::uniform_real_distribution<float> u(0, 1);
+  const Vec2 tri[] = {{-0.5f, -0.3f}, {0.5f, -0.3f}, {0, 0.5f}};
+  const Polygon roundedTriangle = makePolygon(tri, 0.05f).value();
   for (int i = 0; i < 60; ++i) {
     const Vec2 p{-35 + 70 * u(rng), 6 + 10 * u(rng)};
     BodyId b = world.createBody({.position = p, .angle = 3 * u(rng)}).value();
     const ShapeDef def{.friction = u(rng), .restitution = i % 3 == 0 ? 0.5f : 0.0f};
-    switch (i % 4) {
-      case 0:
-        (void)world.createShape(b, def, makeCircle({}, 0.2f + 0.3f * u(rng)).value());
-        break;
-      case 1:
-        (void)world.createShape(b, def, makeBox(0.2f + 0.4f * u(rng), 0.25f).value());
-        break;
-      case 2:
-        (void)world.createShape(b, def, makeCapsule({-0.4f, 0}, {0.4f, 0}, 0.2f).value());
-        break;
-      default: {
-        const Vec2 tri[] = {{-0.5f, -0.3f}, {0.5f, -0.3f}, {0, 0.5f}};
-        (void)world.createShape(b, def, makePolygon(tri, 0.05f).value());
-      }
-    }
+    testing::addMixedShape(
+        world, b, def, i, [&] { return u(rng); }, roundedTriangle);
   }
 }
 

@@ -45,19 +45,8 @@ void buildScene(World& world) {
                                 .bullet = i % 97 == 0})
                    .value();
     const ShapeDef def{.restitution = i % 5 == 0 ? 0.5f : 0.0f};
-    switch (i % 4) {
-      case 0:
-        (void)world.createShape(b, def, makeCircle({}, 0.2f + 0.3f * u(rng)).value());
-        break;
-      case 1:
-        (void)world.createShape(b, def, makeBox(0.2f + 0.4f * u(rng), 0.25f).value());
-        break;
-      case 2:
-        (void)world.createShape(b, def, makeCapsule({-0.4f, 0}, {0.4f, 0}, 0.2f).value());
-        break;
-      default:
-        (void)world.createShape(b, def, hex);
-    }
+    testing::addMixedShape(
+        world, b, def, i, [&] { return u(rng); }, hex);
     if (i % 150 == 0) (void)world.createShape(b, {.sensor = true}, makeCircle({}, 1.0f).value());
   }
 }

@@ -63,4 +63,26 @@ inline std::vector<BodyId> addPyramid(World& world, int rows, float half = 0.5f,
   return boxes;
 }
 
+// One of four shapes on `body`, by kind % 4: a circle of radius 0.2 - 0.5 m, a box 0.4 -
+// 1.2 m wide and 0.5 m tall, a 1.6 m capsule, or `fourth`. `draw()` (a number in [0, 1))
+// is called only for the circle's radius and the box's width, so a scene's random stream
+// is the same whichever shapes it makes.
+template <class Draw>
+void addMixedShape(World& world, BodyId body, const ShapeDef& def, int kind, Draw&& draw,
+                   const Polygon& fourth) {
+  switch (kind % 4) {
+    case 0:
+      (void)world.createShape(body, def, makeCircle({}, 0.2f + 0.3f * draw()).value());
+      break;
+    case 1:
+      (void)world.createShape(body, def, makeBox(0.2f + 0.4f * draw(), 0.25f).value());
+      break;
+    case 2:
+      (void)world.createShape(body, def, makeCapsule({-0.4f, 0}, {0.4f, 0}, 0.2f).value());
+      break;
+    default:
+      (void)world.createShape(body, def, fourth);
+  }
+}
+
 }  // namespace quack::testing
