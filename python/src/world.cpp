@@ -258,6 +258,28 @@ void addContactCallback(PyWorld& w, Registrar reg, std::uint64_t a, std::uint64_
   });
 }
 
+// The same for the events that carry a record (World::onHit, World::onImpact):
+// fn(toTuple(event), swapped).
+template <class Event, class Callback>
+void addEventCallback(PyWorld& w, py::function fn,
+                      void (World::*reg)(std::uint64_t, std::uint64_t, Callback), std::uint64_t a,
+                      std::uint64_t b,
+                      py::object (*toTuple)(py::module_&, py::object, const Event&)) {
+  w.checkIdle();
+  const std::size_t slot = w.callables.size();
+  w.callables.push_back(std::move(fn));
+  PyWorld* self = &w;
+  // No Python object in the C++ callback: the world may copy it without the GIL.
+  (w.world().*reg)(a, b, [self, slot, toTuple](World&, const Event& event, bool swapped) {
+    runCallback(*self, [&] {
+      if (self->callables[slot].is_none()) return;
+      py::module_ quackModule = py::module_::import("quack");
+      py::object world = selfObject(*self);
+      self->callables[slot](toTuple(quackModule, world, event), swapped);
+    });
+  });
+}
+
 QueryFilter toFilter(std::uint64_t category, std::uint64_t mask, bool sensors) {
   QueryFilter f;
   f.category = category;
@@ -749,19 +771,7 @@ del _t, _collections
       .def(
           "on_hit",
           [](PyWorld& w, py::function fn, std::uint64_t a, std::uint64_t b) {
-            w.checkIdle();
-            const std::size_t slot = w.callables.size();
-            w.callables.push_back(std::move(fn));
-            PyWorld* self = &w;
-            // No Python object in the C++ callback: the world may copy it without the GIL.
-            w.world().onHit(a, b, [self, slot](World&, const ContactHitEvent& hit, bool swapped) {
-              runCallback(*self, [&] {
-                if (self->callables[slot].is_none()) return;
-                py::module_ quackModule = py::module_::import("quack");
-                py::object world = selfObject(*self);
-                self->callables[slot](hitTuple(quackModule, world, hit), swapped);
-              });
-            });
+            addEventCallback<ContactHitEvent>(w, std::move(fn), &World::onHit, a, b, hitTuple);
           },
           py::arg("fn"), py::arg("categories_a") = ~std::uint64_t{0},
           py::arg("categories_b") = ~std::uint64_t{0},
@@ -770,18 +780,7 @@ del _t, _collections
       .def(
           "on_impact",
           [](PyWorld& w, py::function fn, std::uint64_t a, std::uint64_t b) {
-            w.checkIdle();
-            const std::size_t slot = w.callables.size();
-            w.callables.push_back(std::move(fn));
-            PyWorld* self = &w;
-            w.world().onImpact(a, b, [self, slot](World&, const ToiEvent& impact, bool swapped) {
-              runCallback(*self, [&] {
-                if (self->callables[slot].is_none()) return;
-                py::module_ quackModule = py::module_::import("quack");
-                py::object world = selfObject(*self);
-                self->callables[slot](toiTuple(quackModule, world, impact), swapped);
-              });
-            });
+            addEventCallback<ToiEvent>(w, std::move(fn), &World::onImpact, a, b, toiTuple);
           },
           py::arg("fn"), py::arg("categories_a") = ~std::uint64_t{0},
           py::arg("categories_b") = ~std::uint64_t{0},
