@@ -58,7 +58,9 @@ TEST(Toi, CircleThroughABox) {
   EXPECT_LT(out.distance, kToiTargetSeparation + kToiTolerance);
   EXPECT_NEAR(out.normal.x, -1.0f, 1e-6f);
   EXPECT_NEAR(out.point.x, -1.0f, 1e-5f);
-  EXPECT_LE(out.iterations, 3);
+  // The search starts where the bounding circles (radii 0.5 and sqrt 2) first come within
+  // the aim, t = 0.308, not at 0: one evaluation there, one at the face.
+  EXPECT_EQ(out.iterations, 2);
   // Target 0: touching.
   ToiOutput touch = computeToi(a, still({}, 0), b, sb, 1.0f, 0.0f);
   ASSERT_EQ(touch.status, ToiStatus::hit);
@@ -282,9 +284,11 @@ TEST(Toi, OneShapeTurningAgreesWithDenseSampling) {
   EXPECT_LE(counts[3], 4);
 }
 
-// The bounds that answer before any distance evaluation (issue 18): the shapes' circles
-// about their centres of mass, and a still shape's edge lines against the other's circle.
-// They may settle only pairs that stay beyond the accepted band throughout; what they
+// The bounds that answer before any distance evaluation, or say where the search starts
+// (issue 18): the shapes' circles about their centres of mass, and a still shape's edge
+// lines against the other's circle.
+// They may settle only pairs that stay beyond the aim (target + half the tolerance)
+// throughout; what they
 // settle is checked against 1,001 samples of the exact distance, with the still shape's
 // points given counter-clockwise, clockwise and shuffled (a proxy's points may come in any
 // order; an edge's line is taken through the support along its normal, so any order gives
@@ -312,6 +316,17 @@ TEST(Toi, BoundsSettleOnlyPairsThatStayApart) {
   EXPECT_GT(close.t, 0.0f);
   EXPECT_LT(close.t, 1.0f);
   expectAgreesWithSampling(wall, still({}, 0), rod, turning, close, 1000);
+  // From 3 m away, turning half a turn on the way in: the search starts where the rod's
+  // circle first comes within the aim (target + tolerance / 2 = 5.625 mm) of the face's
+  // line, t = (3 - 0.005 - 0.500016 - 0.005625) / 2.7 = 0.92199; every time before is free
+  // without an evaluation. The rod is level to 3 degrees by then, its tip in the band: one
+  // evaluation answers.
+  const Sweep approaching = moving({-3.0f, 0.3f}, 0.2f, {-0.3f, 0.3f}, 0.2f + kPi);
+  const ToiOutput far = computeToi(wall, still({}, 0), rod, approaching);
+  ASSERT_EQ(far.status, ToiStatus::hit);
+  EXPECT_NEAR(far.t, 0.92199f, 2e-5f);
+  EXPECT_EQ(far.iterations, 1);
+  expectAgreesWithSampling(wall, still({}, 0), rod, approaching, far, 2000);
   // Circles: a disc passing 2 m from a unit disc's centre.
   const ShapeProxy unit = makeProxy(makeCircle({}, 1.0f).value());
   const ShapeProxy half = makeProxy(makeCircle({}, 0.5f).value());
@@ -357,11 +372,12 @@ TEST(Toi, BoundsSettleOnlyPairsThatStayApart) {
       continue;
     }
     ++settled;
-    // Settled: beyond the band at every sample, and the distance a lower bound at t = 1.
+    // Settled: at least the aim (target + half the tolerance) at every sample, and the
+    // distance a lower bound at t = 1.
     float least = std::numeric_limits<float>::infinity();
     for (int k = 0; k <= 1000; ++k)
       least = std::min(least, distanceAt(a, sweepA, b, sweepB, static_cast<float>(k) / 1000.0f));
-    EXPECT_GE(least, kToiTargetSeparation + kToiTolerance);
+    EXPECT_GE(least, kToiTargetSeparation + 0.5f * kToiTolerance);
     EXPECT_GE(out.distance, kToiTargetSeparation);
     EXPECT_LE(out.distance, distanceAt(a, sweepA, b, sweepB, 1.0f) + 1e-4f);
     // Which bound settled it: the circles could not when they come within reach.
