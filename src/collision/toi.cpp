@@ -1,6 +1,8 @@
 #include "quack/collision/toi.hpp"
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <utility>
@@ -235,8 +237,13 @@ ToiOutput computeToi(const ShapeProxy& a, const Sweep& sweepA, const ShapeProxy&
 
   // A sweep that does not turn keeps one rotation, so the static side of most queries pays
   // no trigonometry per evaluation; a turning sweep's rotation is approximateRotation's.
-  const Rot fixedA = sweepA.a1 == sweepA.a2 ? approximateRotation(sweepA.a1) : Rot{};
-  const Rot fixedB = sweepB.a1 == sweepB.a2 ? approximateRotation(sweepB.a1) : Rot{};
+  // (An angle of +0, the usual static body's, gives the identity, as approximateRotation
+  // would; -0 goes through it, for its sign.)
+  auto fixedRotation = [](const Sweep& s) {
+    const bool plusZero = std::bit_cast<std::uint32_t>(s.a1) == 0u;
+    return s.a1 == s.a2 && !plusZero ? approximateRotation(s.a1) : Rot{};
+  };
+  const Rot fixedA = fixedRotation(sweepA), fixedB = fixedRotation(sweepB);
 
   // Bounds on the first time the shapes may come within the aim, before any distance is
   // evaluated: the bounding circles (circleReach), and for a shape that does not turn its
