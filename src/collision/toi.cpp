@@ -1,8 +1,6 @@
 #include "quack/collision/toi.hpp"
 
-#include <bit>
 #include <cmath>
-#include <cstdint>
 #include <limits>
 #include <memory>
 #include <utility>
@@ -253,7 +251,7 @@ ToiOutput computeToi(const ShapeProxy& a, const Sweep& sweepA, const ShapeProxy&
   // (An angle of +0, the usual static body's, gives the identity, as approximateRotation
   // would; -0 goes through it, for its sign.)
   auto fixedRotation = [](const Sweep& s) {
-    const bool plusZero = std::bit_cast<std::uint32_t>(s.a1) == 0u;
+    const bool plusZero = s.a1 == 0.0f && !std::signbit(s.a1);
     return s.a1 == s.a2 && !plusZero ? approximateRotation(s.a1) : Rot{};
   };
   const Rot fixedA = fixedRotation(sweepA), fixedB = fixedRotation(sweepB);
