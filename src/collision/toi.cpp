@@ -113,8 +113,14 @@ constexpr float kToiAxisGate = 4.0f;
 // at tMax). In n's body frame the disc's centre moves on a segment, so its gap to a line is
 // linear in t. Each line goes through n's support along its normal, so any order of a
 // proxy's points gives true bounds (a counter-clockwise polygon's give its faces).
+// The edge the disc's centre lies furthest beyond at t = 0 is returned in `face` (its two
+// points, n's frame), untouched when the centre lies beyond none.
+struct Edge {
+  Vec2 from, to;
+  bool set = false;
+};
 float edgeStart(const ShapeProxy& n, const Sweep& sn, Rot qn, const Sweep& st, float extentT,
-                float tMax, float clearance, float& bound, Vec2& facing) noexcept {
+                float tMax, float clearance, float& bound, Edge& face) noexcept {
   const int count = n.count();
   if (count < 2) return 0.0f;
   const Vec2* v = n.points();
@@ -133,19 +139,18 @@ float edgeStart(const ShapeProxy& n, const Sweep& sn, Rot qn, const Sweep& st, f
   // The edge the centre lies furthest beyond at t = 0 (largest q0 / |e|) is kept as an axis
   // for the search along it (`facing`, n's frame, unit).
   Vec2 from = v[count - 1];
-  Vec2 best;
   float bestQ = 0.0f, bestEE = 1.0f;
   for (int i = 0; i < count; ++i) {
     const Vec2 e = v[i] - from;
     const float q0 = e.y * (p0.x - from.x) - e.x * (p0.y - from.y);
-    from = v[i];
     const float ee = lengthSquared(e);
-    if (q0 <= 0.0f) continue;
-    if (q0 * q0 * bestEE > bestQ * bestQ * ee) {
-      best = e;
+    if (q0 > 0.0f && q0 * q0 * bestEE > bestQ * bestQ * ee) {
+      face = {from, v[i], true};
       bestQ = q0;
       bestEE = ee;
     }
+    from = v[i];
+    if (q0 <= 0.0f) continue;
     if (q0 * q0 <= ee * reach2) continue;
     const Vec2 m = rightPerp(e);
     float support = dot(m, v[0]);
@@ -161,7 +166,6 @@ float edgeStart(const ShapeProxy& n, const Sweep& sn, Rot qn, const Sweep& st, f
     }
     start = maxf(start, tMax * ((g0 - r) / (g0 - g1)));
   }
-  if (bestQ > 0.0f) facing = (1.0f / std::sqrt(bestEE)) * rightPerp(best);
   return start;
 }
 
@@ -261,31 +265,35 @@ ToiOutput computeToi(const ShapeProxy& a, const Sweep& sweepA, const ShapeProxy&
   // edge lines against the other's circle (edgeStart). Everything before the latest bound is
   // free, so the search starts there: a pair that begins far apart (a bullet metres from a
   // wall) costs no evaluation on the way, and one that never comes close costs none at all.
-  // The edges only against a sweep that turns more than a sixteenth of what it moves (|turn|
-  // extent against the relative translation): one that mostly moves is settled by the
-  // search's translation bound within an evaluation or two, and GJK far from contact is
-  // cheap, while an edge test costs a few hundred instructions (with no such gate the
-  // bullet set of bench/ccd cost 3% more; at a quarter the spinner set cost 4% more than at
-  // a sixteenth).
-  const float travel2 = lengthSquared(tMax * offsetRate);
-  auto turnsMore = [&](const Sweep& s, float extent) {
-    const float turn = absf(s.a2 - s.a1) * tMax * extent;
-    return 256.0f * turn * turn > travel2;
-  };
+  // (The edges ran only against sweeps that turn more than a sixteenth of what they move
+  // until the face certificate below: without it a bullet paid for the edges and still
+  // evaluated twice; with it most of them evaluate never.)
   float start = circleReach(0.0f);
   float bound = length(offset0 + tMax * offsetRate) - extentA - extentB;  // at tMax
-  // A world axis from A towards B: the normal of the still shape's edge the other's centre
-  // lies furthest beyond at t = 0 (zero: none), for the search along it below.
+  // The still shape's edge the other's centre lies furthest beyond at t = 0 (`face`, in
+  // the frame of A when faceOnA, else of B), for the search along its normal below; its
+  // normal as a world axis from A towards B (zero: none).
+  Edge face;
+  bool faceOnA = false;
   Vec2 faceAxis;
-  if (start <= tMax && sweepA.a1 == sweepA.a2 && turnsMore(sweepB, extentB)) {
-    Vec2 facing;
-    start = maxf(start, edgeStart(a, sweepA, fixedA, sweepB, extentB, tMax, aim, bound, facing));
-    faceAxis = rotate(fixedA, facing);
+  auto axisOf = [](const Edge& e, Rot q) { return rotate(q, normalize(rightPerp(e.to - e.from))); };
+  if (start <= tMax && sweepA.a1 == sweepA.a2) {
+    Edge edge;
+    start = maxf(start, edgeStart(a, sweepA, fixedA, sweepB, extentB, tMax, aim, bound, edge));
+    if (edge.set) {
+      face = edge;
+      faceOnA = true;
+      faceAxis = axisOf(edge, fixedA);
+    }
   }
-  if (start <= tMax && sweepB.a1 == sweepB.a2 && turnsMore(sweepA, extentA)) {
-    Vec2 facing;
-    start = maxf(start, edgeStart(b, sweepB, fixedB, sweepA, extentA, tMax, aim, bound, facing));
-    faceAxis = -rotate(fixedB, facing);
+  if (start <= tMax && sweepB.a1 == sweepB.a2) {
+    Edge edge;
+    start = maxf(start, edgeStart(b, sweepB, fixedB, sweepA, extentA, tMax, aim, bound, edge));
+    if (edge.set) {
+      face = edge;
+      faceOnA = false;
+      faceAxis = -axisOf(edge, fixedB);
+    }
   }
   if (!(start <= tMax)) {
     out.status = ToiStatus::separated;
@@ -433,6 +441,52 @@ ToiOutput computeToi(const ShapeProxy& a, const Sweep& sweepA, const ShapeProxy&
       return out;
     }
     start = maxf(start, reached);
+    // Where the search lands the still shape's face may settle the query with no GJK call.
+    // At time t the distance is at least the gap along the axis (a separating axis: the
+    // least of B along it minus the most of A, every point counted) and at most the
+    // distance from the turning shape's point nearest the face (its support towards it) to
+    // the face's segment, which lies in the still shape. When both lie in the band, so does
+    // the distance, and everything before t is free (the bounds and the axis search): a
+    // hit. A tip that lands off the face, or a face that is not at the support (points in
+    // another order), leaves the two apart, and the search goes on as before.
+    const Transform xfA = poseAt(sweepA, fixedA, start), xfB = poseAt(sweepB, fixedB, start);
+    const Vec2 axisInA = invRotate(xfA.q, faceAxis), axisInB = invRotate(xfB.q, faceAxis);
+    int mostA = 0, leastB = 0;
+    float mostAlong = dot(axisInA, a.points()[0]), leastAlong = dot(axisInB, b.points()[0]);
+    for (int i = 1; i < a.count(); ++i) {
+      const float along = dot(axisInA, a.points()[i]);
+      if (along > mostAlong) {
+        mostAlong = along;
+        mostA = i;
+      }
+    }
+    for (int i = 1; i < b.count(); ++i) {
+      const float along = dot(axisInB, b.points()[i]);
+      if (along < leastAlong) {
+        leastAlong = along;
+        leastB = i;
+      }
+    }
+    const float lower = leastAlong - mostAlong + dot(faceAxis, xfB.p - xfA.p) - radii;
+    if (lower >= target && lower < target + tolerance) {
+      // The face and the tip, in the face's shape's frame.
+      const Transform& faceXf = faceOnA ? xfA : xfB;
+      const Vec2 tip = faceOnA ? invTransformPoint(xfA, transformPoint(xfB, b.points()[leastB]))
+                               : invTransformPoint(xfB, transformPoint(xfA, a.points()[mostA]));
+      const Vec2 e = face.to - face.from;
+      const float along = clampf(dot(tip - face.from, e) / lengthSquared(e), 0.0f, 1.0f);
+      const Vec2 onFace = face.from + along * e;
+      const float upper = length(tip - onFace) - radii;
+      if (upper < target + tolerance) {
+        out.status = ToiStatus::hit;
+        out.t = start;
+        out.distance = upper;
+        out.normal = faceAxis;
+        // On A's surface: the face's point (A holds the face) or the tip (B does).
+        out.point = transformPoint(faceXf, faceOnA ? onFace : tip) + a.radius() * faceAxis;
+        return out;
+      }
+    }
   }
   // A pair that starts later than 0 is apart at 0 too: it cannot be overlapped.
   Sample lo = evaluate(start);
