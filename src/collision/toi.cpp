@@ -17,19 +17,9 @@ bool isFiniteSweep(const Sweep& s) noexcept {
          isFinite(s.a2);
 }
 
-// The rotation by `radians`, to about 2e-7 (|sin| and |cos| errors), in about a sixth of
-// the instructions of std::cos and std::sin. The search evaluates a turning sweep's pose
-// several times per query, and the rotation was an eighth of its cost. The difference from
-// transformAt's rotation moves a point 10 m from the centre by a few micrometres, far below
-// the smallest acceptance band (kToiMinTolerance). Reduction to [-pi/4, pi/4] by quarter
-// turns (pi/2 split in two parts, Cody and Waite), then Taylor polynomials to x^9 and x^10.
-inline Rot approximateRotation(float radians) noexcept {
-  // Round half away from zero by truncation: std::nearbyint is a library call on x86-64's
-  // baseline instruction set. Angles here are far below 2^23 quarter turns.
-  const float scaled = radians * 0.636619772f;
-  const float quarters =
-      static_cast<float>(static_cast<int>(scaled + (scaled >= 0.0f ? 0.5f : -0.5f)));
-  const float x = (radians - quarters * 1.5703125f) - quarters * 4.83826794897e-4f;
+// The rotation by x, |x| <= pi/4, to about 2e-7 (|sin| and |cos| errors): Taylor
+// polynomials to x^9 and x^10.
+inline Rot smallRotation(float x) noexcept {
   const float x2 = x * x;
   const float sine =
       x * (1.0f + x2 * (-1.0f / 6.0f +
@@ -38,15 +28,31 @@ inline Rot approximateRotation(float radians) noexcept {
       1.0f +
       x2 * (-0.5f + x2 * (1.0f / 24.0f + x2 * (-1.0f / 720.0f +
                                                x2 * (1.0f / 40320.0f - x2 * (1.0f / 3628800.0f)))));
+  return {cosine, sine};
+}
+
+// The rotation by `radians`, to about 2e-7, in about a sixth of the instructions of
+// std::cos and std::sin. The search evaluates a turning sweep's pose several times per
+// query, and the rotation was an eighth of its cost. The difference from transformAt's
+// rotation moves a point 10 m from the centre by a few micrometres, far below the smallest
+// acceptance band (kToiMinTolerance). Reduction to [-pi/4, pi/4] by quarter turns (pi/2
+// split in two parts, Cody and Waite), then smallRotation.
+inline Rot approximateRotation(float radians) noexcept {
+  // Round half away from zero by truncation: std::nearbyint is a library call on x86-64's
+  // baseline instruction set. Angles here are far below 2^23 quarter turns.
+  const float scaled = radians * 0.636619772f;
+  const float quarters =
+      static_cast<float>(static_cast<int>(scaled + (scaled >= 0.0f ? 0.5f : -0.5f)));
+  const Rot r = smallRotation((radians - quarters * 1.5703125f) - quarters * 4.83826794897e-4f);
   switch (static_cast<int>(quarters) & 3) {
     case 0:
-      return {cosine, sine};
+      return r;
     case 1:
-      return {-sine, cosine};
+      return {-r.s, r.c};
     case 2:
-      return {-cosine, -sine};
+      return {-r.c, -r.s};
     default:
-      return {sine, -cosine};
+      return {r.s, -r.c};
   }
 }
 
@@ -60,6 +66,10 @@ struct Sample {
   float slackA = 0.0f, slackB = 0.0f;
   Vec2 point;
   Vec2 normal;
+  // The features GJK ended on when one is an edge: the edge's points (indices into the
+  // proxy of A when faceOnA, else of B) facing a point of the other shape. -1: none.
+  std::int8_t face0 = -1, face1 = -1;
+  bool faceOnA = false;
 };
 
 // The first time after s.t at which the separation along s.normal (a fixed world axis) may
@@ -250,13 +260,14 @@ ToiOutput computeToi(const ShapeProxy& a, const Sweep& sweepA, const ShapeProxy&
     return t + c / (-bb + std::sqrt(disc));
   };
 
-  // A sweep that does not turn keeps one rotation, so the static side of most queries pays
-  // no trigonometry per evaluation; a turning sweep's rotation is approximateRotation's.
-  // (An angle of +0, the usual static body's, gives the identity, as approximateRotation
-  // would; -0 goes through it, for its sign.)
+  // Each sweep's rotation at its start, once: a sweep that does not turn keeps it, so the
+  // static side of most queries pays no trigonometry per evaluation, and a turning sweep's
+  // rotation at t is it turned by the angle turned so far (poseAt). (An angle of +0, the
+  // usual static body's, gives the identity, as approximateRotation would; -0 goes through
+  // it, for its sign.)
   auto fixedRotation = [](const Sweep& s) {
     const bool plusZero = s.a1 == 0.0f && !std::signbit(s.a1);
-    return s.a1 == s.a2 && !plusZero ? approximateRotation(s.a1) : Rot{};
+    return plusZero ? Rot{} : approximateRotation(s.a1);
   };
   const Rot fixedA = fixedRotation(sweepA), fixedB = fixedRotation(sweepB);
 
@@ -301,9 +312,17 @@ ToiOutput computeToi(const ShapeProxy& a, const Sweep& sweepA, const ShapeProxy&
     out.distance = maxf(target, bound);
     return out;
   }
+  // The turn so far within an eighth of a turn (most sweeps' whole turn) is one
+  // polynomial and a product, with no reduction and no branch on the quarter: the
+  // evaluations of a pair that both turn spent a fifth of their time on rotations.
   auto poseAt = [](const Sweep& s, Rot fixed, float t) {
     const Vec2 c = (1.0f - t) * s.c1 + t * s.c2;
-    const Rot q = s.a1 != s.a2 ? approximateRotation((1.0f - t) * s.a1 + t * s.a2) : fixed;
+    Rot q = fixed;
+    if (s.a1 != s.a2) {
+      const float turned = t * (s.a2 - s.a1);
+      q = absf(turned) <= 0.785398f ? mulRot(fixed, smallRotation(turned))
+                                    : approximateRotation((1.0f - t) * s.a1 + t * s.a2);
+    }
     return Transform{c - rotate(q, s.localCenter), q};
   };
   // GJK runs in A's body frame (the proxies' own), as computeDistance does, but only what
@@ -311,14 +330,25 @@ ToiOutput computeToi(const ShapeProxy& a, const Sweep& sweepA, const ShapeProxy&
   GjkCache cache;
   detail::NoGjkObserver none;
   const float radii = a.radius() + b.radius();
-  auto evaluate = [&](float t) {
-    const Transform worldFromA = poseAt(sweepA, fixedA, t);
-    const Transform aFromB = invMul(worldFromA, poseAt(sweepB, fixedB, t));
+  auto evaluatePosed = [&](float t, const Transform& worldFromA, const Transform& worldFromB) {
+    const Transform aFromB = invMul(worldFromA, worldFromB);
     const detail::GjkRun run = detail::runGjk(a, b, aFromB, &cache, -1.0f, none);
     ++out.iterations;
     Sample sample;
     sample.t = t;
     if (run.status == GjkStatus::overlap) return sample;  // distance 0: within any target
+    if (run.simplex.count == 2) {
+      const SupportPoint& s0 = run.simplex.vertices[0].support;
+      const SupportPoint& s1 = run.simplex.vertices[1].support;
+      if (s0.indexA == s1.indexA && s0.indexB != s1.indexB) {
+        sample.face0 = static_cast<std::int8_t>(s0.indexB);
+        sample.face1 = static_cast<std::int8_t>(s1.indexB);
+      } else if (s0.indexB == s1.indexB && s0.indexA != s1.indexA) {
+        sample.face0 = static_cast<std::int8_t>(s0.indexA);
+        sample.face1 = static_cast<std::int8_t>(s1.indexA);
+        sample.faceOnA = true;
+      }
+    }
     const float core = length(run.closest);
     const Vec2 n =
         run.hasDirection ? run.direction : detail::closestDirection(run.simplex, run.closest);
@@ -339,6 +369,56 @@ ToiOutput computeToi(const ShapeProxy& a, const Sweep& sweepA, const ShapeProxy&
           maxf(0.0f, extentB + dot(n, witness.pointB - transformPoint(aFromB, sweepB.localCenter)) -
                          b.radius());
     return sample;
+  };
+  auto evaluate = [&](float t) {
+    return evaluatePosed(t, poseAt(sweepA, fixedA, t), poseAt(sweepB, fixedB, t));
+  };
+  // Settles the query as a hit at t, a time proven free up to, with no GJK call, when a face
+  // shows the distance there in the band. The face is the segment from `from` to `to`
+  // (points of A when onA, else of B, in that shape's frame) and n a world axis from A
+  // towards B. The distance is at least the gap along n (a separating axis: the least of B
+  // along it minus the most of A, every point counted) and at most the distance from the
+  // other shape's point furthest along the axis towards the face (its support) to the
+  // face's segment, which lies in its shape. When both lie in the band, so does the
+  // distance. A support that lies off the face, or a face that is not at its shape's
+  // support (points in another order), leaves the two apart: false.
+  auto settleOnFace = [&](float t, const Transform& xfA, const Transform& xfB, bool onA, Vec2 from,
+                          Vec2 to, Vec2 n) {
+    const Vec2 axisInA = invRotate(xfA.q, n), axisInB = invRotate(xfB.q, n);
+    int mostA = 0, leastB = 0;
+    float mostAlong = dot(axisInA, a.points()[0]), leastAlong = dot(axisInB, b.points()[0]);
+    for (int i = 1; i < a.count(); ++i) {
+      const float along = dot(axisInA, a.points()[i]);
+      if (along > mostAlong) {
+        mostAlong = along;
+        mostA = i;
+      }
+    }
+    for (int i = 1; i < b.count(); ++i) {
+      const float along = dot(axisInB, b.points()[i]);
+      if (along < leastAlong) {
+        leastAlong = along;
+        leastB = i;
+      }
+    }
+    const float lower = leastAlong - mostAlong + dot(n, xfB.p - xfA.p) - radii;
+    if (!(lower >= target && lower < target + tolerance)) return false;
+    // The face and the support, in the face's shape's frame.
+    const Transform& faceXf = onA ? xfA : xfB;
+    const Vec2 tip = onA ? invTransformPoint(xfA, transformPoint(xfB, b.points()[leastB]))
+                         : invTransformPoint(xfB, transformPoint(xfA, a.points()[mostA]));
+    const Vec2 e = to - from;
+    const float along = clampf(dot(tip - from, e) / lengthSquared(e), 0.0f, 1.0f);
+    const Vec2 onFace = from + along * e;
+    const float upper = length(tip - onFace) - radii;
+    if (!(upper < target + tolerance)) return false;
+    out.status = ToiStatus::hit;
+    out.t = t;
+    out.distance = upper;
+    out.normal = n;
+    // On A's surface: the face's point (A holds the face) or the support (B does).
+    out.point = transformPoint(faceXf, onA ? onFace : tip) + a.radius() * n;
+    return true;
   };
   // The second-order search along a sample's normal n, a fixed world axis. The gap along n,
   //   G(t) = dot(n, cB - cA) - radii + min_i dot(n, RB qB_i) + min_j dot(-n, RA qA_j)
@@ -441,52 +521,10 @@ ToiOutput computeToi(const ShapeProxy& a, const Sweep& sweepA, const ShapeProxy&
       return out;
     }
     start = maxf(start, reached);
-    // Where the search lands the still shape's face may settle the query with no GJK call.
-    // At time t the distance is at least the gap along the axis (a separating axis: the
-    // least of B along it minus the most of A, every point counted) and at most the
-    // distance from the turning shape's point nearest the face (its support towards it) to
-    // the face's segment, which lies in the still shape. When both lie in the band, so does
-    // the distance, and everything before t is free (the bounds and the axis search): a
-    // hit. A tip that lands off the face, or a face that is not at the support (points in
-    // another order), leaves the two apart, and the search goes on as before.
-    const Transform xfA = poseAt(sweepA, fixedA, start), xfB = poseAt(sweepB, fixedB, start);
-    const Vec2 axisInA = invRotate(xfA.q, faceAxis), axisInB = invRotate(xfB.q, faceAxis);
-    int mostA = 0, leastB = 0;
-    float mostAlong = dot(axisInA, a.points()[0]), leastAlong = dot(axisInB, b.points()[0]);
-    for (int i = 1; i < a.count(); ++i) {
-      const float along = dot(axisInA, a.points()[i]);
-      if (along > mostAlong) {
-        mostAlong = along;
-        mostA = i;
-      }
-    }
-    for (int i = 1; i < b.count(); ++i) {
-      const float along = dot(axisInB, b.points()[i]);
-      if (along < leastAlong) {
-        leastAlong = along;
-        leastB = i;
-      }
-    }
-    const float lower = leastAlong - mostAlong + dot(faceAxis, xfB.p - xfA.p) - radii;
-    if (lower >= target && lower < target + tolerance) {
-      // The face and the tip, in the face's shape's frame.
-      const Transform& faceXf = faceOnA ? xfA : xfB;
-      const Vec2 tip = faceOnA ? invTransformPoint(xfA, transformPoint(xfB, b.points()[leastB]))
-                               : invTransformPoint(xfB, transformPoint(xfA, a.points()[mostA]));
-      const Vec2 e = face.to - face.from;
-      const float along = clampf(dot(tip - face.from, e) / lengthSquared(e), 0.0f, 1.0f);
-      const Vec2 onFace = face.from + along * e;
-      const float upper = length(tip - onFace) - radii;
-      if (upper < target + tolerance) {
-        out.status = ToiStatus::hit;
-        out.t = start;
-        out.distance = upper;
-        out.normal = faceAxis;
-        // On A's surface: the face's point (A holds the face) or the tip (B does).
-        out.point = transformPoint(faceXf, faceOnA ? onFace : tip) + a.radius() * faceAxis;
-        return out;
-      }
-    }
+    // Where the search lands the still shape's face may settle the query.
+    if (settleOnFace(start, poseAt(sweepA, fixedA, start), poseAt(sweepB, fixedB, start), faceOnA,
+                     face.from, face.to, faceAxis))
+      return out;
   }
   // A pair that starts later than 0 is apart at 0 too: it cannot be overlapped.
   Sample lo = evaluate(start);
@@ -545,7 +583,19 @@ ToiOutput computeToi(const ShapeProxy& a, const Sweep& sweepA, const ShapeProxy&
     if (out.iterations >= kToiMaxIterations) return finish(ToiStatus::failed, lo);
     if (advances < kToiMaxAdvancements && reach > lo.t) {
       ++advances;
-      const Sample next = evaluate(reach);
+      const Transform xfA = poseAt(sweepA, fixedA, reach), xfB = poseAt(sweepB, fixedB, reach);
+      // The edge GJK ended on at lo may settle it at reach, turned with its shape, along
+      // its normal there (from A towards B: the other shape's point lies on that side).
+      if (lo.face0 >= 0 &&
+          lo.distance - (lo.approach - spin) * (reach - lo.t) < target + tolerance) {
+        const Transform& faceXf = lo.faceOnA ? xfA : xfB;
+        const ShapeProxy& faceProxy = lo.faceOnA ? a : b;
+        const Vec2 from = faceProxy.points()[lo.face0], to = faceProxy.points()[lo.face1];
+        Vec2 n = rotate(faceXf.q, normalize(rightPerp(to - from)));
+        if (dot(n, lo.normal) < 0.0f) n = -n;
+        if (settleOnFace(reach, xfA, xfB, lo.faceOnA, from, to, n)) return out;
+      }
+      const Sample next = evaluatePosed(reach, xfA, xfB);
       // Rounding can carry a step a hair past the target; the bound says `reach` is free
       // (up to that rounding), so it is the answer, or `lo` if rounding made it overlap.
       if (next.distance < target + tolerance)

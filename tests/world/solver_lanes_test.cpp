@@ -107,10 +107,14 @@ TEST(SolverLanes, SimdAndScalarGiveTheSameBitsEveryStep) {
     ASSERT_EQ(simd.hashes[s], scalar.hashes[s]) << "the paths part at step " << s + 1;
   // And the world did move: the hashes change from step to step.
   EXPECT_NE(simd.hashes.front(), simd.hashes.back());
-  // With sleeping on, sleeping bodies read the resting slot as static ones do.
-  const LaneRun simdSleep = runScene(false, kSteps);
-  const LaneRun scalarSleep = runScene(true, kSteps);
-  for (int s = 0; s < kSteps; ++s)
+  // With sleeping on, sleeping bodies read the resting slot as static ones do. 600 steps,
+  // as the golden hash's run: by then 30 of the 143 bodies sleep. (At 360 steps how many
+  // sleep swings with any change to the physics: a change to the time of impact took it
+  // from more than 20 to 17.)
+  constexpr int kSleepSteps = 600;
+  const LaneRun simdSleep = runScene(false, kSleepSteps);
+  const LaneRun scalarSleep = runScene(true, kSleepSteps);
+  for (int s = 0; s < kSleepSteps; ++s)
     ASSERT_EQ(simdSleep.hashes[s], scalarSleep.hashes[s]) << "sleeping on: step " << s + 1;
   EXPECT_LT(simdSleep.awake + 20, simdSleep.bodies);
 }
@@ -131,7 +135,7 @@ TEST(SolverLanes, SameBitsWhateverTheBroadPhase) {
 // (the library is built with -ffp-contract=off; docs/world.md, "Determinism"). A change
 // that alters the physics on purpose changes it too: QUACK_PRINT_GOLDEN=1 prints the new
 // value, to be put here with the reason in the commit message.
-constexpr std::uint64_t kGoldenHash = 0xf877af6410eb6baf;
+constexpr std::uint64_t kGoldenHash = 0x558401451219bd66;
 
 TEST(SolverLanes, GoldenHashOnEveryBuild) {
   const LaneRun r = runScene(false, 600);
