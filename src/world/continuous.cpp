@@ -131,10 +131,15 @@ bool ContinuousPhase::findImpactWith(SearchScratch& scratch, const BodyStore& st
         consider(s);
     }
   } else {
-    broadPhase.queryAabb(f.box, [&](ProxyId, std::uint64_t user) {
-      consider(static_cast<std::uint32_t>(user));
-      return true;
-    });
+    if (listed_) {
+      for (const ListedShape& l : listedShapes_)
+        if (overlaps(l.box, f.box)) consider(l.shape);
+    } else {
+      broadPhase.queryAabb(f.box, [&](ProxyId, std::uint64_t user) {
+        consider(static_cast<std::uint32_t>(user));
+        return true;
+      });
+    }
     queryParticipants(f.box, [&](std::uint32_t p) {
       if (p != fast) near_.push_back(p);
     });
@@ -270,6 +275,22 @@ void ContinuousPhase::run(const WorldDef& def, BodyStore& store,
     }
   }
   if (fast_.empty()) return;
+  // Few shapes outside the participants: list them (see listedShapes_). Every shape has a
+  // broad-phase proxy; the list is what a query would find, in a scan of a few boxes.
+  // Bodies that join later are skipped in the search as in a query (participantOf_).
+  std::uint32_t participantShapes = 0;
+  for (const FastBody& f : fast_)
+    participantShapes += static_cast<std::uint32_t>(store.bodies[f.body].shapes.size());
+  listedShapes_.clear();
+  listed_ = broadPhase.proxyCount() <= participantShapes + kMaxListedShapes;
+  if (listed_) {
+    for (std::uint32_t s = 0; s < store.shapes.size(); ++s) {
+      if (!store.shapeAlive(s)) continue;
+      const Shape& shape = store.shapes[s];
+      if (shape.def.sensor || participantOf_[shape.body] != kNoParticipant) continue;
+      listedShapes_.push_back({s, broadPhase.fatBox(shape.proxy)});
+    }
+  }
   sorted_.resize(fast_.size());
   for (std::uint32_t i = 0; i < fast_.size(); ++i)
     sorted_[i] = i;

@@ -122,6 +122,19 @@ class ContinuousPhase {
   };
   std::vector<std::uint32_t> waitHead_;  // per body index: first node, or kNoParticipant
   std::vector<WaitNode> waitNodes_;
+  // The shapes of everything that is not a participant when the phase starts (static,
+  // kinematic, sleeping and slow bodies) with their broad-phase boxes, when there are at
+  // most kMaxListedShapes of them: a search then scans them instead of querying the broad
+  // phase, whose tree holds the participants too (a thousand bullets in a walled box spent
+  // most of the phase walking tree nodes to find four walls). Empty with listed_ false:
+  // the broad phase is queried.
+  struct ListedShape {
+    std::uint32_t shape;
+    Aabb box;
+  };
+  static constexpr std::uint32_t kMaxListedShapes = 64;
+  std::vector<ListedShape> listedShapes_;
+  bool listed_ = false;
 };
 
 }  // namespace quack::detail

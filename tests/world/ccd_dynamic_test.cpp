@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <string>
 #include <vector>
@@ -159,13 +160,14 @@ TEST(CcdDynamic, FastBoxCrossingAnotherFastBoxPathAtRightAnglesHitsIt) {
 
 struct BoxRun {
   std::uint64_t hash = 0;
+  std::uint64_t bodiesHash = 0;  // the fast bodies' poses and velocities, bit for bit
   int steps = 0, escaped = 0, impacts = 0, callbacks = 0, capped = 0;
   bool sorted = true, callbacksMatch = true;
 };
 
 // `count` small fast bodies (discs and boxes, 60 to 200 m/s, restitution 1) in a closed box
-// of 1 cm walls, 20 m across.
-BoxRun runClosedBox(int count, int steps, BroadPhaseKind kind, unsigned seed) {
+// of 1 cm walls, 20 m across; `farStatics` static boxes far outside it, which nothing meets.
+BoxRun runClosedBox(int count, int steps, BroadPhaseKind kind, unsigned seed, int farStatics = 0) {
   World world = World::create({.gravity = {0, 0}, .broadPhase = kind}).value();
   constexpr float kHalf = 10.0f, kWall = 0.005f;
   testing::addStaticBox(world, {0, -kHalf}, {kHalf + kWall, kWall});
@@ -194,6 +196,8 @@ BoxRun runClosedBox(int count, int steps, BroadPhaseKind kind, unsigned seed) {
     }
     bodies.push_back(b);
   }
+  for (int i = 0; i < farStatics; ++i)
+    testing::addStaticBox(world, {500.0f + 3.0f * static_cast<float>(i), 500.0f}, {1.0f, 1.0f});
   BoxRun run;
   std::vector<float> seen;  // callback times in this step
   world.onImpact(~0ull, ~0ull, [&](World&, const ToiEvent& e, bool) {
@@ -221,6 +225,16 @@ BoxRun runClosedBox(int count, int steps, BroadPhaseKind kind, unsigned seed) {
     }
   }
   run.hash = world.stateHash();
+  std::uint64_t h = 14695981039346656037ull;  // FNV-1a over the bits
+  for (BodyId b : bodies) {
+    const Vec2 p = world.position(b), v = world.linearVelocity(b);
+    for (float x : {p.x, p.y, world.angle(b), v.x, v.y, world.angularVelocity(b)}) {
+      std::uint32_t bits = 0;
+      std::memcpy(&bits, &x, sizeof bits);
+      h = (h ^ bits) * 1099511628211ull;
+    }
+  }
+  run.bodiesHash = h;
   return run;
 }
 
@@ -250,6 +264,22 @@ TEST(CcdDynamic, SameBitsWhateverTheBroadPhase) {
     EXPECT_EQ(run.hash, reference.hash);
     EXPECT_EQ(run.impacts, reference.impacts);
   }
+}
+
+// A search takes the shapes outside the fast bodies from a list when there are at most 64
+// of them (continuous.hpp, kMaxListedShapes) and from a broad-phase query when there are
+// more: the same impacts and the same bits either way. Here 150 fast bodies and 4 walls
+// (listed) against the same with 100 static boxes far outside the walls, which nothing
+// meets (queried).
+TEST(CcdDynamic, ListedAndQueriedStillShapesGiveTheSameBits) {
+  const BoxRun listed = runClosedBox(150, 60, BroadPhaseKind::tree, 19);
+  const BoxRun queried = runClosedBox(150, 60, BroadPhaseKind::tree, 19, 100);
+  EXPECT_GT(listed.impacts, 100);
+  EXPECT_EQ(listed.escaped, 0);
+  EXPECT_EQ(queried.escaped, 0);
+  EXPECT_EQ(listed.impacts, queried.impacts);
+  EXPECT_EQ(listed.bodiesHash, queried.bodiesHash);
+  EXPECT_NE(listed.hash, queried.hash);  // the far boxes are in the world's hash
 }
 
 // Impact callbacks select by category, both ways round, like contact callbacks.
