@@ -1,6 +1,7 @@
 #include "quack/collision/toi.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <utility>
