@@ -157,7 +157,10 @@ GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, Transform aFromB, GjkCac
       observer.onPass(run, nullptr);
       break;
     }
-    previous = s;
+    // Only the vertices in use (a full copy moved three every iteration).
+    previous.count = s.count;
+    for (int i = 0; i < s.count; ++i)
+      previous.vertices[i] = s.vertices[i];
     previousClosest = v;
     previousVV = vv;
 

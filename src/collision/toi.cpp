@@ -147,8 +147,8 @@ float edgeStart(const ShapeProxy& n, const Sweep& sn, Rot qn, const Sweep& st, f
   // beyond the edge's point along it (q0 at t = 0, times |e|). The support is no nearer
   // than the edge's point, so an edge whose q0 is within reach tells nothing, and most
   // edges stop there, before the support is looked for.
-  // The edge the centre lies furthest beyond at t = 0 (largest q0 / |e|) is kept as an axis
-  // for the search along it (`facing`, n's frame, unit).
+  // The edge the centre lies furthest beyond at t = 0 (largest q0 / |e|) is kept for the
+  // search along its normal (`face`).
   Vec2 from = v[count - 1];
   float bestQ = 0.0f, bestEE = 1.0f;
   for (int i = 0; i < count; ++i) {
@@ -216,10 +216,16 @@ Status checkSweep(const Sweep& sweep, const std::string& name) {
 float computeMaxExtent(const ShapeProxy& proxy, Vec2 center) noexcept {
   const Vec2* points = proxy.points();
   const int count = proxy.count();
-  float best = 0.0f;
-  for (int i = 0; i < count; ++i)
-    best = maxf(best, distanceSquared(points[i], center));
-  return std::sqrt(best) + proxy.radius();
+  // Two running maxima, so that the chain of dependent comparisons is half as long (every
+  // query starts with two of these); the largest is the same whichever way it is taken.
+  float even = 0.0f, odd = 0.0f;
+  int i = 0;
+  for (; i + 1 < count; i += 2) {
+    even = maxf(even, distanceSquared(points[i], center));
+    odd = maxf(odd, distanceSquared(points[i + 1], center));
+  }
+  if (i < count) even = maxf(even, distanceSquared(points[i], center));
+  return std::sqrt(maxf(even, odd)) + proxy.radius();
 }
 
 ToiOutput computeToi(const ShapeProxy& a, const Sweep& sweepA, const ShapeProxy& b,
@@ -382,7 +388,9 @@ ToiOutput computeToi(const ShapeProxy& a, const Sweep& sweepA, const ShapeProxy&
   // other shape's point furthest along the axis towards the face (its support) to the
   // face's segment, which lies in its shape. When both lie in the band, so does the
   // distance. A support that lies off the face, or a face that is not at its shape's
-  // support (points in another order), leaves the two apart: false.
+  // support (points in another order), leaves the two apart: false. (Box2D's time of
+  // impact also works from a face's separation, with a root finder on it; here it is a
+  // bound on both sides, so nothing is assumed about which features meet.)
   auto settleOnFace = [&](float t, const Transform& xfA, const Transform& xfB, bool onA, Vec2 from,
                           Vec2 to, Vec2 n) {
     const Vec2 axisInA = invRotate(xfA.q, n), axisInB = invRotate(xfB.q, n);
@@ -403,16 +411,24 @@ ToiOutput computeToi(const ShapeProxy& a, const Sweep& sweepA, const ShapeProxy&
       }
     }
     const float lower = leastAlong - mostAlong + dot(n, xfB.p - xfA.p) - radii;
-    if (!(lower >= target && lower < target + tolerance)) return false;
-    // The face and the support, in the face's shape's frame.
+    // Touching (0) is GJK's to tell from overlapping.
+    if (!(lower > 0.0f && lower >= target && lower < target + tolerance)) return false;
+    // The support in the face's shape's frame, through the relative pose (subtracting the
+    // positions first, so that far from the origin their rounding does not enter).
     const Transform& faceXf = onA ? xfA : xfB;
-    const Vec2 tip = onA ? invTransformPoint(xfA, transformPoint(xfB, b.points()[leastB]))
-                         : invTransformPoint(xfB, transformPoint(xfA, a.points()[mostA]));
+    const Vec2 tip = onA ? transformPoint(invMul(xfA, xfB), b.points()[leastB])
+                         : transformPoint(invMul(xfB, xfA), a.points()[mostA]);
     const Vec2 e = to - from;
-    const float along = clampf(dot(tip - from, e) / lengthSquared(e), 0.0f, 1.0f);
+    const float along = dot(tip - from, e) / lengthSquared(e);
+    // The support must lie square over the segment (its foot within it), and the face at
+    // its shape's support along n (the two numbers agree to a sixteenth of the band): then
+    // the nearest points are the support and its foot, and n is the true normal. A foot
+    // past an end (a corner comes first, with a normal of its own, up to 37 degrees off the
+    // face's within the band) or a face short of the support is left to GJK.
+    if (!(along >= 0.0f && along <= 1.0f)) return false;
     const Vec2 onFace = from + along * e;
     const float upper = length(tip - onFace) - radii;
-    if (!(upper < target + tolerance)) return false;
+    if (!(upper < target + tolerance && upper - lower <= 0.0625f * tolerance)) return false;
     out.status = ToiStatus::hit;
     out.t = t;
     out.distance = upper;

@@ -276,7 +276,9 @@ void ContinuousPhase::run(const WorldDef& def, BodyStore& store,
   }
   if (fast_.empty()) return;
   // Few shapes outside the participants: list them (see listedShapes_). Every shape has a
-  // broad-phase proxy; the list is what a query would find, in a scan of a few boxes.
+  // broad-phase proxy; the list holds everything a query would find (its boxes are the fat
+  // ones, which hold the tight ones some broad phases test; an extra candidate is only an
+  // extra search, and the earliest impact does not depend on the candidates' order).
   // Bodies that join later are skipped in the search as in a query (participantOf_).
   std::uint32_t participantShapes = 0;
   for (const FastBody& f : fast_)
@@ -335,7 +337,7 @@ void ContinuousPhase::run(const WorldDef& def, BodyStore& store,
   // Sweep-and-prune restores its order lazily, in its first query after changes (the
   // solver has just moved proxies): one query here, so that those on the workers only read.
   // (Any valid box flushes it; an empty one at the origin always is valid.)
-  if (tasks.workers() > 1)
+  if (tasks.workers() > 1 && !listed_)
     broadPhase.queryAabb(Aabb{}, [](ProxyId, std::uint64_t) { return false; });
   tasks.parallelFor(static_cast<int>(fast_.size()), kMinSearchesPerTask,
                     [&](int begin, int end, int participant) {

@@ -92,9 +92,9 @@ struct ToiOutput {
   /// Between the shapes at t (hit: in [target, target + tol]). Separated: at least the
   /// target; the distance at the search's last evaluation, or, when bounds settled the
   /// query with no evaluation (iterations 0), a lower bound on the distance at tMax. A hit
-  /// with no evaluation was settled by a still shape's face: then it is the distance from
-  /// the point nearest the face to the face, an upper bound in the band (the true distance
-  /// lies between the gap along the face's normal and it, both in the band).
+  /// that a face settled without a last GJK call (docs/continuous.md, "The face
+  /// certificate") reports the distance from the other shape's support to the face, which
+  /// exceeds the true distance by at most a sixteenth of the band.
   float distance = 0.0f;
   Vec2 point;  ///< on A's surface, nearest B, at t (overlapped: deepest in B)
   /// Unit, from A to B at t (overlapped: EPA's direction to move B out; never zero). Zero
