@@ -294,25 +294,20 @@ ToiOutput computeToi(const ShapeProxy& a, const Sweep& sweepA, const ShapeProxy&
   Edge face;
   bool faceOnA = false;
   Vec2 faceAxis;
-  auto axisOf = [](const Edge& e, Rot q) { return rotate(q, normalize(rightPerp(e.to - e.from))); };
-  if (start <= tMax && sweepA.a1 == sweepA.a2) {
+  auto stillEdges = [&](const ShapeProxy& still, const Sweep& stillSweep, Rot q, const Sweep& other,
+                        float otherExtent, bool onA) {
+    if (!(start <= tMax && stillSweep.a1 == stillSweep.a2)) return;
     Edge edge;
-    start = maxf(start, edgeStart(a, sweepA, fixedA, sweepB, extentB, tMax, aim, bound, edge));
-    if (edge.set) {
-      face = edge;
-      faceOnA = true;
-      faceAxis = axisOf(edge, fixedA);
-    }
-  }
-  if (start <= tMax && sweepB.a1 == sweepB.a2) {
-    Edge edge;
-    start = maxf(start, edgeStart(b, sweepB, fixedB, sweepA, extentA, tMax, aim, bound, edge));
-    if (edge.set) {
-      face = edge;
-      faceOnA = false;
-      faceAxis = -axisOf(edge, fixedB);
-    }
-  }
+    start =
+        maxf(start, edgeStart(still, stillSweep, q, other, otherExtent, tMax, aim, bound, edge));
+    if (!edge.set) return;
+    face = edge;
+    faceOnA = onA;
+    const Vec2 outward = rotate(q, normalize(rightPerp(edge.to - edge.from)));
+    faceAxis = onA ? outward : -outward;
+  };
+  stillEdges(a, sweepA, fixedA, sweepB, extentB, true);
+  stillEdges(b, sweepB, fixedB, sweepA, extentA, false);
   if (!(start <= tMax)) {
     out.status = ToiStatus::separated;
     out.t = tMax;

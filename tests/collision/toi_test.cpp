@@ -313,6 +313,22 @@ TEST(Toi, OneShapeTurningAgreesWithDenseSampling) {
 // points given counter-clockwise, clockwise and shuffled (a proxy's points may come in any
 // order; an edge's line is taken through the support along its normal, so any order gives
 // true bounds, if fewer of them).
+// The kinds a still shape with edges can be, and every kind, for the random sweeps.
+constexpr ShapeType kStillKinds[] = {ShapeType::capsule, ShapeType::segment, ShapeType::polygon};
+constexpr ShapeType kMovingKinds[] = {ShapeType::circle, ShapeType::capsule, ShapeType::segment,
+                                      ShapeType::polygon};
+
+// A still shape's proxy with its points as given (counter-clockwise), reversed or shuffled
+// (`order` 0, 1, 2; the bounds must hold whatever the order). It views `points`.
+ShapeProxy reorderedProxy(const ShapeProxy& given, int order, std::mt19937& rng,
+                          Vec2 (&points)[kMaxPolygonVertices]) {
+  const int count = given.count();
+  std::copy(given.points(), given.points() + count, points);
+  if (order == 1) std::reverse(points, points + count);
+  if (order == 2) std::shuffle(points, points + count, rng);
+  return ShapeProxy::fromPoints(points, count, given.radius());
+}
+
 TEST(Toi, BoundsSettleOnlyPairsThatStayApart) {
   // Hand-worked: a 1 m rod (half-extent 0.500016 m about its centre) beside a wall whose
   // face is at x = -0.005, its centre moving from x = -0.6 to -0.55 while it makes half a
@@ -363,22 +379,13 @@ TEST(Toi, BoundsSettleOnlyPairsThatStayApart) {
 
   const unsigned seed = 7019;
   std::mt19937 rng(seed);
-  const ShapeType stillKinds[] = {ShapeType::capsule, ShapeType::segment, ShapeType::polygon};
-  const ShapeType kinds[] = {ShapeType::circle, ShapeType::capsule, ShapeType::segment,
-                             ShapeType::polygon};
   int settled = 0, byEdges = 0, searched = 0;
   for (int trial = 0; trial < 600; ++trial) {
     SCOPED_TRACE("seed " + std::to_string(seed) + " trial " + std::to_string(trial));
-    const ShapeGeometry sa = testing::randomShape(rng, stillKinds[trial % 3], 2.0f);
-    const ShapeGeometry sb = testing::randomShape(rng, kinds[(trial / 3) % 4], 0.7f);
-    const ShapeProxy given = makeProxy(sa);
+    const ShapeGeometry sa = testing::randomShape(rng, kStillKinds[trial % 3], 2.0f);
+    const ShapeGeometry sb = testing::randomShape(rng, kMovingKinds[(trial / 3) % 4], 0.7f);
     Vec2 points[kMaxPolygonVertices];
-    const int count = given.count();
-    std::copy(given.points(), given.points() + count, points);
-    const int order = (trial / 12) % 3;  // as given (counter-clockwise), reversed, shuffled
-    if (order == 1) std::reverse(points, points + count);
-    if (order == 2) std::shuffle(points, points + count, rng);
-    const ShapeProxy a = ShapeProxy::fromPoints(points, count, given.radius());
+    const ShapeProxy a = reorderedProxy(makeProxy(sa), (trial / 12) % 3, rng, points);
     const ShapeProxy b = makeProxy(sb);
     const float angleA = testing::uniform(rng, -kPi, kPi);
     const Sweep sweepA = still({testing::uniform(rng, -0.3f, 0.3f), 0.0f}, angleA);
@@ -462,22 +469,13 @@ TEST(Toi, StillFaceSettlesHitsOnlyWhereTheTipMeetsIt) {
   // answer against dense sampling; every settled hit against GJK at its time.
   const unsigned seed = 7023;
   std::mt19937 rng(seed);
-  const ShapeType stillKinds[] = {ShapeType::capsule, ShapeType::segment, ShapeType::polygon};
-  const ShapeType kinds[] = {ShapeType::circle, ShapeType::capsule, ShapeType::segment,
-                             ShapeType::polygon};
   int settled = 0, searched = 0;
   for (int trial = 0; trial < 600; ++trial) {
     SCOPED_TRACE("seed " + std::to_string(seed) + " trial " + std::to_string(trial));
-    const ShapeGeometry gs = testing::randomShape(rng, stillKinds[trial % 3], 2.0f);
-    const ShapeGeometry gm = testing::randomShape(rng, kinds[(trial / 3) % 4], 0.7f);
-    const ShapeProxy given = makeProxy(gs);
+    const ShapeGeometry gs = testing::randomShape(rng, kStillKinds[trial % 3], 2.0f);
+    const ShapeGeometry gm = testing::randomShape(rng, kMovingKinds[(trial / 3) % 4], 0.7f);
     Vec2 points[kMaxPolygonVertices];
-    const int count = given.count();
-    std::copy(given.points(), given.points() + count, points);
-    const int order = (trial / 12) % 3;
-    if (order == 1) std::reverse(points, points + count);
-    if (order == 2) std::shuffle(points, points + count, rng);
-    const ShapeProxy fixed = ShapeProxy::fromPoints(points, count, given.radius());
+    const ShapeProxy fixed = reorderedProxy(makeProxy(gs), (trial / 12) % 3, rng, points);
     const ShapeProxy mover = makeProxy(gm);
     const Sweep fixedSweep =
         still({testing::uniform(rng, -0.3f, 0.3f), 0.0f}, testing::uniform(rng, -kPi, kPi));
