@@ -521,7 +521,8 @@ ToiOutput computeToi(const ShapeProxy& a, const Sweep& sweepA, const ShapeProxy&
   // Along the facing edge's axis, the second-order search moves the start on, with no GJK
   // call: the turning shape's tip is what comes first, and the search follows it. Landing
   // on tMax means the gap along the axis never reaches the aim: separated.
-  if (lengthSquared(faceAxis) > 0.0f && start < tMax) {
+  const bool alongFace = lengthSquared(faceAxis) > 0.0f && start < tMax;
+  if (alongFace) {
     Sample axis;
     axis.t = start;
     axis.normal = faceAxis;
@@ -533,13 +534,14 @@ ToiOutput computeToi(const ShapeProxy& a, const Sweep& sweepA, const ShapeProxy&
       return out;
     }
     start = maxf(start, reached);
-    // Where the search lands the still shape's face may settle the query.
-    if (settleOnFace(start, poseAt(sweepA, fixedA, start), poseAt(sweepB, fixedB, start), faceOnA,
-                     face.from, face.to, faceAxis))
-      return out;
   }
-  // A pair that starts later than 0 is apart at 0 too: it cannot be overlapped.
-  Sample lo = evaluate(start);
+  // Where the search along the face lands the still shape's face may settle the query;
+  // otherwise the first evaluation is there, at the same poses. A pair that starts later
+  // than 0 is apart at 0 too: it cannot be overlapped.
+  const Transform startA = poseAt(sweepA, fixedA, start), startB = poseAt(sweepB, fixedB, start);
+  if (alongFace && settleOnFace(start, startA, startB, faceOnA, face.from, face.to, faceAxis))
+    return out;
+  Sample lo = evaluatePosed(start, startA, startB);
   if (start == 0.0f && lo.distance <= 0.0f) {
     PenetrationOutput p =
         computePenetration(a, transformAt(sweepA, 0.0f), b, transformAt(sweepB, 0.0f));
