@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <fstream>
 #include <iostream>
+#include <new>
 #include <string>
 
 #include "quack/world/tasks.hpp"
@@ -114,6 +115,11 @@ int main(int argc, char** argv) {
     // Usage errors ("--steps: abc is not a whole number") exit 2, as bad input does;
     // --help and --version exit 0.
     return app.exit(e) == 0 ? 0 : 2;
+  } catch (const std::bad_alloc&) {
+    // A scene too big for the memory there is (docs/world.md, "What a pile costs"): a
+    // message and exit 2, as for any input the program cannot take, not an abort.
+    std::cerr << "quack: out of memory (the scene needs more than this process may use)\n";
+    return 2;
   }
   return status;
 }

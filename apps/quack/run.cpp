@@ -304,12 +304,23 @@ std::string timingJson(std::uint64_t steps, int threads, double loadMs, double b
 }
 
 // A run snapshot: "QUACKRUN", a format version (u32), the event totals so far (four u64:
-// begin, end, hit, sensor), then the world's dynamic snapshot (World::snapshot). Little-endian.
-// The world's part is checked by World::restore (checksum, version, structure: the scene
-// must be the one the snapshot was taken of).
+// begin, end, hit, sensor), a checksum (u64, FNV-1a of every byte before it), then the
+// world's dynamic snapshot (World::snapshot), which carries its own checksum and is checked
+// by World::restore (version, structure: the scene must be the one the snapshot was taken
+// of). So every byte of the file is covered. Little-endian.
 constexpr char kRunMagic[8] = {'Q', 'U', 'A', 'C', 'K', 'R', 'U', 'N'};
-constexpr std::uint32_t kRunVersion = 1;
-constexpr std::size_t kRunHeader = 8 + 4 + 4 * 8;
+constexpr std::uint32_t kRunVersion = 2;
+constexpr std::size_t kRunChecksumAt = 8 + 4 + 4 * 8;
+constexpr std::size_t kRunHeader = kRunChecksumAt + 8;
+
+std::uint64_t fnv1a(const char* data, std::size_t size) {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  for (std::size_t i = 0; i < size; ++i) {
+    h ^= static_cast<unsigned char>(data[i]);
+    h *= 0x100000001b3ull;
+  }
+  return h;
+}
 
 std::string writeRunSnapshot(const EventTotals& totals, const std::vector<std::uint8_t>& world) {
   std::string out(kRunMagic, sizeof kRunMagic);
@@ -320,37 +331,47 @@ std::string writeRunSnapshot(const EventTotals& totals, const std::vector<std::u
   put(kRunVersion, 4);
   for (std::uint64_t v : {totals.begin, totals.end, totals.hit, totals.sensor})
     put(v, 8);
+  put(fnv1a(out.data(), out.size()), 8);
   out.append(reinterpret_cast<const char*>(world.data()), world.size());
   return out;
 }
 
 // Reads a run snapshot file into the world and the totals; the message names the file.
+// The header is read and checked before the rest, so that a file that is not a snapshot
+// (or an endless one, /dev/zero) is refused without reading it whole.
 Status readRunSnapshot(const std::string& path, World& world, EventTotals& totals) {
   std::error_code ec;
   if (fs::is_directory(path, ec)) return fail(path + ": is a directory");
   std::FILE* f = std::fopen(path.c_str(), "rb");
   if (f == nullptr) return fail(path + ": " + errnoText(errno));
-  std::vector<std::uint8_t> bytes;
-  std::uint8_t buf[65536];
-  std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0)
-    bytes.insert(bytes.end(), buf, buf + n);
-  const bool readError = std::ferror(f) != 0;
-  std::fclose(f);
-  if (readError) return fail(path + ": read error");
-  if (bytes.size() < 8 || std::memcmp(bytes.data(), kRunMagic, 8) != 0)
-    return fail(path + ": not a quack run snapshot (it does not start with \"QUACKRUN\")");
-  if (bytes.size() < kRunHeader)
-    return fail(path + ": truncated (" + std::to_string(bytes.size()) + " bytes)");
+  std::vector<std::uint8_t> bytes(kRunHeader);
+  const std::size_t got = std::fread(bytes.data(), 1, kRunHeader, f);
+  auto closed = [&](Status s) {
+    std::fclose(f);
+    return s;
+  };
+  if (std::ferror(f) != 0) return closed(fail(path + ": read error"));
+  if (got < 8 || std::memcmp(bytes.data(), kRunMagic, 8) != 0)
+    return closed(fail(path + ": not a quack run snapshot (it does not start with \"QUACKRUN\")"));
   auto get = [&](std::size_t at, int count) {
     std::uint64_t v = 0;
     for (int i = 0; i < count; ++i)
       v |= static_cast<std::uint64_t>(bytes[at + static_cast<std::size_t>(i)]) << (8 * i);
     return v;
   };
-  if (get(8, 4) != kRunVersion)
-    return fail(path + ": run snapshot version " + std::to_string(get(8, 4)) +
-                " is not this build's (" + std::to_string(kRunVersion) + ")");
+  if (got >= 12 && get(8, 4) != kRunVersion)
+    return closed(fail(path + ": run snapshot version " + std::to_string(get(8, 4)) +
+                       " is not this build's (" + std::to_string(kRunVersion) + ")"));
+  if (got < kRunHeader)
+    return closed(fail(path + ": truncated (" + std::to_string(got) + " bytes)"));
+  if (get(kRunChecksumAt, 8) != fnv1a(reinterpret_cast<const char*>(bytes.data()), kRunChecksumAt))
+    return closed(fail(path + ": the header's checksum does not match (the file is corrupt)"));
+  std::uint8_t buf[65536];
+  std::size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0)
+    bytes.insert(bytes.end(), buf, buf + n);
+  if (std::ferror(f) != 0) return closed(fail(path + ": read error"));
+  std::fclose(f);
   EventTotals t{get(12, 8), get(20, 8), get(28, 8), get(36, 8)};
   Status s = world.restore(std::span<const std::uint8_t>(bytes).subspan(kRunHeader));
   if (!s) return fail(path + ": " + s.message());
@@ -478,7 +499,7 @@ int runScene(const RunOptions& options, std::ostream& out, std::ostream& err) {
     if (gSignal != 0) return interruptedStatus();
     Status s = sw.world.step();
     if (!s) {
-      err << "quack run: step " << i << ": " << s.message() << '\n';
+      err << "quack run: step " << firstStep + i + 1 << ": " << s.message() << '\n';
       return kRunFailed;
     }
     const StepEvents& e = sw.world.events();
@@ -486,7 +507,7 @@ int runScene(const RunOptions& options, std::ostream& out, std::ostream& err) {
     totals.end += e.end.size();
     totals.hit += e.hit.size();
     totals.sensor += e.sensorBegin.size();
-    if (!options.events.empty()) appendEventLines(eventLines, i + 1, e);
+    if (!options.events.empty()) appendEventLines(eventLines, firstStep + i + 1, e);
     if (replay) replay->record(sw);
     if (!takeSnapshot()) return kRunFailed;
     progress.update([&] {

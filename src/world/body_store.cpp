@@ -67,7 +67,12 @@ std::uint32_t BodyStore::createShape(std::uint32_t body, const ShapeDef& def,
   s.geometry = geometry;
   s.def = def;
   bodies[body].shapes.push_back(index);
-  updateMass(body);
+  // A static body has no mass and its centre stays at its origin: only its extents grow, by
+  // this shape (a chain of n segments would otherwise cost n^2).
+  if (bodies[body].type == BodyType::staticBody)
+    addExtents(bodies[body], geometry);
+  else
+    updateMass(body);
   return index;
 }
 
@@ -86,6 +91,34 @@ void BodyStore::releaseBody(std::uint32_t index) {
   b.pendingDestroy = false;
   b.shapes.clear();
   bodyIds.release(index);
+}
+
+namespace {
+
+// A shape's thickness for continuous collision: a segment has none, so the linear slop
+// stands in.
+float shapeThickness(const ShapeGeometry& g) {
+  float thickness = kLinearSlop;
+  if (const Circle* c = std::get_if<Circle>(&g)) thickness = c->radius;
+  if (const Capsule* c = std::get_if<Capsule>(&g)) thickness = c->radius;
+  if (const Polygon* p = std::get_if<Polygon>(&g)) {
+    float inner = std::numeric_limits<float>::max();
+    for (int i = 0; i < p->count; ++i)
+      inner = minf(inner, dot(p->normals[i], p->vertices[i] - p->centroid));
+    thickness = maxf(inner + p->radius, kLinearSlop);
+  }
+  return thickness;
+}
+
+}  // namespace
+
+// Sizes for continuous collision: the largest reach from the centre of mass, and the
+// thinnest shape's half-thickness. Max and min of exact values: the order the shapes come in
+// does not change the bits, so adding one shape at a time gives what a full pass gives.
+void BodyStore::addExtents(Body& b, const ShapeGeometry& g) {
+  b.maxExtent = maxf(b.maxExtent, computeMaxExtent(makeProxy(g), b.localCenter));
+  const float thickness = shapeThickness(g);
+  b.minExtent = b.minExtent == 0.0f ? thickness : minf(b.minExtent, thickness);
 }
 
 void BodyStore::updateMass(std::uint32_t index) {
@@ -114,20 +147,8 @@ void BodyStore::updateMass(std::uint32_t index) {
   // thinnest shape's half-thickness (a segment has none: the linear slop stands in).
   b.maxExtent = 0.0f;
   b.minExtent = 0.0f;
-  for (std::uint32_t s : b.shapes) {
-    const ShapeGeometry& g = shapes[s].geometry;
-    b.maxExtent = maxf(b.maxExtent, computeMaxExtent(makeProxy(g), b.localCenter));
-    float thickness = kLinearSlop;
-    if (const Circle* c = std::get_if<Circle>(&g)) thickness = c->radius;
-    if (const Capsule* c = std::get_if<Capsule>(&g)) thickness = c->radius;
-    if (const Polygon* p = std::get_if<Polygon>(&g)) {
-      float inner = std::numeric_limits<float>::max();
-      for (int i = 0; i < p->count; ++i)
-        inner = minf(inner, dot(p->normals[i], p->vertices[i] - p->centroid));
-      thickness = maxf(inner + p->radius, kLinearSlop);
-    }
-    b.minExtent = b.minExtent == 0.0f ? thickness : minf(b.minExtent, thickness);
-  }
+  for (std::uint32_t s : b.shapes)
+    addExtents(b, shapes[s].geometry);
   // Keep the origin where it is; the centre of mass follows the shapes.
   Vec2 oldCenter = b.center;
   b.center = transformPoint(b.xf, b.localCenter);

@@ -12,8 +12,20 @@
 #include "quack/geometry/mass.hpp"
 #include "quack/math/transform.hpp"
 #include "quack/world/types.hpp"
+#include "quack/world/world.hpp"  // kMaxLinearSpeed
 
 namespace quack::detail {
+
+// `v` shortened to kMaxLinearSpeed if it is faster. Components are clamped first, so even
+// an infinite component gives a finite result. The solver and the continuous phase's
+// impacts both hold bodies to the limit with it.
+inline Vec2 clampSpeed(Vec2 v) {
+  constexpr float kMaxSquared = kMaxLinearSpeed * kMaxLinearSpeed;
+  if (dot(v, v) <= kMaxSquared) return v;
+  v = {clampf(v.x, -kMaxLinearSpeed, kMaxLinearSpeed),
+       clampf(v.y, -kMaxLinearSpeed, kMaxLinearSpeed)};
+  return (kMaxLinearSpeed / length(v)) * v;
+}
 
 struct Body {
   BodyType type = BodyType::dynamicBody;
@@ -85,6 +97,8 @@ class BodyStore {
 
   /// Mass, centre of mass, inertia and the sizes continuous collision uses, from the shapes.
   void updateMass(std::uint32_t body);
+  // Grows the body's continuous-collision extents by one more shape.
+  static void addExtents(Body& b, const ShapeGeometry& g);
   /// True when every shape of `body`, placed by `worldFromBody`, lies within the broad
   /// phase's range (kMaxCoordinate): the edge of the world.
   bool shapesWithinWorld(std::uint32_t body, Transform worldFromBody) const;

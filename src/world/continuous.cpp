@@ -448,11 +448,20 @@ void ContinuousPhase::run(const WorldDef& def, BodyStore& store,
     }
 
     // Immediate velocity response at the impact, with both bodies' masses: restitution as
-    // the solver's (the larger of the pair, above the threshold) and Coulomb friction (the
+    // the solver's (the larger of the pair, above the threshold), then Coulomb friction (the
     // solver's mix) capped by the normal impulse. The impulse acts at the middle of the
     // contact manifold at the impact poses, so that a face meeting a face is pushed square
     // (TOI's single witness point is a corner, and an impulse there would start a spurious
     // spin).
+    //
+    // The two impulses are applied one after the other, friction from the velocity the
+    // normal impulse left: each is then a one-dimensional impulse that cannot add kinetic
+    // energy (restitution e <= 1 loses (1 - e^2) of the normal part; friction, clamped, only
+    // slows the sliding). Computed together from the velocity before the impact, a turning
+    // body's friction and normal impulses act on each other through its inertia and can add
+    // energy at every impact (four bars with friction in a closed box gained 9,000x their
+    // energy in 25 steps). Both bodies are then held to the speed limits at once, so that a
+    // restitution above 1 cannot drive them past the limits inside a step.
     Vec2 n = e.normal;
     Vec2 hitPoint = e.point;
     const Transform xfAt = {c - rotate(Rot::fromAngle(angle), b.localCenter),
@@ -468,9 +477,17 @@ void ContinuousPhase::run(const WorldDef& def, BodyStore& store,
     }
     const Vec2 rA = hitPoint - c;
     const Vec2 rB = hitPoint - otherCenter;
-    const Vec2 vB = ob.v + cross(ob.w, rB);  // zero for static bodies
-    const Vec2 dv = vB - (b.v + cross(b.w, rA));
-    const float vn = dot(dv, n);
+    // Velocity of B's point relative to A's at the hit point (B's is zero when static).
+    auto relativeVelocity = [&] { return ob.v + cross(ob.w, rB) - (b.v + cross(b.w, rA)); };
+    auto applyImpulse = [&](Vec2 impulse) {  // on B; A gets its opposite
+      b.v -= b.invMass * impulse;
+      b.w -= b.invInertia * cross(rA, impulse);
+      if (otherMoves) {
+        ob.v += ob.invMass * impulse;
+        ob.w += ob.invInertia * cross(rB, impulse);
+      }
+    };
+    const float vn = dot(relativeVelocity(), n);
     bool impulseApplied = false;
     if (vn < 0.0f) {
       float e0 = maxf(shapeA.def.restitution, shapeB.def.restitution);
@@ -480,21 +497,23 @@ void ContinuousPhase::run(const WorldDef& def, BodyStore& store,
       if (otherMoves) k += ob.invMass + ob.invInertia * rnB * rnB;
       if (k > 0.0f) {
         const float jn = -(1.0f + e0) * vn / k;
+        applyImpulse(jn * n);
         const Vec2 tangent = rightPerp(n);
         const float rtA = cross(rA, tangent), rtB = cross(rB, tangent);
         float kt = b.invMass + b.invInertia * rtA * rtA;
         if (otherMoves) kt += ob.invMass + ob.invInertia * rtB * rtB;
         const float mu = std::sqrt(shapeA.def.friction * shapeB.def.friction);
-        const float jt = kt > 0.0f ? clampf(-dot(dv, tangent) / kt, -mu * jn, mu * jn) : 0.0f;
-        const Vec2 impulse = jn * n + jt * tangent;  // on B; A gets its opposite
-        impulseApplied = true;
-        b.v -= b.invMass * impulse;
-        b.w -= b.invInertia * cross(rA, impulse);
+        const float jt =
+            kt > 0.0f ? clampf(-dot(relativeVelocity(), tangent) / kt, -mu * jn, mu * jn) : 0.0f;
+        applyImpulse(jt * tangent);
+        b.v = clampSpeed(b.v);
+        b.w = clampf(b.w, -kMaxAngularSpeed, kMaxAngularSpeed);
         if (otherMoves) {
-          ob.v += ob.invMass * impulse;
-          ob.w += ob.invInertia * cross(rB, impulse);
+          ob.v = clampSpeed(ob.v);
+          ob.w = clampf(ob.w, -kMaxAngularSpeed, kMaxAngularSpeed);
           pushed.push_back(otherBody);
         }
+        impulseApplied = true;
       }
     }
     events.events.toi.push_back({e.time, store.shapeId(e.shapeA), store.shapeId(e.shapeB), e.point,

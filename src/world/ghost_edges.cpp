@@ -447,8 +447,9 @@ namespace quack {
 
 Result<std::vector<ShapeId>> World::createChain(BodyId bodyId, const ShapeDef& def,
                                                 std::span<const Vec2> points, bool loop) {
+  if (Status u = checkUsable("createChain"); !u) return fail(u.message());
   if (Status s = checkBody(bodyId, "createChain"); !s) return fail(s.message());
-  if (s_->store.bodies[bodyId.index].type != BodyType::staticBody)
+  if (state().store.bodies[bodyId.index].type != BodyType::staticBody)
     return fail("createChain: body must be static (chains are terrain)");
   const std::size_t n = points.size();
   if (n < (loop ? 3u : 2u)) {
@@ -458,6 +459,21 @@ Result<std::vector<ShapeId>> World::createChain(BodyId bodyId, const ShapeDef& d
   for (std::size_t i = 0; i < n; ++i) {
     if (!isFinite(points[i]))
       return fail("createChain: points[" + std::to_string(i) + "] is not finite");
+  }
+  if (loop) {
+    // A loop must enclose area: points all on one line would make a closed chain of
+    // segments folded back on themselves, whose sides face each other.
+    std::size_t far = 0;
+    for (std::size_t i = 1; i < n; ++i)
+      if (distanceSquared(points[0], points[i]) > distanceSquared(points[0], points[far])) far = i;
+    const Vec2 axis = normalize(points[far] - points[0]);
+    float offLine = 0.0f;
+    for (std::size_t i = 0; i < n; ++i)
+      offLine = maxf(offLine, absf(cross(axis, points[i] - points[0])));
+    if (offLine <= kLinearSlop)
+      return fail(
+          "createChain: points: a loop's points lie on one line (within kLinearSlop, "
+          "5 mm), so it encloses no area; give loop = false for an open chain");
   }
   const std::size_t segments = loop ? n : n - 1;
   for (std::size_t i = 0; i < segments; ++i) {
@@ -473,10 +489,10 @@ Result<std::vector<ShapeId>> World::createChain(BodyId bodyId, const ShapeDef& d
         seg ? createShape(bodyId, def, *seg) : Result<ShapeId>(fail(seg.error().message));
     if (!id) {
       for (ShapeId s : out)
-        destroyShapeNow(s.index);
+        destroyShapeNow(*s_, s.index);
       return fail("createChain: segment " + std::to_string(i) + ": " + id.error().message);
     }
-    detail::StaticEdges& e = s_->store.shapes[id->index].edges;
+    detail::StaticEdges& e = state().store.shapes[id->index].edges;
     e.chain = true;
     e.hasPrev = loop || i > 0;
     e.hasNext = loop || i + 1 < segments;
@@ -484,7 +500,7 @@ Result<std::vector<ShapeId>> World::createChain(BodyId bodyId, const ShapeDef& d
     e.next = points[(i + 2) % n];
     out.push_back(*id);
   }
-  s_->edges.markDirty();
+  state().edges.markDirty();
   return out;
 }
 

@@ -1121,16 +1121,17 @@ std::vector<std::uint8_t> structureBytes(const WorldState& s) {
 }  // namespace detail
 
 Result<std::vector<std::uint8_t>> World::snapshot(SnapshotKind kind) const {
-  if (s_->inStep) return fail("snapshot: called during a step or from an event callback");
+  if (Status u = checkUsable("snapshot"); !u) return fail(u.message());
+  if (state().inStep) return fail("snapshot: called during a step or from an event callback");
   if (kind != SnapshotKind::full && kind != SnapshotKind::dynamic)
     return fail("snapshot: kind is not a SnapshotKind");
-  const std::vector<std::uint8_t> structure = detail::structureBytes(*s_);
+  const std::vector<std::uint8_t> structure = detail::structureBytes(state());
   detail::Writer payload;
   if (kind == SnapshotKind::full) {
     payload.u64(structure.size());
     payload.bytes.insert(payload.bytes.end(), structure.begin(), structure.end());
   }
-  detail::SnapshotCodec::writeMotion(payload, *s_);
+  detail::SnapshotCodec::writeMotion(payload, state());
 
   detail::Writer out;
   out.bytes.assign(std::begin(detail::kMagic), std::end(detail::kMagic));
@@ -1218,6 +1219,11 @@ Result<Parsed> parseHeader(std::span<const std::uint8_t> bytes) {
 }  // namespace
 
 Status World::restore(std::span<const std::uint8_t> bytes) {
+  // A world that refuses changes after a failed step takes a snapshot: that is the way out.
+  if (!s_)
+    return fail(
+        "restore: this World was moved from and holds nothing (use the World it was "
+        "moved to)");
   if (s_->inStep) return fail("restore: called during a step or from an event callback");
   Result<Parsed> parsed = parseHeader(bytes);
   if (!parsed) return fail("restore: " + parsed.error().message);

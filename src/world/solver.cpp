@@ -29,16 +29,6 @@ Softness makeSoftness(float hertz, float zeta, float h) {
   return {omega / a1, a2 * a3, a3};
 }
 
-// `v` shortened to kMaxLinearSpeed if it is faster. Components are clamped first, so even
-// an infinite component gives a finite result.
-Vec2 clampSpeed(Vec2 v) {
-  constexpr float kMaxSquared = kMaxLinearSpeed * kMaxLinearSpeed;
-  if (dot(v, v) <= kMaxSquared) return v;
-  v = {clampf(v.x, -kMaxLinearSpeed, kMaxLinearSpeed),
-       clampf(v.y, -kMaxLinearSpeed, kMaxLinearSpeed)};
-  return (kMaxLinearSpeed / length(v)) * v;
-}
-
 Rot integrateRotation(Rot q, float deltaAngle) {
   // First-order update then renormalise: exact to second order per sub-step, and cheaper
   // than cos/sin.

@@ -47,7 +47,12 @@ void Job::participate(int participant) {
     auto tryRun = [&](int b) {
       if (flags[b].load(std::memory_order_relaxed) != 0) return false;
       if (flags[b].exchange(1, std::memory_order_acquire) != 0) return false;
-      exec(context, s, b, participant);
+      try {
+        exec(context, s, b, participant);
+      } catch (...) {
+        // Only the first is kept; the rest of the job still runs so the stages stay in step.
+        if (!failed.exchange(true, std::memory_order_acq_rel)) error = std::current_exception();
+      }
       ++done;
       return true;
     };
@@ -179,6 +184,7 @@ void TaskRunner::run(Job& job, const std::vector<int>& blockCounts) {
   job.participants = workers_;
   if (enqueue_ == nullptr) {
     pool_->run(job);
+    if (job.failed.load(std::memory_order_acquire)) std::rethrow_exception(job.error);
     return;
   }
   // Participants 1.. through the game's scheduler, one item each; this thread is 0. The
@@ -190,6 +196,7 @@ void TaskRunner::run(Job& job, const std::vector<int>& blockCounts) {
   void* handle = enqueue_(participant, workers_ - 1, 1, &job, user_);
   job.participate(0);
   if (handle != nullptr) finish_(handle, user_);
+  if (job.failed.load(std::memory_order_acquire)) std::rethrow_exception(job.error);
 }
 
 }  // namespace quack::detail

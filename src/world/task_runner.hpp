@@ -18,6 +18,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
+#include <exception>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -39,6 +40,11 @@ struct Job {
   std::atomic<std::uint32_t>* claimed = nullptr;  // per block of every stage
   std::atomic<int>* finished = nullptr;           // per stage: blocks finished
   int participants = 1;
+  // The first exception a block threw (an allocation failure: the phases throw nothing
+  // else), kept so that the thread that started the job rethrows it once every participant
+  // is done; a block that throws still counts as finished, so nobody waits for it forever.
+  std::exception_ptr error;
+  std::atomic<bool> failed{false};
 
   /// Walks every stage as `participant` (see above).
   void participate(int participant);

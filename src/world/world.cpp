@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <new>
 #include <string>
 
 #include "quack/geometry/bounds.hpp"
@@ -103,6 +104,24 @@ World::World(World&&) noexcept = default;
 World& World::operator=(World&&) noexcept = default;
 World::~World() = default;
 
+detail::WorldState& World::state() const noexcept {
+  if (s_) return *s_;
+  // What a moved-from World reads: an empty world that no call changes (checkUsable refuses
+  // every change first). World id 0 matches no handle, so every handle reads as invalid.
+  static detail::WorldState empty(WorldDef{}, BroadPhase::create({}).value(), 0);
+  return empty;
+}
+
+Status World::checkUsable(const char* function) const {
+  if (!s_)
+    return fail(std::string(function) +
+                ": this World was moved from and holds nothing (use the World it was moved to)");
+  if (!s_->failure.empty())
+    return fail(std::string(function) + ": " + s_->failure +
+                "; restore a snapshot into this world (World::restore) to go on");
+  return {};
+}
+
 Result<World> World::create(const WorldDef& def) {
   if (Status s = detail::checkWorldDef(def); !s) return fail(s.message());
   BroadPhaseConfig config;
@@ -114,44 +133,44 @@ Result<World> World::create(const WorldDef& def) {
 }
 
 const WorldDef& World::def() const noexcept {
-  return s_->def;
+  return state().def;
 }
 std::uint32_t World::id() const noexcept {
-  return s_->store.worldId();
+  return state().store.worldId();
 }
 std::size_t World::bodyCount() const noexcept {
-  return s_->store.bodyIds.liveCount();
+  return state().store.bodyIds.liveCount();
 }
 std::size_t World::shapeCount() const noexcept {
-  return s_->store.shapeIds.liveCount();
+  return state().store.shapeIds.liveCount();
 }
 std::size_t World::contactCount() const noexcept {
-  return s_->contacts.count();
+  return state().contacts.count();
 }
 std::size_t World::touchingContactCount() const noexcept {
-  return s_->contacts.touchingCount();
+  return state().contacts.touchingCount();
 }
 const StepEvents& World::events() const noexcept {
-  return s_->events.events;
+  return state().events.events;
 }
 std::uint64_t World::stepCount() const noexcept {
-  return s_->stepCount;
+  return state().stepCount;
 }
 double World::time() const noexcept {
-  return s_->time;
+  return state().time;
 }
 const BroadPhase& World::broadPhase() const noexcept {
-  return s_->broadPhase;
+  return state().broadPhase;
 }
 
 // ---- handles ---------------------------------------------------------------------------
 
 bool World::isValid(BodyId id) const noexcept {
-  return s_->store.isValid(id);
+  return state().store.isValid(id);
 }
 
 bool World::isValid(ShapeId id) const noexcept {
-  return s_->store.isValid(id);
+  return state().store.isValid(id);
 }
 
 namespace {
@@ -173,20 +192,21 @@ Status describeBadHandle(Id id, const char* function, const char* what, std::uin
 
 Status World::checkBody(BodyId id, const char* function) const {
   if (isValid(id)) return {};
-  return describeBadHandle(id, function, "body", id.world == 0 ? 0 : s_->store.worldId(),
-                           s_->store.bodyIds.capacity());
+  return describeBadHandle(id, function, "body", id.world == 0 ? 0 : state().store.worldId(),
+                           state().store.bodyIds.capacity());
 }
 
 Status World::checkShape(ShapeId id, const char* function) const {
   if (isValid(id)) return {};
-  return describeBadHandle(id, function, "shape", id.world == 0 ? 0 : s_->store.worldId(),
-                           s_->store.shapeIds.capacity());
+  return describeBadHandle(id, function, "shape", id.world == 0 ? 0 : state().store.worldId(),
+                           state().store.shapeIds.capacity());
 }
 
 // ---- bodies ------------------------------------------------------------------------------
 
 Result<BodyId> World::createBody(const BodyDef& def) {
-  if (s_->inStep && !s_->inCallbacks) return fail("createBody: called during step");
+  if (Status u = checkUsable("createBody"); !u) return fail(u.message());
+  if (state().inStep && !state().inCallbacks) return fail("createBody: called during step");
   if (!isFinite(def.position)) return fail("createBody: BodyDef.position is not finite");
   if (!withinCoordinateLimit(def.position))
     return fail("createBody: BodyDef.position " + describe(def.position) +
@@ -219,43 +239,45 @@ Result<BodyId> World::createBody(const BodyDef& def) {
   if (!isFinite(def.sleepThreshold) || def.sleepThreshold < 0.0f)
     return fail("createBody: BodyDef.sleepThreshold must be finite and >= 0, got " +
                 std::to_string(def.sleepThreshold));
-  const std::uint32_t index = s_->store.createBody(def);
+  const std::uint32_t index = state().store.createBody(def);
   // A body that may not sleep, in a world that may not, starts awake whatever isAwake says.
-  const bool awake = def.isAwake || !def.enableSleep || !s_->def.enableSleep;
-  s_->islands.addBody(s_->store, index, awake);
-  return s_->store.bodyId(index);
+  const bool awake = def.isAwake || !def.enableSleep || !state().def.enableSleep;
+  state().islands.addBody(state().store, index, awake);
+  return state().store.bodyId(index);
 }
 
 Status World::destroyBody(BodyId id) {
+  if (Status u = checkUsable("destroyBody"); !u) return u;
   if (Status s = checkBody(id, "destroyBody"); !s) return s;
-  if (s_->inStep && !s_->inCallbacks) return fail("destroyBody: called during step");
-  if (s_->inCallbacks) {
-    Body& b = s_->store.bodies[id.index];
+  if (state().inStep && !state().inCallbacks) return fail("destroyBody: called during step");
+  if (state().inCallbacks) {
+    Body& b = state().store.bodies[id.index];
     if (!b.pendingDestroy) {
       b.pendingDestroy = true;
-      s_->pendingBodyDestroy.push_back(id.index);
+      state().pendingBodyDestroy.push_back(id.index);
     }
     return {};
   }
-  destroyBodyNow(id.index);
+  destroyBodyNow(*s_, id.index);
   return {};
 }
 
-void World::destroyBodyNow(std::uint32_t index) {
-  std::vector<std::uint32_t> shapes = s_->store.bodies[index].shapes;
+void World::destroyBodyNow(detail::WorldState& w, std::uint32_t index) {
+  std::vector<std::uint32_t> shapes = w.store.bodies[index].shapes;
   for (std::uint32_t s : shapes)
-    destroyShapeNow(s);
-  s_->islands.removeBody(s_->store, index);
-  s_->islands.applyContactChanges(s_->store, s_->contacts);
-  s_->store.releaseBody(index);
+    destroyShapeNow(w, s);
+  w.islands.removeBody(w.store, index);
+  w.islands.applyContactChanges(w.store, w.contacts);
+  w.store.releaseBody(index);
 }
 
 // ---- shapes -------------------------------------------------------------------------------
 
 Result<ShapeId> World::createShape(BodyId bodyId, const ShapeDef& def,
                                    const ShapeGeometry& geometry) {
+  if (Status u = checkUsable("createShape"); !u) return fail(u.message());
   if (Status s = checkBody(bodyId, "createShape"); !s) return fail(s.message());
-  if (s_->inStep && !s_->inCallbacks) return fail("createShape: called during step");
+  if (state().inStep && !state().inCallbacks) return fail("createShape: called during step");
   if (Status s = checkFiniteNonNegative(def.density, "createShape: ShapeDef.density"); !s)
     return fail(s.message());
   if (Status s = checkFiniteNonNegative(def.friction, "createShape: ShapeDef.friction"); !s)
@@ -266,7 +288,7 @@ Result<ShapeId> World::createShape(BodyId bodyId, const ShapeDef& def,
     return fail("createShape: ShapeDef.restitution " + std::to_string(def.restitution) +
                 " is above kMaxRestitution (10)");
   if (Status s = validateShape(geometry); !s) return fail("createShape: geometry: " + s.message());
-  detail::BodyStore& store = s_->store;
+  detail::BodyStore& store = state().store;
   const Body& body = store.bodies[bodyId.index];
   if (body.type == BodyType::dynamicBody) {
     // The body's mass with the new shape must stay a usable float (kMaxBodyMass), and so
@@ -289,68 +311,62 @@ Result<ShapeId> World::createShape(BodyId bodyId, const ShapeDef& def,
   const std::uint32_t index = store.shapeIds.nextIndex();
   const ProxyKind kind =
       body.type == BodyType::staticBody ? ProxyKind::staticProxy : ProxyKind::dynamicProxy;
-  Result<ProxyId> proxy = s_->broadPhase.createProxy(box, index, def.filter, kind);
+  Result<ProxyId> proxy = state().broadPhase.createProxy(box, index, def.filter, kind);
   if (!proxy) return fail("createShape: " + proxy.error().message);
   const std::uint32_t created = store.createShape(bodyId.index, def, geometry);
   QUACK_ASSERT(created == index);
   store.shapes[created].proxy = proxy.value();
-  if (body.type == BodyType::staticBody) s_->edges.markDirty();
+  if (body.type == BodyType::staticBody) state().edges.markDirty();
   // A shape added to a body that had some changes its mass: it wakes. A body being built
   // (its first shape) keeps the state it was created in (BodyDef::isAwake).
-  if (store.bodies[bodyId.index].shapes.size() > 1) s_->islands.wake(store, bodyId.index);
+  if (store.bodies[bodyId.index].shapes.size() > 1) state().islands.wake(store, bodyId.index);
   return store.shapeId(created);
 }
 
 Status World::destroyShape(ShapeId id) {
+  if (Status u = checkUsable("destroyShape"); !u) return u;
   if (Status s = checkShape(id, "destroyShape"); !s) return s;
-  if (s_->inStep && !s_->inCallbacks) return fail("destroyShape: called during step");
-  if (s_->inCallbacks) {
-    Shape& shape = s_->store.shapes[id.index];
+  if (state().inStep && !state().inCallbacks) return fail("destroyShape: called during step");
+  if (state().inCallbacks) {
+    Shape& shape = state().store.shapes[id.index];
     if (!shape.pendingDestroy) {
       shape.pendingDestroy = true;
-      s_->pendingShapeDestroy.push_back(id.index);
+      state().pendingShapeDestroy.push_back(id.index);
     }
     return {};
   }
-  destroyShapeNow(id.index);
+  destroyShapeNow(*s_, id.index);
   return {};
 }
 
-void World::destroyShapeNow(std::uint32_t index) {
-  detail::BodyStore& store = s_->store;
+void World::destroyShapeNow(detail::WorldState& w, std::uint32_t index) {
+  detail::BodyStore& store = w.store;
   Shape& s = store.shapes[index];
   // What rested on it, and its own body, wake.
-  s_->islands.wake(store, s.body);
-  s_->islands.wakeTouching(store, s_->contacts, s.body);
+  w.islands.wake(store, s.body);
+  w.islands.wakeTouching(store, w.contacts, s.body);
   std::vector<std::uint32_t> contacts = s.contacts;
   for (std::uint32_t c : contacts)
-    s_->contacts.destroy(c, store, s_->events, true, s_->inStep);
-  Status st = s_->broadPhase.destroyProxy(s.proxy);
+    w.contacts.destroy(c, store, w.events, true, w.inStep);
+  Status st = w.broadPhase.destroyProxy(s.proxy);
   QUACK_ASSERT(st.ok());
   (void)st;
-  if (store.bodies[s.body].type == BodyType::staticBody) s_->edges.markDirty();
+  if (store.bodies[s.body].type == BodyType::staticBody) w.edges.markDirty();
   store.releaseShape(index);
-  s_->islands.applyContactChanges(store, s_->contacts);
+  w.islands.applyContactChanges(store, w.contacts);
 }
 
 // ---- stepping -----------------------------------------------------------------------------
 
 StepStatus World::step() {
-  return step(s_->def.timeStep, s_->def.substeps);
+  return step(state().def.timeStep, state().def.substeps);
 }
 
-StepStatus World::step(float dt, int substeps) {
-  detail::WorldState& w = *s_;
-  if (w.inStep) return fail("step: called during a step or from an event callback");
-  if (!isFinite(dt) || dt <= 0.0f || dt > kMaxTimeStep)
-    return fail("step: dt must be finite, > 0 and at most kMaxTimeStep (1 s), got " +
-                std::to_string(dt));
-  if (substeps < 1 || substeps > 64)
-    return fail("step: substeps must be in 1..64, got " + std::to_string(substeps));
-  w.inStep = true;
-  w.events.beginStep();
+namespace {
 
-  // bodies -> broad phase -> contact set -> solver -> continuous phase -> events
+// The step's phases, in order: bodies -> broad phase -> contact set -> solver -> continuous
+// phase -> islands and sleep. Callbacks run after, in World::step.
+void runPhases(detail::WorldState& w, float dt, int substeps) {
   w.contacts.findNew(w.broadPhase, w.store, w.tasks);
   for (std::uint32_t b : w.contacts.toWake)
     w.islands.wake(w.store, b);
@@ -382,47 +398,92 @@ StepStatus World::step(float dt, int substeps) {
   std::vector<BodyId>& held = w.events.events.outOfBounds;
   std::sort(held.begin(), held.end(), [](BodyId a, BodyId b) { return a.index < b.index; });
   held.erase(std::unique(held.begin(), held.end()), held.end());
+}
 
-  ++w.stepCount;
-  w.time += static_cast<double>(dt);
+}  // namespace
 
-  // Callbacks, then the destruction they asked for, in request order.
-  w.inCallbacks = true;
-  w.events.dispatch(*this, w.store);
+void World::finishCallbacks(detail::WorldState& w) {
   w.inCallbacks = false;
   w.inStep = false;
   for (std::uint32_t s : w.pendingShapeDestroy) {
-    if (w.store.shapeAlive(s) && w.store.shapes[s].pendingDestroy) destroyShapeNow(s);
+    if (w.store.shapeAlive(s) && w.store.shapes[s].pendingDestroy) destroyShapeNow(w, s);
   }
   for (std::uint32_t b : w.pendingBodyDestroy) {
-    if (w.store.bodyAlive(b) && w.store.bodies[b].pendingDestroy) destroyBodyNow(b);
+    if (w.store.bodyAlive(b) && w.store.bodies[b].pendingDestroy) destroyBodyNow(w, b);
   }
   w.pendingShapeDestroy.clear();
   w.pendingBodyDestroy.clear();
+}
+
+StepStatus World::step(float dt, int substeps) {
+  if (Status u = checkUsable("step"); !u) return fail(u.message());
+  detail::WorldState& w = *s_;
+  if (w.inStep) return fail("step: called during a step or from an event callback");
+  if (!isFinite(dt) || dt <= 0.0f || dt > kMaxTimeStep)
+    return fail("step: dt must be finite, > 0 and at most kMaxTimeStep (1 s), got " +
+                std::to_string(dt));
+  if (substeps < 1 || substeps > 64)
+    return fail("step: substeps must be in 1..64, got " + std::to_string(substeps));
+  w.inStep = true;
+  w.events.beginStep();
+  try {
+    runPhases(w, dt, substeps);
+  } catch (const std::bad_alloc&) {
+    w.inStep = false;
+    w.failure = "step " + std::to_string(w.stepCount + 1) +
+                " ran out of memory part way through, so the world's state is not trusted";
+    throw;
+  }
+  ++w.stepCount;
+  w.time += static_cast<double>(dt);
+
+  // Callbacks, then the destruction they asked for, in request order. Both run on the state
+  // `w`, not through this World: a callback may have moved the World (this one is then
+  // empty). An exception from a callback ends the callbacks; the step is complete and the
+  // requested destruction still happens before it goes on to the caller.
+  w.inCallbacks = true;
+  try {
+    w.events.dispatch(*this, w.store);
+  } catch (...) {
+    finishCallbacks(w);
+    throw;
+  }
+  finishCallbacks(w);
   return {};
 }
 
 // ---- callbacks ----------------------------------------------------------------------------
 
+// On a moved-from World these register nothing (there is no world to call them from).
 void World::onContactBegin(std::uint64_t a, std::uint64_t b, ContactCallback f) {
-  s_->events.add(detail::EventDispatcher::Kind::begin, a, b, std::move(f), {}, s_->inCallbacks);
+  if (!s_) return;
+  state().events.add(detail::EventDispatcher::Kind::begin, a, b, std::move(f), {},
+                     state().inCallbacks);
 }
 void World::onContactEnd(std::uint64_t a, std::uint64_t b, ContactCallback f) {
-  s_->events.add(detail::EventDispatcher::Kind::end, a, b, std::move(f), {}, s_->inCallbacks);
+  if (!s_) return;
+  state().events.add(detail::EventDispatcher::Kind::end, a, b, std::move(f), {},
+                     state().inCallbacks);
 }
 void World::onHit(std::uint64_t a, std::uint64_t b, HitCallback f) {
-  s_->events.add(detail::EventDispatcher::Kind::hit, a, b, {}, std::move(f), s_->inCallbacks);
+  if (!s_) return;
+  state().events.add(detail::EventDispatcher::Kind::hit, a, b, {}, std::move(f),
+                     state().inCallbacks);
 }
 void World::onImpact(std::uint64_t a, std::uint64_t b, ImpactCallback f) {
-  s_->events.add(detail::EventDispatcher::Kind::impact, a, b, {}, {}, s_->inCallbacks,
-                 std::move(f));
+  if (!s_) return;
+  state().events.add(detail::EventDispatcher::Kind::impact, a, b, {}, {}, state().inCallbacks,
+                     std::move(f));
 }
 void World::onSensorBegin(std::uint64_t a, std::uint64_t b, ContactCallback f) {
-  s_->events.add(detail::EventDispatcher::Kind::sensorBegin, a, b, std::move(f), {},
-                 s_->inCallbacks);
+  if (!s_) return;
+  state().events.add(detail::EventDispatcher::Kind::sensorBegin, a, b, std::move(f), {},
+                     state().inCallbacks);
 }
 void World::onSensorEnd(std::uint64_t a, std::uint64_t b, ContactCallback f) {
-  s_->events.add(detail::EventDispatcher::Kind::sensorEnd, a, b, std::move(f), {}, s_->inCallbacks);
+  if (!s_) return;
+  state().events.add(detail::EventDispatcher::Kind::sensorEnd, a, b, std::move(f), {},
+                     state().inCallbacks);
 }
 
 // ---- body state ----------------------------------------------------------------------------
@@ -435,10 +496,10 @@ const ShapeDef kNoShapeDef{};
 }  // namespace
 
 BodyType World::bodyType(BodyId id) const {
-  return isValid(id) ? s_->store.bodies[id.index].type : BodyType::staticBody;
+  return isValid(id) ? state().store.bodies[id.index].type : BodyType::staticBody;
 }
 Transform World::transform(BodyId id) const {
-  return isValid(id) ? s_->store.bodies[id.index].xf : Transform{};
+  return isValid(id) ? state().store.bodies[id.index].xf : Transform{};
 }
 Vec2 World::position(BodyId id) const {
   return transform(id).p;
@@ -447,96 +508,100 @@ float World::angle(BodyId id) const {
   return transform(id).q.angle();
 }
 Vec2 World::linearVelocity(BodyId id) const {
-  return isValid(id) ? s_->store.bodies[id.index].v : Vec2{};
+  return isValid(id) ? state().store.bodies[id.index].v : Vec2{};
 }
 float World::angularVelocity(BodyId id) const {
-  return isValid(id) ? s_->store.bodies[id.index].w : 0.0f;
+  return isValid(id) ? state().store.bodies[id.index].w : 0.0f;
 }
 float World::mass(BodyId id) const {
-  return isValid(id) ? s_->store.bodies[id.index].mass : 0.0f;
+  return isValid(id) ? state().store.bodies[id.index].mass : 0.0f;
 }
 float World::rotationalInertia(BodyId id) const {
-  return isValid(id) ? s_->store.bodies[id.index].inertia : 0.0f;
+  return isValid(id) ? state().store.bodies[id.index].inertia : 0.0f;
 }
 Vec2 World::worldCenterOfMass(BodyId id) const {
-  return isValid(id) ? s_->store.bodies[id.index].center : Vec2{};
+  return isValid(id) ? state().store.bodies[id.index].center : Vec2{};
 }
 std::uint64_t World::userData(BodyId id) const {
-  return isValid(id) ? s_->store.bodies[id.index].userData : 0;
+  return isValid(id) ? state().store.bodies[id.index].userData : 0;
 }
 BodyId World::body(ShapeId id) const {
-  return isValid(id) ? s_->store.bodyId(s_->store.shapes[id.index].body) : BodyId{};
+  return isValid(id) ? state().store.bodyId(state().store.shapes[id.index].body) : BodyId{};
 }
 const ShapeGeometry& World::geometry(ShapeId id) const {
-  return isValid(id) ? s_->store.shapes[id.index].geometry : kNoGeometry;
+  return isValid(id) ? state().store.shapes[id.index].geometry : kNoGeometry;
 }
 const ShapeDef& World::shapeDef(ShapeId id) const {
-  return isValid(id) ? s_->store.shapes[id.index].def : kNoShapeDef;
+  return isValid(id) ? state().store.shapes[id.index].def : kNoShapeDef;
 }
 
 // ---- iteration ------------------------------------------------------------------------------
 
 std::uint32_t World::nextBody(std::uint32_t from) const noexcept {
-  const auto n = static_cast<std::uint32_t>(s_->store.bodies.size());
-  while (from < n && !s_->store.bodyAlive(from))
+  const auto n = static_cast<std::uint32_t>(state().store.bodies.size());
+  while (from < n && !state().store.bodyAlive(from))
     ++from;
   return from;
 }
 std::uint32_t World::nextTouchingContact(std::uint32_t from) const noexcept {
-  const std::vector<detail::Contact>& contacts = s_->contacts.contacts;
+  const std::vector<detail::Contact>& contacts = state().contacts.contacts;
   const auto n = static_cast<std::uint32_t>(contacts.size());
   while (from < n && !(contacts[from].alive && contacts[from].touching && !contacts[from].sensor))
     ++from;
   return from;
 }
 BodyId World::bodyAt(std::uint32_t index) const noexcept {
-  return s_->store.bodyId(index);
+  return state().store.bodyId(index);
 }
 ShapeId World::shapeAt(std::uint32_t index) const noexcept {
-  return s_->store.shapeId(index);
+  return state().store.shapeId(index);
 }
 World::ContactView World::contactAt(std::uint32_t index) const noexcept {
-  const detail::Contact& c = s_->contacts.contacts[index];
-  return {s_->store.shapeId(c.shapeA), s_->store.shapeId(c.shapeB), c.manifold};
+  const detail::Contact& c = state().contacts.contacts[index];
+  return {state().store.shapeId(c.shapeA), state().store.shapeId(c.shapeB), c.manifold};
 }
 World::BodyRange World::bodies() const noexcept {
-  return {this, nextBody(0), static_cast<std::uint32_t>(s_->store.bodies.size())};
+  return {this, nextBody(0), static_cast<std::uint32_t>(state().store.bodies.size())};
 }
 World::ShapeRange World::shapes(BodyId id) const noexcept {
   if (!isValid(id)) return {this, {}};
-  return {this, s_->store.bodies[id.index].shapes};
+  return {this, state().store.bodies[id.index].shapes};
 }
 World::ContactRange World::touchingContacts() const noexcept {
-  return {this, nextTouchingContact(0), static_cast<std::uint32_t>(s_->contacts.contacts.size())};
+  return {this, nextTouchingContact(0),
+          static_cast<std::uint32_t>(state().contacts.contacts.size())};
 }
 
 Status World::setTransform(BodyId id, Vec2 position, float angle) {
+  if (Status u = checkUsable("setTransform"); !u) return u;
   if (Status s = checkBody(id, "setTransform"); !s) return s;
-  if (s_->inStep && !s_->inCallbacks) return fail("setTransform: called during step");
+  if (state().inStep && !state().inCallbacks) return fail("setTransform: called during step");
   if (!isFinite(position) || !isFinite(angle))
     return fail("setTransform: position and angle must be finite");
   const Transform xf = makeTransform(position, angle);
-  Body& b = s_->store.bodies[id.index];
+  Body& b = state().store.bodies[id.index];
   // moveBody checks every shape against the edge of the world and moves nothing if one
   // would leave it.
   if (!withinCoordinateLimit(position) ||
-      !s_->store.moveBody(s_->broadPhase, id.index, xf, transformPoint(xf, b.localCenter), Vec2{}))
+      !state().store.moveBody(state().broadPhase, id.index, xf, transformPoint(xf, b.localCenter),
+                              Vec2{}))
     return fail("setTransform: position " + describe(position) +
                 " would put the body beyond kMaxCoordinate (1e9 m) from the origin");
-  if (b.type == BodyType::staticBody) s_->edges.markDirty();
-  s_->contacts.forgetPoses(s_->store, id.index);
-  s_->islands.wake(s_->store, id.index);
+  if (b.type == BodyType::staticBody) state().edges.markDirty();
+  state().contacts.forgetPoses(state().store, id.index);
+  state().islands.wake(state().store, id.index);
   // Every body near it wakes, touching or not yet: it may have been moved into them.
-  s_->islands.wakeNear(s_->store, s_->contacts, id.index);
+  state().islands.wakeNear(state().store, state().contacts, id.index);
   return {};
 }
 
 Status World::setLinearVelocity(BodyId id, Vec2 v) {
+  if (Status u = checkUsable("setLinearVelocity"); !u) return u;
   if (Status s = checkBody(id, "setLinearVelocity"); !s) return s;
   if (!isFinite(v) || length(v) > kMaxLinearSpeed)
     return fail("setLinearVelocity: velocity " + describe(v) +
                 " must be finite and no faster than kMaxLinearSpeed (1e5 m/s)");
-  Body& b = s_->store.bodies[id.index];
+  Body& b = state().store.bodies[id.index];
   if (b.type == BodyType::staticBody) return {};
   b.v = v;
   wakeForChange(id.index);
@@ -544,13 +609,14 @@ Status World::setLinearVelocity(BodyId id, Vec2 v) {
 }
 
 Status World::setAngularVelocity(BodyId id, float w) {
+  if (Status u = checkUsable("setAngularVelocity"); !u) return u;
   if (Status s = checkBody(id, "setAngularVelocity"); !s) return s;
   if (!isFinite(w) || absf(w) > kMaxAngularSpeed)
     return fail("setAngularVelocity: velocity " + std::to_string(w) +
                 " must be finite and no faster than kMaxAngularSpeed (1e5 rad/s)");
   // (A dynamic body without rotational inertia keeps it only until the next step: the
   // solver does not turn such a body.)
-  Body& b = s_->store.bodies[id.index];
+  Body& b = state().store.bodies[id.index];
   if (b.type == BodyType::staticBody) return {};
   b.w = w;
   wakeForChange(id.index);
@@ -558,13 +624,14 @@ Status World::setAngularVelocity(BodyId id, float w) {
 }
 
 Status World::applyLinearImpulse(BodyId id, Vec2 impulse, Vec2 point) {
+  if (Status u = checkUsable("applyLinearImpulse"); !u) return u;
   if (Status s = checkBody(id, "applyLinearImpulse"); !s) return s;
   if (!isFinite(impulse) || !isFinite(point))
     return fail("applyLinearImpulse: impulse and point must be finite");
   if (!withinCoordinateLimit(point))
     return fail("applyLinearImpulse: point " + describe(point) +
                 " lies beyond kMaxCoordinate (1e9 m) from the origin");
-  Body& b = s_->store.bodies[id.index];
+  Body& b = state().store.bodies[id.index];
   if (b.type != BodyType::dynamicBody) return {};
   const Vec2 v = b.v + b.invMass * impulse;
   const float w = b.w + b.invInertia * cross(point - b.center, impulse);
@@ -582,9 +649,10 @@ Status World::applyLinearImpulse(BodyId id, Vec2 impulse, Vec2 point) {
 }
 
 Status World::applyAngularImpulse(BodyId id, float impulse) {
+  if (Status u = checkUsable("applyAngularImpulse"); !u) return u;
   if (Status s = checkBody(id, "applyAngularImpulse"); !s) return s;
   if (!isFinite(impulse)) return fail("applyAngularImpulse: impulse must be finite");
-  Body& b = s_->store.bodies[id.index];
+  Body& b = state().store.bodies[id.index];
   if (b.type != BodyType::dynamicBody) return {};
   const float w = b.w + b.invInertia * impulse;
   if (!isFinite(w) || absf(w) > kMaxAngularSpeed)
@@ -597,13 +665,14 @@ Status World::applyAngularImpulse(BodyId id, float impulse) {
 }
 
 Status World::applyForce(BodyId id, Vec2 force, Vec2 point) {
+  if (Status u = checkUsable("applyForce"); !u) return u;
   if (Status s = checkBody(id, "applyForce"); !s) return s;
   if (!isFinite(force) || !isFinite(point))
     return fail("applyForce: force and point must be finite");
   if (!withinCoordinateLimit(point))
     return fail("applyForce: point " + describe(point) +
                 " lies beyond kMaxCoordinate (1e9 m) from the origin");
-  Body& b = s_->store.bodies[id.index];
+  Body& b = state().store.bodies[id.index];
   if (b.type != BodyType::dynamicBody) return {};
   const Vec2 f = b.force + force;
   const float t = b.torque + cross(point - b.center, force);
@@ -616,9 +685,10 @@ Status World::applyForce(BodyId id, Vec2 force, Vec2 point) {
 }
 
 Status World::applyTorque(BodyId id, float torque) {
+  if (Status u = checkUsable("applyTorque"); !u) return u;
   if (Status s = checkBody(id, "applyTorque"); !s) return s;
   if (!isFinite(torque)) return fail("applyTorque: torque must be finite");
-  Body& b = s_->store.bodies[id.index];
+  Body& b = state().store.bodies[id.index];
   if (b.type != BodyType::dynamicBody) return {};
   if (!isFinite(b.torque + torque))
     return fail("applyTorque: torque " + std::to_string(torque) +
@@ -629,12 +699,13 @@ Status World::applyTorque(BodyId id, float torque) {
 }
 
 Status World::setBodyType(BodyId id, BodyType type) {
+  if (Status u = checkUsable("setBodyType"); !u) return u;
   if (Status s = checkBody(id, "setBodyType"); !s) return s;
-  if (s_->inStep && !s_->inCallbacks) return fail("setBodyType: called during step");
+  if (state().inStep && !state().inCallbacks) return fail("setBodyType: called during step");
   if (type != BodyType::staticBody && type != BodyType::kinematicBody &&
       type != BodyType::dynamicBody)
     return fail("setBodyType: type is not a body type");
-  detail::BodyStore& store = s_->store;
+  detail::BodyStore& store = state().store;
   Body& b = store.bodies[id.index];
   if (b.type == type) return {};
   if (type == BodyType::dynamicBody) {
@@ -647,17 +718,17 @@ Status World::setBodyType(BodyId id, BodyType type) {
       return fail("setBodyType: the body's shapes weigh " + std::to_string(m.mass) +
                   " kg, beyond kMaxBodyMass (1e20 kg)");
   }
-  if (b.type == BodyType::staticBody || type == BodyType::staticBody) s_->edges.markDirty();
+  if (b.type == BodyType::staticBody || type == BodyType::staticBody) state().edges.markDirty();
   // It and what it touches wake; it leaves its island and joins a new one under its new
   // type.
-  s_->islands.wake(store, id.index);
-  s_->islands.wakeNear(store, s_->contacts, id.index);
+  state().islands.wake(store, id.index);
+  state().islands.wakeNear(store, state().contacts, id.index);
   // Contacts end now and are found again under the new rules; proxies are made again with
   // the new kind (a static proxy does not look for pairs with other static ones).
   for (std::uint32_t s : b.shapes) {
     std::vector<std::uint32_t> contacts = store.shapes[s].contacts;
     for (std::uint32_t c : contacts)
-      s_->contacts.destroy(c, store, s_->events, true, s_->inStep);
+      state().contacts.destroy(c, store, state().events, true, state().inStep);
   }
   b.type = type;
   if (type == BodyType::staticBody) {
@@ -670,66 +741,68 @@ Status World::setBodyType(BodyId id, BodyType type) {
       type == BodyType::staticBody ? ProxyKind::staticProxy : ProxyKind::dynamicProxy;
   for (std::uint32_t s : b.shapes) {
     Shape& shape = store.shapes[s];
-    Status st = s_->broadPhase.destroyProxy(shape.proxy);
+    Status st = state().broadPhase.destroyProxy(shape.proxy);
     QUACK_ASSERT(st.ok());
     (void)st;
-    Result<ProxyId> proxy =
-        s_->broadPhase.createProxy(computeAabb(shape.geometry, b.xf), s, shape.def.filter, kind);
+    Result<ProxyId> proxy = state().broadPhase.createProxy(computeAabb(shape.geometry, b.xf), s,
+                                                           shape.def.filter, kind);
     // The box was accepted a moment ago under the old kind.
     QUACK_ASSERT(proxy.ok());
     shape.proxy = proxy.valueOr(ProxyId{});
   }
   store.updateMass(id.index);
-  s_->islands.removeBody(store, id.index);
-  s_->islands.applyContactChanges(store, s_->contacts);
-  s_->islands.addBody(store, id.index, true);
+  state().islands.removeBody(store, id.index);
+  state().islands.applyContactChanges(store, state().contacts);
+  state().islands.addBody(store, id.index, true);
   return {};
 }
 
 Status World::setAwake(BodyId id, bool awake) {
+  if (Status u = checkUsable("setAwake"); !u) return u;
   if (Status s = checkBody(id, "setAwake"); !s) return s;
-  if (s_->inStep && !s_->inCallbacks) return fail("setAwake: called during step");
-  detail::Body& b = s_->store.bodies[id.index];
+  if (state().inStep && !state().inCallbacks) return fail("setAwake: called during step");
+  detail::Body& b = state().store.bodies[id.index];
   if (b.type == BodyType::staticBody) return {};
   if (awake) {
     wakeForChange(id.index);
-  } else if (s_->def.enableSleep) {
-    s_->islands.sleepNow(s_->store, s_->contacts, id.index);
+  } else if (state().def.enableSleep) {
+    state().islands.sleepNow(state().store, state().contacts, id.index);
   }
   return {};
 }
 
 void World::wakeForChange(std::uint32_t index) {
-  s_->islands.wake(s_->store, index);
+  state().islands.wake(state().store, index);
   // A kinematic body carries what rests on it.
-  if (s_->store.bodies[index].type == BodyType::kinematicBody)
-    s_->islands.wakeTouching(s_->store, s_->contacts, index);
+  if (state().store.bodies[index].type == BodyType::kinematicBody)
+    state().islands.wakeTouching(state().store, state().contacts, index);
 }
 
 bool World::isAwake(BodyId id) const {
-  return isValid(id) && s_->islands.isAwake(id.index);
+  return isValid(id) && state().islands.isAwake(id.index);
 }
 
 std::size_t World::awakeBodyCount() const noexcept {
-  return s_->islands.awakeCount();
+  return state().islands.awakeCount();
 }
 
 std::size_t World::islandCount() const noexcept {
-  return s_->islands.islandCount();
+  return state().islands.islandCount();
 }
 
 // ---- validation ----------------------------------------------------------------------------
 
 Status World::validate() const {
-  const detail::BodyStore& store = s_->store;
+  if (Status u = checkUsable("validate"); !u) return u;
+  const detail::BodyStore& store = state().store;
   if (Status s = store.bodyIds.validate(); !s) return fail("bodies: " + s.message());
   if (Status s = store.shapeIds.validate(); !s) return fail("shapes: " + s.message());
   if (store.bodies.size() != store.bodyIds.capacity())
     return fail("body records and body slots differ in number");
   if (store.shapes.size() != store.shapeIds.capacity())
     return fail("shape records and shape slots differ in number");
-  if (s_->broadPhase.proxyCount() != store.shapeIds.liveCount())
-    return fail("the broad phase has " + std::to_string(s_->broadPhase.proxyCount()) +
+  if (state().broadPhase.proxyCount() != store.shapeIds.liveCount())
+    return fail("the broad phase has " + std::to_string(state().broadPhase.proxyCount()) +
                 " proxies for " + std::to_string(store.shapeIds.liveCount()) + " shapes");
   for (std::uint32_t i = 0; i < store.bodies.size(); ++i) {
     if (!store.bodyAlive(i)) continue;
@@ -753,19 +826,19 @@ Status World::validate() const {
     const auto& list = store.bodies[s.body].shapes;
     if (std::count(list.begin(), list.end(), i) != 1)
       return fail(name + ": not listed once by its body");
-    if (!s_->broadPhase.isValid(s.proxy)) return fail(name + ": its proxy is not live");
-    if (s_->broadPhase.userData(s.proxy) != i)
+    if (!state().broadPhase.isValid(s.proxy)) return fail(name + ": its proxy is not live");
+    if (state().broadPhase.userData(s.proxy) != i)
       return fail(name + ": its proxy carries another shape's index");
     const Aabb box = computeAabb(s.geometry, store.bodies[s.body].xf);
-    if (!contains(s_->broadPhase.fatBox(s.proxy), box))
+    if (!contains(state().broadPhase.fatBox(s.proxy), box))
       return fail(name + ": its broad-phase box does not hold it");
     for (std::uint32_t c : s.contacts) {
-      if (c >= s_->contacts.contacts.size() || !s_->contacts.contacts[c].alive)
+      if (c >= state().contacts.contacts.size() || !state().contacts.contacts[c].alive)
         return fail(name + ": lists a dead contact");
     }
   }
-  if (Status s = s_->contacts.validate(store); !s) return s;
-  if (Status s = s_->islands.validate(store, s_->contacts); !s)
+  if (Status s = state().contacts.validate(store); !s) return s;
+  if (Status s = state().islands.validate(store, state().contacts); !s)
     return fail("sleep: " + s.message());
   return {};
 }

@@ -16,7 +16,7 @@ namespace quack {
 // ---- queries -------------------------------------------------------------------------------
 
 bool World::acceptsQuery(std::uint32_t shape, const QueryFilter& filter) const {
-  const detail::Shape& s = s_->store.shapes[shape];
+  const detail::Shape& s = state().store.shapes[shape];
   if (s.def.sensor && !filter.includeSensors) return false;
   return (s.def.filter.category & filter.mask) != 0 && (filter.category & s.def.filter.mask) != 0;
 }
@@ -37,17 +37,18 @@ std::optional<RayHitResult> World::rayCastClosest(Vec2 origin, Vec2 translation,
   if (!isFinite(origin) || !isFinite(translation)) return std::nullopt;
   std::optional<RayHitResult> best;
   float bestFraction = 1.0f;
-  s_->broadPhase.rayCast(origin, translation, [&](ProxyId, std::uint64_t user, float) -> float {
+  state().broadPhase.rayCast(origin, translation, [&](ProxyId, std::uint64_t user, float) -> float {
     auto s = static_cast<std::uint32_t>(user);
     if (!acceptsQuery(s, filter)) return -1.0f;
-    const Transform xf = s_->store.bodies[s_->store.shapes[s].body].xf;
-    RayHit h = castRay(s_->store.shapes[s].geometry, xf, origin, translation, bestFraction);
+    const Transform xf = state().store.bodies[state().store.shapes[s].body].xf;
+    RayHit h = castRay(state().store.shapes[s].geometry, xf, origin, translation, bestFraction);
     if (!h.hit) return -1.0f;
     // Equal fractions: the lower shape index wins, whatever order the structure visits.
     if (best && h.fraction == bestFraction && s > best->shape.index) return -1.0f;
     bestFraction = h.fraction;
-    best = RayHitResult{s_->store.shapeId(s), s_->store.bodyId(s_->store.shapes[s].body),
-                        transformPoint(xf, h.point), rotate(xf.q, h.normal), h.fraction};
+    best =
+        RayHitResult{state().store.shapeId(s), state().store.bodyId(state().store.shapes[s].body),
+                     transformPoint(xf, h.point), rotate(xf.q, h.normal), h.fraction};
     return h.fraction > 0.0f ? h.fraction : 0.0f;
   });
   return best;
@@ -57,13 +58,13 @@ std::vector<RayHitResult> World::rayCastAll(Vec2 origin, Vec2 translation,
                                             QueryFilter filter) const {
   std::vector<RayHitResult> hits;
   if (!isFinite(origin) || !isFinite(translation)) return hits;
-  s_->broadPhase.rayCast(origin, translation, [&](ProxyId, std::uint64_t user, float) -> float {
+  state().broadPhase.rayCast(origin, translation, [&](ProxyId, std::uint64_t user, float) -> float {
     auto s = static_cast<std::uint32_t>(user);
     if (!acceptsQuery(s, filter)) return -1.0f;
-    const Transform xf = s_->store.bodies[s_->store.shapes[s].body].xf;
-    RayHit h = castRay(s_->store.shapes[s].geometry, xf, origin, translation, 1.0f);
+    const Transform xf = state().store.bodies[state().store.shapes[s].body].xf;
+    RayHit h = castRay(state().store.shapes[s].geometry, xf, origin, translation, 1.0f);
     if (h.hit) {
-      hits.push_back({s_->store.shapeId(s), s_->store.bodyId(s_->store.shapes[s].body),
+      hits.push_back({state().store.shapeId(s), state().store.bodyId(state().store.shapes[s].body),
                       transformPoint(xf, h.point), rotate(xf.q, h.normal), h.fraction});
     }
     return 1.0f;
@@ -77,9 +78,9 @@ std::vector<RayHitResult> World::rayCastAll(Vec2 origin, Vec2 translation,
 std::vector<ShapeId> World::overlapAabb(Aabb box, QueryFilter filter) const {
   std::vector<ShapeId> out;
   if (!quack::isValid(box)) return out;
-  s_->broadPhase.queryAabb(box, [&](ProxyId, std::uint64_t user) {
+  state().broadPhase.queryAabb(box, [&](ProxyId, std::uint64_t user) {
     auto s = static_cast<std::uint32_t>(user);
-    if (acceptsQuery(s, filter)) out.push_back(s_->store.shapeId(s));
+    if (acceptsQuery(s, filter)) out.push_back(state().store.shapeId(s));
     return true;
   });
   std::sort(out.begin(), out.end(), [](ShapeId a, ShapeId b) { return a.index < b.index; });
@@ -93,15 +94,15 @@ Result<std::vector<ShapeOverlap>> World::overlapShape(const ShapeGeometry& geome
   if (Status s = validateShape(geometry); !s) return fail("overlapShape: geometry: " + s.message());
   std::vector<ShapeOverlap> out;
   const ShapeProxy query = makeProxy(geometry);
-  s_->broadPhase.queryAabb(computeAabb(geometry, xf), [&](ProxyId, std::uint64_t user) {
+  state().broadPhase.queryAabb(computeAabb(geometry, xf), [&](ProxyId, std::uint64_t user) {
     auto s = static_cast<std::uint32_t>(user);
     if (!acceptsQuery(s, filter)) return true;
-    const Transform sx = s_->store.bodies[s_->store.shapes[s].body].xf;
+    const Transform sx = state().store.bodies[state().store.shapes[s].body].xf;
     PenetrationOutput p =
-        computePenetration(query, xf, makeProxy(s_->store.shapes[s].geometry), sx);
+        computePenetration(query, xf, makeProxy(state().store.shapes[s].geometry), sx);
     if (p.overlap) {
-      out.push_back({s_->store.shapeId(s), s_->store.bodyId(s_->store.shapes[s].body), p.depth,
-                     -p.depth * p.normal});
+      out.push_back({state().store.shapeId(s), state().store.bodyId(state().store.shapes[s].body),
+                     p.depth, -p.depth * p.normal});
     }
     return true;
   });
@@ -124,11 +125,11 @@ Result<std::optional<ShapeCastResult>> World::castShape(const ShapeGeometry& geo
   const Aabb swept{minv(start.lower, start.lower + translation),
                    maxv(start.upper, start.upper + translation)};
   std::optional<ShapeCastResult> best;
-  s_->broadPhase.queryAabb(swept, [&](ProxyId, std::uint64_t user) {
+  state().broadPhase.queryAabb(swept, [&](ProxyId, std::uint64_t user) {
     auto s = static_cast<std::uint32_t>(user);
     if (!acceptsQuery(s, filter)) return true;
-    const detail::Shape& shape = s_->store.shapes[s];
-    const Transform sx = s_->store.bodies[shape.body].xf;
+    const detail::Shape& shape = state().store.shapes[s];
+    const Transform sx = state().store.bodies[shape.body].xf;
     // The shape met is A, the cast shape is B moving along the translation.
     const ShapeCastOutput out =
         quack::castShape(makeProxy(shape.geometry), sx, cast, xf, translation);
@@ -136,7 +137,7 @@ Result<std::optional<ShapeCastResult>> World::castShape(const ShapeGeometry& geo
     if (best && (out.fraction > best->fraction ||
                  (out.fraction == best->fraction && s > best->shape.index)))
       return true;
-    best = ShapeCastResult{s_->store.shapeId(s), s_->store.bodyId(shape.body), out.point,
+    best = ShapeCastResult{state().store.shapeId(s), state().store.bodyId(shape.body), out.point,
                            out.normal, out.fraction};
     return true;
   });
@@ -150,11 +151,11 @@ const char* World::simdPath() noexcept {
 }
 
 int World::workerCount() const noexcept {
-  return s_->tasks.workers();
+  return state().tasks.workers();
 }
 
 World::SolverStats World::solverStats() const noexcept {
-  const auto& st = s_->solver.stats();
+  const auto& st = state().solver.stats();
   return {st.colors, st.constraints, st.overflow};
 }
 
@@ -169,9 +170,9 @@ std::uint64_t World::stateHash() const noexcept {
       h *= 1099511628211ull;
     }
   };
-  for (std::uint32_t i = 0; i < s_->store.bodies.size(); ++i) {
-    if (!s_->store.bodyAlive(i)) continue;
-    const detail::Body& b = s_->store.bodies[i];
+  for (std::uint32_t i = 0; i < state().store.bodies.size(); ++i) {
+    if (!state().store.bodyAlive(i)) continue;
+    const detail::Body& b = state().store.bodies[i];
     mix(b.xf.p.x);
     mix(b.xf.p.y);
     mix(b.xf.q.c);

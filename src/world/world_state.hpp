@@ -4,6 +4,7 @@
 // solver -> continuous phase -> events. World (world.cpp) is the facade over them.
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "body_store.hpp"
@@ -46,6 +47,9 @@ struct WorldState {
   double time = 0.0;
   bool inStep = false;
   bool inCallbacks = false;
+  // Set when a step's phases threw (an allocation failure): the state may be half updated,
+  // so World refuses changes until a snapshot is restored. Empty when the world is sound.
+  std::string failure;
 };
 
 // A new world id: unique in the process, never 0 (world.cpp).

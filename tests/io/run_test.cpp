@@ -313,6 +313,83 @@ TEST_F(Run, EventListAgreesWithTheTotalsAndRepeatsByteForByte) {
   EXPECT_EQ(read(at("again.jsonl")), events);
 }
 
+// Hardening round 2, item 3: a resumed run's event lines numbered steps from 1 after the
+// snapshot. The resumed lines must be the straight run's lines from the snapshot on, byte for
+// byte, step numbers counted from the scene's start.
+TEST_F(Run, ResumedEventLinesCountStepsFromTheScenesStart) {
+  RunOptions straight = options("concave.json", 90);
+  straight.events = at("straight.jsonl");
+  ASSERT_EQ(run(straight), kRunOk) << err_.str();
+  RunOptions first = options("concave.json", 40);
+  first.out = at("first.json");
+  first.snapshotAt = 40;
+  first.snapshotFile = at("40.snap");
+  ASSERT_EQ(run(first), kRunOk) << err_.str();
+  RunOptions resumed = options("concave.json", 90);
+  resumed.out = at("resumed.json");
+  resumed.resume = at("40.snap");
+  resumed.events = at("resumed.jsonl");
+  ASSERT_EQ(run(resumed), kRunOk) << err_.str();
+  const std::string all = read(at("straight.jsonl"));
+  const std::string tail = read(at("resumed.jsonl"));
+  ASSERT_FALSE(tail.empty());
+  // The straight run's lines after step 40: the first whose step number is above 40.
+  const std::string head = "{\"step\": ";
+  std::size_t from = std::string::npos;
+  for (std::size_t at = 0; at < all.size();) {
+    if (all.compare(at, head.size(), head) == 0 && std::stoul(all.substr(at + head.size())) > 40) {
+      from = at;
+      break;
+    }
+    const std::size_t end = all.find('\n', at);
+    if (end == std::string::npos) break;
+    at = end + 1;
+  }
+  ASSERT_NE(from, std::string::npos) << "no event after step 40 in the straight run";
+  EXPECT_EQ(all.substr(from), tail);
+  EXPECT_EQ(tail.find("{\"step\": 1,"), std::string::npos);
+}
+
+// Hardening round 2, item 4: the event totals (bytes 12-43) were outside every checksum, so a
+// flipped bit went into the state file. Every byte of the header is now covered: flipping any
+// bit of bytes 8-51 (version, totals, checksum) is refused with exit 2 and writes nothing.
+TEST_F(Run, AFlippedBitInTheRunSnapshotHeaderIsRefused) {
+  RunOptions first = options("pyramid.json", 20);
+  first.snapshotAt = 20;
+  first.snapshotFile = at("20.snap");
+  ASSERT_EQ(run(first), kRunOk) << err_.str();
+  const std::string good = read(at("20.snap"));
+  ASSERT_GT(good.size(), 52u);
+  int refused = 0;
+  for (std::size_t byte = 8; byte < 52; ++byte) {
+    for (int bit : {0, 7}) {
+      std::string bad = good;
+      bad[byte] = static_cast<char>(bad[byte] ^ (1 << bit));
+      write(at("bad.snap"), bad);
+      RunOptions o = options("pyramid.json", 30);
+      o.out = at("bad.json");
+      o.resume = at("bad.snap");
+      ASSERT_EQ(run(o), kRunFailed) << "byte " << byte << " bit " << bit;
+      EXPECT_FALSE(fs::exists(at("bad.json")));
+      ++refused;
+    }
+  }
+  EXPECT_EQ(refused, 88);
+  // The good file still resumes.
+  RunOptions o = options("pyramid.json", 30);
+  o.resume = at("20.snap");
+  EXPECT_EQ(run(o), kRunOk) << err_.str();
+}
+
+// Hardening round 2, item 7: --resume /dev/zero read the whole (endless) input before
+// checking the magic bytes, and ran out of memory. The header is checked first.
+TEST_F(Run, ResumeFromAnEndlessStreamIsRefusedByItsHeader) {
+  RunOptions o = options("pyramid.json", 10);
+  o.resume = "/dev/zero";
+  ASSERT_EQ(run(o), kRunFailed);
+  EXPECT_NE(err_.str().find("not a quack run snapshot"), std::string::npos) << err_.str();
+}
+
 // Issue 15: 10^6 bodies gave no progress while building and writing, and "0 steps/s".
 // A big generated scene (kept fast: two steps) reports every phase on stderr, with a rate
 // in s/step when steps are slow, and its SVG and replay stay within their size budgets

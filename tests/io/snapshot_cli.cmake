@@ -59,7 +59,7 @@ quack_refused("not a quack run snapshot"
               ${p} --steps 100 --out ${OUT}/x.json --resume ${p})
 # A run snapshot of a later version (text, so that CMake can write it).
 file(WRITE ${OUT}/later.snap "QUACKRUNAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAA")
-quack_refused("run snapshot version 1094795585 is not this build's (1)"
+quack_refused("run snapshot version 1094795585 is not this build's (2)"
               ${p} --steps 100 --out ${OUT}/x.json --resume ${OUT}/later.snap)
 if(EXISTS ${OUT}/x.json OR EXISTS ${OUT}/x.snap)
   message(FATAL_ERROR "a refused run wrote output")

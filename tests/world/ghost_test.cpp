@@ -308,6 +308,25 @@ TEST(Ghost, ChainErrors) {
   EXPECT_EQ(world.shapeCount(), 0u);
 }
 
+// Hardening round 2, item 11: a loop of three collinear points was accepted (a closed chain
+// folded back on itself, enclosing nothing). Refused, naming the points; an open chain on
+// the same points, and a loop a little off the line, are fine.
+TEST(Ghost, CollinearLoopChainIsRefused) {
+  World world = World::create({}).value();
+  BodyId ground = world.createBody({.type = BodyType::staticBody}).value();
+  const std::vector<Vec2> line = {{0, 0}, {2, 0}, {1, 0.001f}};
+  Result<std::vector<ShapeId>> loop = world.createChain(ground, {}, line, true);
+  ASSERT_FALSE(loop.ok());
+  EXPECT_NE(loop.error().message.find("createChain: points: a loop's points lie on one line"),
+            std::string::npos)
+      << loop.error().message;
+  EXPECT_EQ(world.shapeCount(), 0u);
+  EXPECT_TRUE(world.createChain(ground, {}, line, false).ok());
+  EXPECT_TRUE(
+      world.createChain(ground, {}, std::vector<Vec2>{{0, 0}, {2, 0}, {1, 0.1f}}, true).ok());
+  EXPECT_TRUE(world.validate().ok());
+}
+
 TEST(Ghost, BallRollsOverTiles) {
   World world = World::create({}).value();
   addTiles(world, 100, {0.5f, 0.5f}, 0.0f);

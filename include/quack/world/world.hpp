@@ -233,6 +233,8 @@ class World {
  public:
   static Result<World> create(const WorldDef& def = {});
 
+  /// A moved-from World holds nothing: every call on it fails with a message that says so
+  /// (or, where a call cannot fail, reads an empty world), and it is never a crash.
   World(World&&) noexcept;
   World& operator=(World&&) noexcept;
   World(const World&) = delete;
@@ -342,6 +344,15 @@ class World {
   StepStatus step();
   /// Advances by dt seconds (> 0, finite, at most kMaxTimeStep) with `substeps` (1..64)
   /// solver sub-steps.
+  ///
+  /// Exceptions (docs/world.md, "Exceptions"): an exception thrown by an event callback
+  /// leaves step() after the step is complete (bodies moved, stepCount() advanced); the
+  /// callbacks after it are not called for this step, and the destruction that earlier
+  /// callbacks asked for is carried out. The world is valid and usable. An allocation
+  /// failure inside the step's phases (std::bad_alloc, the only exception they throw) leaves
+  /// the step half done: the world then refuses every change, step and snapshot with a
+  /// message naming the failed step until a snapshot is restored into it (restore()), and
+  /// can still be read and destroyed.
   StepStatus step(float dt, int substeps);
   /// The events of the last step (valid until the next step). Contacts and sensor overlaps
   /// ended by destroying a shape between steps are reported, and their callbacks called,
@@ -458,8 +469,19 @@ class World {
   ContactView contactAt(std::uint32_t index) const noexcept;
   Status checkBody(BodyId id, const char* function) const;
   Status checkShape(ShapeId id, const char* function) const;
-  void destroyShapeNow(std::uint32_t shape);
-  void destroyBodyNow(std::uint32_t body);
+  // Fails when this World was moved from, or is refusing changes after a step that failed
+  // to allocate (see step()); says which call it was.
+  Status checkUsable(const char* function) const;
+  // The state, or an empty one that never changes when this World was moved from, so that
+  // reading a moved-from World is defined.
+  detail::WorldState& state() const noexcept;
+  // Take the state, not the World: the deferred destruction after a step's callbacks runs on
+  // the state even when a callback moved the World that owns it.
+  static void destroyShapeNow(detail::WorldState& w, std::uint32_t shape);
+  static void destroyBodyNow(detail::WorldState& w, std::uint32_t body);
+  // Ends a step's callbacks: clears the step flags and carries out the destruction the
+  // callbacks asked for, in request order.
+  static void finishCallbacks(detail::WorldState& w);
   void wakeForChange(std::uint32_t body);
   bool acceptsQuery(std::uint32_t shape, const QueryFilter& filter) const;
 
