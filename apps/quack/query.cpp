@@ -17,16 +17,13 @@
 #include "quack/collision/toi.hpp"
 #include "quack/geometry/bounds.hpp"
 #include "quack/geometry/raycast.hpp"
+#include "quack/io/answer_json.hpp"
 #include "quack/io/shape_json.hpp"
 
 namespace quack::app {
 namespace {
 
 using nlohmann::json;
-
-json toJson(Vec2 v) {
-  return json::array({v.x, v.y});
-}
 
 // One line of JSON. Strings the program echoes (ids, keys, the parser's "last read" bytes)
 // may hold invalid UTF-8; it is replaced by U+FFFD rather than thrown about.
@@ -241,12 +238,8 @@ QueryAnswer answerRayCast(const json& id, const std::vector<ShapeGeometry>& piec
   if (!origin) return rejected(id, origin.error().message);
   Result<Vec2> translation = parsePosition(ray.at("translation"), "ray.translation");
   if (!translation) return rejected(id, translation.error().message);
-  const RayHit best = rayCastPieces(pieces, worldFromA, *origin, *translation);
-  json out = {{"id", id}};
-  out["hit"] = best.hit;
-  out["fraction"] = best.fraction;
-  out["point"] = toJson(best.point);
-  out["normal"] = toJson(best.normal);
+  json out = toJson(rayCastPieces(pieces, worldFromA, *origin, *translation));
+  out["id"] = id;
   return finished(id, out);
 }
 
@@ -338,23 +331,10 @@ QueryAnswer answerParsed(const json& q) {
       return finished(id, out);
     }
     if (op == "distance") {
-      const DistanceOutput closest = distancePieces(piecesA, *pa, piecesB, *pb);
-      out["distance"] = closest.distance;
-      out["pointA"] = toJson(closest.pointA);
-      out["pointB"] = toJson(closest.pointB);
-      out["normal"] = toJson(closest.normal);
-      out["iterations"] = closest.iterations;
-      out["status"] = toString(closest.status);
+      out.update(toJson(distancePieces(piecesA, *pa, piecesB, *pb)));
       return finished(id, out);
     }
-    const PenetrationOutput best = penetrationPieces(piecesA, *pa, piecesB, *pb);
-    out["overlap"] = best.overlap;
-    out["depth"] = best.depth;
-    out["normal"] = toJson(best.normal);
-    out["pointA"] = toJson(best.pointA);
-    out["pointB"] = toJson(best.pointB);
-    out["iterations"] = best.iterations;
-    out["status"] = toString(best.status);
+    out.update(toJson(penetrationPieces(piecesA, *pa, piecesB, *pb)));
     return finished(id, out);
   }
   const ShapeGeometry& shapeA = a->front();
@@ -363,13 +343,7 @@ QueryAnswer answerParsed(const json& q) {
     if (!q.contains("translation")) return rejected(id, "translation: missing");
     Result<Vec2> translation = parsePosition(q.at("translation"), "translation");
     if (!translation) return rejected(id, translation.error().message);
-    ShapeCastOutput c = castShape(shapeA, *pa, shapeB, *pb, *translation);
-    out["hit"] = c.hit;
-    out["fraction"] = c.fraction;
-    out["point"] = toJson(c.point);
-    out["normal"] = toJson(c.normal);
-    out["depth"] = c.depth;
-    out["status"] = toString(c.status);
+    out.update(toJson(castShape(shapeA, *pa, shapeB, *pb, *translation)));
     return finished(id, out);
   }
   if (op == "toi") {
@@ -403,40 +377,17 @@ QueryAnswer answerParsed(const json& q) {
       }
       target = v.get<float>();
     }
-    ToiOutput t = computeToi(shapeA, *sweepA, shapeB, *sweepB, 1.0f, target);
-    out["status"] = toString(t.status);
-    out["t"] = t.t;
+    out.update(toJson(computeToi(shapeA, *sweepA, shapeB, *sweepB, 1.0f, target)));
     return finished(id, out);
   }
   if (op == "overlap") {
     out["overlap"] = testOverlap(shapeA, *pa, shapeB, *pb);
   } else if (op == "distance") {
-    DistanceOutput d = computeDistance(shapeA, *pa, shapeB, *pb);
-    out["distance"] = d.distance;
-    out["pointA"] = toJson(d.pointA);
-    out["pointB"] = toJson(d.pointB);
-    out["normal"] = toJson(d.normal);
-    out["iterations"] = d.iterations;
-    out["status"] = toString(d.status);
+    out.update(toJson(computeDistance(shapeA, *pa, shapeB, *pb)));
   } else if (op == "manifold") {
-    Manifold m = collide(shapeA, *pa, shapeB, *pb, speculative);
-    out["normal"] = toJson(m.pointCount > 0 ? m.normal : Vec2{});
-    json points = json::array();
-    for (int i = 0; i < m.pointCount; ++i) {
-      points.push_back({{"point", toJson(m.points[i].point)},
-                        {"separation", m.points[i].separation},
-                        {"id", m.points[i].id}});
-    }
-    out["points"] = points;
+    out.update(toJson(collide(shapeA, *pa, shapeB, *pb, speculative)));
   } else {
-    PenetrationOutput p = computePenetration(shapeA, *pa, shapeB, *pb);
-    out["overlap"] = p.overlap;
-    out["depth"] = p.depth;
-    out["normal"] = toJson(p.normal);
-    out["pointA"] = toJson(p.pointA);
-    out["pointB"] = toJson(p.pointB);
-    out["iterations"] = p.iterations;
-    out["status"] = toString(p.status);
+    out.update(toJson(computePenetration(shapeA, *pa, shapeB, *pb)));
   }
   return finished(id, out);
 }

@@ -1,5 +1,9 @@
-# Builds the consumer project against Quack in MODE find_package (install first) or
-# add_subdirectory, then runs it. Fails on any step's non-zero exit.
+# Builds the consumer project against Quack in MODE find_package or add_subdirectory, then
+# runs it. Fails on any step's non-zero exit.
+#   find_package:     installs the build under test (BUILD) into a fresh prefix, so the
+#                     library is not compiled a second time; the consumer finds it there.
+#   add_subdirectory: the consumer compiles Quack's sources itself, as a vendoring user's
+#                     project does (slow: labelled `slow`, run by scripts/test.sh --all).
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 function(run)
@@ -9,11 +13,7 @@ function(run)
   endif()
 endfunction()
 if(MODE STREQUAL "find_package")
-  run(${CMAKE_COMMAND} -S ${QUACK_SOURCE} -B ${WORK}/quack-build -G ${GENERATOR}
-      -DCMAKE_CXX_COMPILER=${CXX} -DCMAKE_BUILD_TYPE=Release -DQUACK_BUILD_TESTS=OFF
-      -DQUACK_BUILD_BENCHMARKS=OFF -DQUACK_BUILD_APPS=OFF -DCMAKE_INSTALL_PREFIX=${WORK}/prefix)
-  run(${CMAKE_COMMAND} --build ${WORK}/quack-build -j 2)
-  run(${CMAKE_COMMAND} --install ${WORK}/quack-build)
+  run(${CMAKE_COMMAND} --install ${BUILD} --prefix ${WORK}/prefix)
   run(${CMAKE_COMMAND} -S ${CONSUMER} -B ${WORK}/consumer-build -G ${GENERATOR}
       -DCMAKE_CXX_COMPILER=${CXX} -DCMAKE_PREFIX_PATH=${WORK}/prefix)
 else()

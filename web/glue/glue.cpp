@@ -23,6 +23,8 @@
 #include "quack/collision/gjk.hpp"
 #include "quack/collision/manifold.hpp"
 #include "quack/collision/minkowski.hpp"
+#include "quack/collision/pieces.hpp"
+#include "quack/io/answer_json.hpp"
 #include "quack/io/shape_json.hpp"
 #include "quack/world/world.hpp"
 
@@ -31,16 +33,13 @@ namespace {
 
 using nlohmann::json;
 
-json toJson(Vec2 v) {
-  return json::array({v.x, v.y});
-}
-
-// A shape in the JSON of DESIGN.md ("Formats"), read by the io layer's own parser (the
-// same one `quack query` and scene files use: unknown keys refused, fields named).
-Result<ShapeGeometry> readShape(const char* text) {
+// A shape in the JSON of the README's "Formats", read by the io layer's own parser (the
+// same one `quack query`, scene files and Python use: unknown keys refused, fields named),
+// as its convex pieces: one for a convex shape, several for a "concave" outline.
+Result<std::vector<ShapeGeometry>> readShape(const char* text) {
   json j = json::parse(text, nullptr, false);
   if (j.is_discarded()) return fail("shape: not valid JSON");
-  return parseShape(j, "shape");
+  return parseShapePieces(j, "shape");
 }
 
 // Outline for drawing: the core points (shape frame) and the rounding radius.
@@ -138,7 +137,15 @@ bool traceMatches(const EpaTrace& trace, const PenetrationOutput& p) {
 std::vector<GjkIterationRecord> gGjkRecords(kGjkMaxTraceRecords);
 std::vector<EpaIterationRecord> gEpaRecords(kEpaMaxTraceRecords);
 
-ShapeGeometry gShapes[2] = {Circle{{}, 0.5f}, Circle{{}, 0.5f}};
+// The GJK page's two shapes, each as its convex pieces.
+std::vector<ShapeGeometry> gShapes[2] = {{Circle{{}, 0.5f}}, {Circle{{}, 0.5f}}};
+
+json outlinesOf(const std::vector<ShapeGeometry>& pieces) {
+  json out = json::array();
+  for (const ShapeGeometry& g : pieces)
+    out.push_back(outlineOf(g));
+  return out;
+}
 std::string gAnswer;
 
 const char* answer(const json& j) {
@@ -181,10 +188,10 @@ extern "C" {
 /// {"ok": true, "outline": ...} or {"error": "..."} (the old shape is kept on error).
 EMSCRIPTEN_KEEPALIVE const char* qk_set_shape(int slot, const char* shapeJson) {
   if (slot < 0 || slot > 1) return errorAnswer("slot: must be 0 or 1");
-  Result<ShapeGeometry> g = readShape(shapeJson);
+  Result<std::vector<ShapeGeometry>> g = readShape(shapeJson);
   if (!g) return errorAnswer(g.error().message);
-  gShapes[slot] = g.value();
-  return answer({{"ok", true}, {"outline", outlineOf(gShapes[slot])}});
+  gShapes[slot] = std::move(g.value());
+  return answer({{"ok", true}, {"pieces", outlinesOf(gShapes[slot])}});
 }
 
 /// Everything the GJK page draws for shape A at (ax, ay, aAngle) and B at (bx, by, bAngle):
@@ -197,34 +204,37 @@ EMSCRIPTEN_KEEPALIVE const char* qk_analyze(double ax, double ay, double aAngle,
       makeTransform({static_cast<float>(ax), static_cast<float>(ay)}, static_cast<float>(aAngle));
   Transform worldFromB =
       makeTransform({static_cast<float>(bx), static_cast<float>(by)}, static_cast<float>(bAngle));
-  ShapeProxy a = makeProxy(gShapes[0]);
-  ShapeProxy b = makeProxy(gShapes[1]);
-
+  // A concave shape is its pieces (docs/concave.md): the answers are the library's pieces
+  // answers, and the pictures are of the pairs they come from: GJK's of the closest pair,
+  // EPA's, the manifold's and the Minkowski difference's of the deepest overlapping pair
+  // (else the closest). For two convex shapes both pairs are the one pair.
+  std::size_t closeA = 0, closeB = 0, deepA = 0, deepB = 0;
+  DistanceOutput d =
+      distancePieces(gShapes[0], worldFromA, gShapes[1], worldFromB, &closeA, &closeB);
+  PenetrationOutput p =
+      penetrationPieces(gShapes[0], worldFromA, gShapes[1], worldFromB, &deepA, &deepB);
   GjkTrace gjkTrace{gGjkRecords.data(), kGjkMaxTraceRecords};
   EpaTrace epaTrace{gEpaRecords.data(), kEpaMaxTraceRecords};
-  DistanceOutput d = computeDistance(a, worldFromA, b, worldFromB, nullptr, gjkTrace);
-  PenetrationOutput p =
-      computePenetration(a, worldFromA, b, worldFromB, nullptr, nullptr, &epaTrace);
-  Manifold m = collide(gShapes[0], worldFromA, gShapes[1], worldFromB);
+  const DistanceOutput tracedD =
+      computeDistance(makeProxy(gShapes[0][closeA]), worldFromA, makeProxy(gShapes[1][closeB]),
+                      worldFromB, nullptr, gjkTrace);
+  const PenetrationOutput tracedP =
+      computePenetration(makeProxy(gShapes[0][deepA]), worldFromA, makeProxy(gShapes[1][deepB]),
+                         worldFromB, nullptr, nullptr, &epaTrace);
+  const ShapeGeometry& pairA = gShapes[0][deepA];
+  const ShapeGeometry& pairB = gShapes[1][deepB];
+  ShapeProxy a = makeProxy(pairA);
+  ShapeProxy b = makeProxy(pairB);
+  Manifold m = collide(pairA, worldFromA, pairB, worldFromB);
 
   json out;
-  out["outlineA"] = outlineOf(gShapes[0]);
-  out["outlineB"] = outlineOf(gShapes[1]);
-  out["distance"] = {{"distance", d.distance},      {"coreDistance", d.coreDistance},
-                     {"pointA", toJson(d.pointA)},  {"pointB", toJson(d.pointB)},
-                     {"normal", toJson(d.normal)},  {"iterations", d.iterations},
-                     {"status", toString(d.status)}};
-  out["penetration"] = {{"overlap", p.overlap},        {"depth", p.depth},
-                        {"normal", toJson(p.normal)},  {"pointA", toJson(p.pointA)},
-                        {"pointB", toJson(p.pointB)},  {"iterations", p.iterations},
-                        {"status", toString(p.status)}};
-  json points = json::array();
-  for (int i = 0; i < m.pointCount; ++i) {
-    points.push_back({{"point", toJson(m.points[i].point)},
-                      {"separation", m.points[i].separation},
-                      {"id", m.points[i].id}});
-  }
-  out["manifold"] = {{"normal", toJson(m.pointCount > 0 ? m.normal : Vec2{})}, {"points", points}};
+  out["piecesA"] = outlinesOf(gShapes[0]);
+  out["piecesB"] = outlinesOf(gShapes[1]);
+  out["pair"] = {{"gjk", {closeA, closeB}}, {"epa", {deepA, deepB}}};
+  out["distance"] = toJson(d);
+  out["distance"]["coreDistance"] = d.coreDistance;
+  out["penetration"] = toJson(p);
+  out["manifold"] = toJson(m);
 
   Result<Hull> hull = computeMinkowskiDifference(a, worldFromA, b, worldFromB);
   json minkowski = {{"radius", a.radius() + b.radius()}};
@@ -247,8 +257,10 @@ EMSCRIPTEN_KEEPALIVE const char* qk_analyze(double ax, double ay, double aAngle,
   }
   out["minkowski"] = minkowski;
 
-  out["gjk"] = gjkJson(gjkTrace, d, worldFromA);
-  out["epa"] = epaJson(epaTrace, p, worldFromA);
+  // The traced calls are the very calls the pieces answers made (same inputs, same bits);
+  // traceAgrees checks the traces against the answers the page shows.
+  out["gjk"] = gjkJson(gjkTrace, tracedD, worldFromA);
+  out["epa"] = epaJson(epaTrace, tracedP, worldFromA);
   out["traceAgrees"] = {{"gjk", traceMatches(gjkTrace, d)}, {"epa", traceMatches(epaTrace, p)}};
   return answer(out);
 }
@@ -271,7 +283,7 @@ EMSCRIPTEN_KEEPALIVE const char* qk_world_add(const char* shapeJson, int type, d
                                               double angle, double vx, double vy,
                                               double restitution) {
   if (!gSandbox.world) return errorAnswer("no world: call qk_world_reset first");
-  Result<ShapeGeometry> g = readShape(shapeJson);
+  Result<std::vector<ShapeGeometry>> g = readShape(shapeJson);
   if (!g) return errorAnswer(g.error().message);
   static const BodyType kTypes[] = {BodyType::staticBody, BodyType::kinematicBody,
                                     BodyType::dynamicBody};
@@ -283,14 +295,21 @@ EMSCRIPTEN_KEEPALIVE const char* qk_world_add(const char* shapeJson, int type, d
                         .angle = static_cast<float>(angle),
                         .linearVelocity = {static_cast<float>(vx), static_cast<float>(vy)}});
   if (!body) return errorAnswer(body.error().message);
-  Result<ShapeId> shape =
-      world.createShape(*body, {.restitution = static_cast<float>(restitution)}, g.value());
-  if (!shape) {
-    (void)world.destroyBody(*body);
-    return errorAnswer(shape.error().message);
+  // A concave shape is one body with a shape per piece.
+  json indices = json::array();
+  const std::size_t first = gSandbox.shapes.size();
+  for (const ShapeGeometry& piece : g.value()) {
+    Result<ShapeId> shape =
+        world.createShape(*body, {.restitution = static_cast<float>(restitution)}, piece);
+    if (!shape) {
+      (void)world.destroyBody(*body);
+      gSandbox.shapes.resize(first);
+      return errorAnswer(shape.error().message);
+    }
+    gSandbox.shapes.push_back(*shape);
+    indices.push_back(gSandbox.shapes.size() - 1);
   }
-  gSandbox.shapes.push_back(*shape);
-  return answer({{"shape", gSandbox.shapes.size() - 1}});
+  return answer({{"shape", first}, {"shapes", indices}});
 }
 
 /// Removes every dynamic body whose centre is below `y` (bodies that fell off the ground).
@@ -389,15 +408,10 @@ EMSCRIPTEN_KEEPALIVE const char* qk_world_state() {
   }
   json contacts = json::array();
   for (const World::ContactView& c : world.touchingContacts()) {
-    json points = json::array();
-    for (int i = 0; i < c.manifold.pointCount; ++i) {
-      points.push_back({{"point", toJson(c.manifold.points[i].point)},
-                        {"separation", c.manifold.points[i].separation}});
-    }
-    contacts.push_back({{"a", sandboxIndex(c.shapeA)},
-                        {"b", sandboxIndex(c.shapeB)},
-                        {"normal", toJson(c.manifold.normal)},
-                        {"points", points}});
+    json contact = toJson(c.manifold);
+    contact["a"] = sandboxIndex(c.shapeA);
+    contact["b"] = sandboxIndex(c.shapeB);
+    contacts.push_back(contact);
   }
   BroadPhaseStats stats = bp.stats();
   return answer({{"shapes", shapes},

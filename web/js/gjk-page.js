@@ -16,7 +16,7 @@ const state = {
   // Base poses; with `animate`, B moves along a figure-of-eight through A and both turn.
   base: [{ pos: [-1.3, 0], angle: 0.2 }, { pos: [1.4, 0.2], angle: 0.5 }],
   shapes: [PRESETS['pentagon'], PRESETS['box']],
-  outlines: [null, null],
+  pieces: [null, null], // each shape's convex pieces' outlines (one for a convex shape)
   step: null, // null: the final answer; k: the k-th GJK/EPA iteration
   active: 1,
   result: null,
@@ -42,7 +42,7 @@ function setShape(slot, shape) {
   const r = quack.setShape(slot, shape);
   if (r.error) return r.error;
   state.shapes[slot] = shape;
-  state.outlines[slot] = r.outline;
+  state.pieces[slot] = r.pieces;
   state.key = '';
   return null;
 }
@@ -75,8 +75,8 @@ const GREEN = '#2ca02c';
 function drawScene(r, pa, pb, current) {
   scene.clear();
   scene.grid(1);
-  drawShape(scene, r.outlineA, pa, ...COLOR_A);
-  drawShape(scene, r.outlineB, pb, ...COLOR_B);
+  for (const o of r.piecesA) drawShape(scene, o, pa, ...COLOR_A);
+  for (const o of r.piecesB) drawShape(scene, o, pb, ...COLOR_B);
   scene.label(pa.pos, 'A', COLOR_A[1], -4, 4);
   scene.label(pb.pos, 'B', COLOR_B[1], -4, 4);
   if (current) {
@@ -283,8 +283,9 @@ function hullDistance(pts, radius, p) {
 function shapeAt(p) {
   const ps = poses();
   for (const slot of [1, 0]) {
-    const o = state.outlines[slot];
-    if (hullDistance(o.points.map((q) => place(ps[slot], q)), o.radius, p) < 0.15) return slot;
+    for (const o of state.pieces[slot]) {
+      if (hullDistance(o.points.map((q) => place(ps[slot], q)), o.radius, p) < 0.15) return slot;
+    }
   }
   return -1;
 }

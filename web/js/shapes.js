@@ -16,4 +16,6 @@ export const PRESETS = {
   'pentagon': { type: 'polygon', points: regular(5, 0.9, Math.PI / 2) },
   'rounded box': { type: 'box', half: [0.7, 0.4], radius: 0.25 },
   'rounded hexagon': { type: 'polygon', points: regular(6, 0.7), radius: 0.2 },
+  // Concave: cut into convex pieces by the library, as `quack query` and Python do.
+  'L (concave)': { type: 'concave', points: [[-0.9, -0.9], [0.9, -0.9], [0.9, -0.3], [-0.3, -0.3], [-0.3, 0.9], [-0.9, 0.9]] },
 };

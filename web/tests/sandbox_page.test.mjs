@@ -55,6 +55,21 @@ test('a click drops a shape, and shapes collide: contacts and begin events', asy
   assert.notEqual(await page.textContent('#events'), '');
 });
 
+// One shape vocabulary at every edge: the concave preset becomes one body with a shape per
+// convex piece (the CLI and Python split it the same way), and it lands like any other.
+test('a concave shape drops as one body of several convex pieces', async () => {
+  const before = await sandbox();
+  const index = await page.evaluate(() => window.quackSandbox.drop('L (concave)', [0, 3], 0));
+  assert.equal(typeof index, 'number');
+  const after = await sandbox();
+  assert.equal(after.world.bodies, before.world.bodies + 1);
+  const pieces = after.world.shapes.filter((s) => s.index >= index);
+  assert.ok(pieces.length >= 2, `the L came as ${pieces.length} piece(s)`);
+  // All its pieces share the body's pose.
+  for (const s of pieces) assert.deepEqual(s.pos, pieces[0].pos);
+  assert.deepEqual(errors, []);
+});
+
 test('pause stops the picture; resume goes on', async () => {
   await page.keyboard.press(' ');
   assert.equal((await sandbox()).paused, true);

@@ -47,18 +47,31 @@ inline DistanceOutput distancePieces(Pieces a, Transform worldFromA, Pieces b, T
   return closest;
 }
 
+/// The deepest overlapping pair's answer, else the closest pair's; `bestA`, `bestB` (may be
+/// null) receive the indices of the pair it is.
 inline PenetrationOutput penetrationPieces(Pieces a, Transform worldFromA, Pieces b,
-                                           Transform worldFromB) {
-  if (a.size() == 1 && b.size() == 1) return computePenetration(a[0], worldFromA, b[0], worldFromB);
-  std::size_t bestA = 0, bestB = 0;
-  (void)distancePieces(a, worldFromA, b, worldFromB, &bestA, &bestB);
-  PenetrationOutput best = computePenetration(a[bestA], worldFromA, b[bestB], worldFromB);
-  for (const ShapeGeometry& x : a) {
-    for (const ShapeGeometry& y : b) {
-      PenetrationOutput p = computePenetration(x, worldFromA, y, worldFromB);
-      if (p.overlap && (!best.overlap || p.depth > best.depth)) best = p;
+                                           Transform worldFromB, std::size_t* bestA = nullptr,
+                                           std::size_t* bestB = nullptr) {
+  std::size_t ia = 0, ib = 0;
+  if (a.size() == 1 && b.size() == 1) {
+    if (bestA != nullptr) *bestA = 0;
+    if (bestB != nullptr) *bestB = 0;
+    return computePenetration(a[0], worldFromA, b[0], worldFromB);
+  }
+  (void)distancePieces(a, worldFromA, b, worldFromB, &ia, &ib);
+  PenetrationOutput best = computePenetration(a[ia], worldFromA, b[ib], worldFromB);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    for (std::size_t k = 0; k < b.size(); ++k) {
+      PenetrationOutput p = computePenetration(a[i], worldFromA, b[k], worldFromB);
+      if (p.overlap && (!best.overlap || p.depth > best.depth)) {
+        best = p;
+        ia = i;
+        ib = k;
+      }
     }
   }
+  if (bestA != nullptr) *bestA = ia;
+  if (bestB != nullptr) *bestB = ib;
   return best;
 }
 

@@ -2,6 +2,7 @@
 /// The io layer: JSON shapes and scene files, state files, SVG and HTML replays. Needs
 /// nlohmann-json (Debian `nlohmann-json3-dev`); link `quack::io` (or `quack::quack`).
 
+#include "quack/io/answer_json.hpp"
 #include "quack/io/number_text.hpp"
 #include "quack/io/render.hpp"
 #include "quack/io/scene.hpp"

@@ -1,0 +1,37 @@
+#pragma once
+/// The collision answers as JSON, in the field names of `quack query` (README, "Formats"):
+/// the one place an answer becomes JSON, shared by `quack query`, the web demo's glue and
+/// the Python module's JSON form. Points and normals are written as they are given (the
+/// callers pass world-frame answers); vectors are [x, y] arrays.
+///
+///   toJson(DistanceOutput)    {"distance", "pointA", "pointB", "normal", "iterations",
+///                              "status"}
+///   toJson(PenetrationOutput) {"overlap", "depth", "normal", "pointA", "pointB",
+///                              "iterations", "status"}
+///   toJson(Manifold)          {"normal", "points": [{"point", "separation", "id"}]}
+///                              (the normal is [0, 0] when there is no point)
+///   toJson(ShapeCastOutput)   {"hit", "fraction", "point", "normal", "depth", "status"}
+///   toJson(RayHit)            {"hit", "fraction", "point", "normal"}
+///   toJson(ToiOutput)         {"status", "t"}
+
+#include <nlohmann/json.hpp>
+
+#include "quack/collision/epa.hpp"
+#include "quack/collision/gjk.hpp"
+#include "quack/collision/manifold.hpp"
+#include "quack/collision/shape_cast.hpp"
+#include "quack/collision/toi.hpp"
+#include "quack/geometry/raycast.hpp"
+#include "quack/math/vec2.hpp"
+
+namespace quack {
+
+nlohmann::json toJson(Vec2 v);
+nlohmann::json toJson(const DistanceOutput& d);
+nlohmann::json toJson(const PenetrationOutput& p);
+nlohmann::json toJson(const Manifold& m);
+nlohmann::json toJson(const ShapeCastOutput& c);
+nlohmann::json toJson(const RayHit& r);
+nlohmann::json toJson(const ToiOutput& t);
+
+}  // namespace quack

@@ -1,0 +1,56 @@
+// The collision answers as JSON (answer_json.hpp): one spelling of every field for every
+// edge of the library.
+
+#include "quack/io/answer_json.hpp"
+
+namespace quack {
+
+using nlohmann::json;
+
+json toJson(Vec2 v) {
+  return json::array({v.x, v.y});
+}
+
+json toJson(const DistanceOutput& d) {
+  return {{"distance", d.distance},     {"pointA", toJson(d.pointA)},
+          {"pointB", toJson(d.pointB)}, {"normal", toJson(d.normal)},
+          {"iterations", d.iterations}, {"status", toString(d.status)}};
+}
+
+json toJson(const PenetrationOutput& p) {
+  return {{"overlap", p.overlap},        {"depth", p.depth},           {"normal", toJson(p.normal)},
+          {"pointA", toJson(p.pointA)},  {"pointB", toJson(p.pointB)}, {"iterations", p.iterations},
+          {"status", toString(p.status)}};
+}
+
+json toJson(const Manifold& m) {
+  json points = json::array();
+  for (int i = 0; i < m.pointCount; ++i) {
+    points.push_back({{"point", toJson(m.points[i].point)},
+                      {"separation", m.points[i].separation},
+                      {"id", m.points[i].id}});
+  }
+  return {{"normal", toJson(m.pointCount > 0 ? m.normal : Vec2{})}, {"points", points}};
+}
+
+json toJson(const ShapeCastOutput& c) {
+  return {{"hit", c.hit},
+          {"fraction", c.fraction},
+          {"point", toJson(c.point)},
+          {"normal", toJson(c.normal)},
+          {"depth", c.depth},
+          {"status", toString(c.status)}};
+}
+
+json toJson(const RayHit& r) {
+  return {{"hit", r.hit},
+          {"fraction", r.fraction},
+          {"point", toJson(r.point)},
+          {"normal", toJson(r.normal)}};
+}
+
+json toJson(const ToiOutput& t) {
+  return {{"status", toString(t.status)}, {"t", t.t}};
+}
+
+}  // namespace quack
