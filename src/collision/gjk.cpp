@@ -90,8 +90,8 @@ GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, Transform aFromB, GjkCac
   Simplex2& s = run.simplex;
   if (!loadCache(cache, a, b, aFromB, s)) {
     // Start from the support point towards the origin as seen from the centre of B - A:
-    // on a cold start it is usually one edge away from the answer (the seeds' "direction
-    // between the centres").
+    // on a cold start it is usually one edge away from the answer (docs/background.md,
+    // "Narrow phase").
     Vec2 c = transformPoint(aFromB, b.center()) - a.center();
     if (c == Vec2{}) c = {1.0f, 0.0f};
     s.vertices[0].support = supportMinkowski(a, b, aFromB, -c);

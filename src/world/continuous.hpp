@@ -1,8 +1,8 @@
 #pragma once
 // The continuous phase: one part of the world. Swept boxes for fast bodies, time of impact
 // between sweeps (against static and kinematic shapes, and between moving bodies), and the
-// time-ordered handling of the impacts (the seeds' execution phase). docs/continuous.md,
-// "In the world", explains the choices.
+// time-ordered handling of the impacts (the execution phase of docs/background.md).
+// docs/continuous.md, "In the world", explains the choices.
 
 #include <cstdint>
 #include <vector>

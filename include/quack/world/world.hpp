@@ -1,5 +1,5 @@
 #pragma once
-/// `World`: rigid bodies carrying shapes, stepped through the seeds' four phases —
+/// `World`: rigid bodies carrying shapes, stepped through four phases (docs/background.md) —
 /// proximity (filters), broad phase (fat boxes in any of the five structures), narrow phase
 /// (contact manifolds) and execution (a soft-contact sequential-impulse solver, then events
 /// to the game). docs/world.md explains the solver and every default.
