@@ -62,8 +62,9 @@ struct Direction {
   float vLength = -1.0f;  // length(v) when it was needed, else -1
 };
 
-// Always inlined, as it was when runGjk had one instantiation: with the observed one as a
-// third caller the compiler calls it instead, which cost 50 instructions a query.
+// Always inlined, so that the unobserved runGjk is compiled as if it were the only one:
+// with the observed instantiation as a third caller the compiler would call it instead,
+// and every query would pay for the call.
 [[gnu::always_inline]] inline Direction findClosestDirection(const Simplex2& simplex, Vec2 v,
                                                              float vv) noexcept {
   if (simplex.count == 2) {
@@ -227,8 +228,8 @@ template GjkRun runGjk<GjkRecorder>(const ShapeProxy&, const ShapeProxy&, Transf
 namespace {
 
 // computeDistance's answer from a run's state (the final one, or any pass's, for the trace);
-// iterations and status are left to the caller. Always inlined, as this code was when it
-// sat in computeDistance (called, it cost 30 instructions a query).
+// iterations and status are left to the caller. Always inlined, so that computeDistance
+// pays for no call on every query.
 [[gnu::always_inline]] inline DistanceOutput makeDistanceOutput(const ShapeProxy& a,
                                                                 const ShapeProxy& b,
                                                                 Transform worldFromA,
