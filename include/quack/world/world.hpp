@@ -79,7 +79,7 @@ struct WorldDef {
   /// into the cone of the faces that really meet there; chains (createChain) use their
   /// neighbours the same way. Costs nothing per contact when no static shape is flagged.
   bool removeGhostCollisions = true;
-  /// Contact recycling (docs/world.md, "What made columns drift"): while two touching
+  /// Contact recycling (docs/world.md, "Contact recycling and point order"): while two touching
   /// bodies have moved less than this (metres, plus their largest extent times the sine of
   /// their relative turn) relative to each other since their manifold was computed, and
   /// neither has turned more than about 11 degrees, the manifold is kept: same normal, same
