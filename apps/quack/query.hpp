@@ -14,7 +14,7 @@ namespace quack::app {
 /// the stack when the id is echoed.
 inline constexpr int kMaxQueryNesting = 64;
 
-/// Answers one query line (see README, "Queries"); `ok` is false when the line was
+/// Answers one query line (see README, "Formats", Queries); `ok` is false when the line was
 /// rejected, and then `answer` is {"id", "error"} (id null when the line could not be
 /// parsed). A successful answer never holds a non-finite number: such an answer is
 /// refused with an error naming the field instead.

@@ -1,7 +1,7 @@
 // Broad-phase benchmark: Quack's five structures and the peers (Box2D 2.4.1's b2BroadPhase,
 // Chipmunk 7's bounding-box tree and spatial hash) on the same workload, in one run.
 //
-// Workload (issue 5): N boxes with half-extents uniform in [0.25, 0.5] m whose areas sum to
+// Workload: N boxes with half-extents uniform in [0.25, 0.5] m whose areas sum to
 // a quarter of a square world; each frame the moving ones (100% or 5%) take a random-walk
 // step of at most 0.05 m; W warm-up frames, then F timed frames of "update + pairs". Then
 // closest-hit ray casts (random origins in the world, random directions, 20 m long).

@@ -1,4 +1,4 @@
-// Time of impact (issue 7): Quack's computeToi beside Box2D 2.4.1's b2TimeOfImpact on the
+// Time of impact: Quack's computeToi beside Box2D 2.4.1's b2TimeOfImpact on the
 // same sweeps in the same run, and how often each lets the shapes pass through each other
 // (checked against the distance sampled densely along every sweep).
 //

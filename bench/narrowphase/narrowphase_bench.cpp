@@ -125,7 +125,7 @@ void BM_QuackSat(benchmark::State& state) {
 }
 BENCHMARK(BM_QuackSat);
 
-// Contact manifolds (issue 4): Quack's collidePolygons against b2CollidePolygons below,
+// Contact manifolds: Quack's collidePolygons against b2CollidePolygons below,
 // on the overlapping pairs and on the apart ones (where both should leave early).
 void BM_QuackCollidePolygons(benchmark::State& state) {
   const auto& pairs = overlapping();

@@ -19,8 +19,7 @@
 // --scene runs one scene; --only runs one library (for callgrind: instruction counts per
 // library, `valgrind --tool=callgrind world_bench --scene pyramid --only quack --steps 20`).
 // Quack runs its default 4 sub-steps; Box2D its standard 8 velocity and 3 position
-// iterations. Box2D's sleeping is switched off (Quack has none yet), so both simulate every
-// body every step; the note at the end says what sleeping would change.
+// iterations; with sleeping off, both simulate every body every step.
 
 #include <algorithm>
 #include <chrono>
@@ -135,7 +134,7 @@ Timing quackSleepers(const Options& o, bool sleepers) {
 }
 
 // 1,000 bullets (small discs and boxes, 20 to 40 m/s, any heading, restitution 1, no
-// friction, no gravity) in a closed box of 1 m walls, 40 m across (issue 18): every bullet
+// friction, no gravity) in a closed box of 1 m walls, 40 m across: every bullet
 // goes through the continuous phase every step (sweeps against the walls and each other).
 // With `continuous` false the same world without it. The walls hold most bullets either
 // way (without the phase 52 of the 1,000 are outside by the end of the run: the baseline
@@ -289,9 +288,9 @@ Timing quackField(const Options& o, const std::vector<Piece>& pieces, int settle
 #ifdef QUACK_BENCH_HAS_BOX2D
 // Threads: the same scene in a one-worker world and an o.workers world, stepped in turns of
 // kScalingRun steps and timed run by run, so that whatever else the machine does falls on both
-// alike. Turns of one step each cost each world its caches every step (the other world's
-// step evicts them: the 100-row pyramid on one worker took 5.0 ms a step so, 3.7 alone);
-// runs of ten leave only the first step of each run cold.
+// alike. Turns of one step each would cost each world its caches every step (the other
+// world's step evicts them, and the one-worker time grows far more than the two-worker
+// one); runs of ten leave only the first step of each run cold.
 constexpr int kScalingRun = 10;
 void quackScaling(const Options& o, const char* label, void (*build)(World&, int)) {
   World one = World::create({.enableSleep = false}).value();

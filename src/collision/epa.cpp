@@ -211,9 +211,9 @@ struct EpaRecorder {
   }
 };
 
-// Instantiated unobserved and observed. The helpers above are always inlined, as they were
-// when this was the only copy: with two callers each the compiler calls them instead, which
-// cost about 120 instructions a query (callgrind, 8-gon pairs).
+// Instantiated unobserved and observed. The helpers above are always inlined, so that the
+// unobserved copy is compiled as if it were the only one: with two callers each the
+// compiler would call them instead, and every query would pay for the calls.
 template <class GjkObserver, class EpaObserver>
 PenetrationOutput penetrate(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
                             Transform worldFromB, GjkCache* cache, GjkObserver& gjkObserver,

@@ -62,8 +62,9 @@ struct Direction {
   float vLength = -1.0f;  // length(v) when it was needed, else -1
 };
 
-// Always inlined, as it was when runGjk had one instantiation: with the observed one as a
-// third caller the compiler calls it instead, which cost 50 instructions a query.
+// Always inlined, so that the unobserved runGjk is compiled as if it were the only one:
+// with the observed instantiation as a third caller the compiler would call it instead,
+// and every query would pay for the call.
 [[gnu::always_inline]] inline Direction findClosestDirection(const Simplex2& simplex, Vec2 v,
                                                              float vv) noexcept {
   if (simplex.count == 2) {
@@ -90,8 +91,8 @@ GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, Transform aFromB, GjkCac
   Simplex2& s = run.simplex;
   if (!loadCache(cache, a, b, aFromB, s)) {
     // Start from the support point towards the origin as seen from the centre of B - A:
-    // on a cold start it is usually one edge away from the answer (the seeds' "direction
-    // between the centres").
+    // on a cold start it is usually one edge away from the answer (docs/background.md,
+    // "Narrow phase").
     Vec2 c = transformPoint(aFromB, b.center()) - a.center();
     if (c == Vec2{}) c = {1.0f, 0.0f};
     s.vertices[0].support = supportMinkowski(a, b, aFromB, -c);
@@ -227,8 +228,8 @@ template GjkRun runGjk<GjkRecorder>(const ShapeProxy&, const ShapeProxy&, Transf
 namespace {
 
 // computeDistance's answer from a run's state (the final one, or any pass's, for the trace);
-// iterations and status are left to the caller. Always inlined, as this code was when it
-// sat in computeDistance (called, it cost 30 instructions a query).
+// iterations and status are left to the caller. Always inlined, so that computeDistance
+// pays for no call on every query.
 [[gnu::always_inline]] inline DistanceOutput makeDistanceOutput(const ShapeProxy& a,
                                                                 const ShapeProxy& b,
                                                                 Transform worldFromA,

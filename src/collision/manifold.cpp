@@ -102,9 +102,9 @@ EdgeSeparation walkMaxSeparation(const PolyView& p, const PolyView& q) {
 #if defined(__SSE2__)
 // Polygons up to this many vertices take every edge against every vertex (n m products
 // four at a time, no data-dependent branch) instead of the walk below. The walk's
-// branches go at random places for random pairs: on 1024 8-gon pairs callgrind's branch
-// simulation counted 19 mispredictions per manifold, which cost more than the 2 x 64
-// products. Past 16 vertices the products grow as n m and the walk wins.
+// branches go at random places for random pairs, and their mispredictions cost more than
+// the products (callgrind's branch simulation on bench/narrowphase's 8-gon pairs). Past 16
+// vertices the products grow as n m and the walk wins.
 constexpr int kAllPairsMaxVertices = 16;
 static_assert(kAllPairsMaxVertices <= 16, "separationsOfGroups is instantiated for up to 4 groups");
 
@@ -200,8 +200,8 @@ EdgeSeparation findMaxSeparation(const PolyView& p, const PolyView& q) {
 }
 
 // Room for a core's points that is not filled first: a Vec2 array would be zeroed (Vec2's
-// members have initialisers), which for two 64-point arrays cost 136 instructions per
-// manifold, more than the transform that then overwrites them.
+// members have initialisers), which for two 64-point arrays costs more than the transform
+// that then overwrites them.
 struct Vec2Buffer {
   alignas(Vec2) std::byte bytes[kMaxPolygonVertices * sizeof(Vec2)];
   // A byte array implicitly creates the Vec2 objects that are then written (C++20).

@@ -32,9 +32,9 @@ inline Rot smallRotation(float x) noexcept {
   return {cosine, sine};
 }
 
-// The rotation by `radians`, to about 2e-7, in about a sixth of the instructions of
-// std::cos and std::sin. The search evaluates a turning sweep's pose several times per
-// query, and the rotation was an eighth of its cost. The difference from transformAt's
+// The rotation by `radians`, to about 2e-7, in a fraction of the instructions of std::cos
+// and std::sin. The search evaluates a turning sweep's pose several times per query, so
+// the rotation is a large part of its cost. The difference from transformAt's
 // rotation moves a point 10 m from the centre by a few micrometres, far below the smallest
 // acceptance band (kToiMinTolerance). Reduction to [-pi/4, pi/4] by quarter turns (pi/2
 // split in two parts, Cody and Waite), then smallRotation.
@@ -315,8 +315,8 @@ ToiOutput computeToi(const ShapeProxy& a, const Sweep& sweepA, const ShapeProxy&
     return out;
   }
   // The turn so far within an eighth of a turn (most sweeps' whole turn) is one
-  // polynomial and a product, with no reduction and no branch on the quarter: the
-  // evaluations of a pair that both turn spent a fifth of their time on rotations.
+  // polynomial and a product, with no reduction and no branch on the quarter: rotations
+  // are a large share of the evaluations of a pair that both turn.
   auto poseAt = [](const Sweep& s, Rot fixed, float t) {
     const Vec2 c = (1.0f - t) * s.c1 + t * s.c2;
     Rot q = fixed;
@@ -557,7 +557,7 @@ ToiOutput computeToi(const ShapeProxy& a, const Sweep& sweepA, const ShapeProxy&
   // Samples later than `lo` that are still to be passed, the earliest on top. A sample
   // closer than the target is always alone at the bottom (everything after it is moot).
   // Raw storage: most queries never bisect, and constructing kToiStackDepth samples (their
-  // members zero by default) cost a fifth of a typical query.
+  // members zero by default) would be a large share of a typical query.
   union Stack {
     Stack() noexcept {}
     Sample items[kToiStackDepth];
@@ -574,7 +574,8 @@ ToiOutput computeToi(const ShapeProxy& a, const Sweep& sweepA, const ShapeProxy&
     // The search along the axis pays only where turning is what holds the first-order
     // step back, by more than a few bands of gap (below that one more GJK call is cheaper),
     // and only when the other shape does not turn (charged at its first-order |w| r, two
-    // shapes turning alike gained too little: the random set of bench/ccd cost 7% more).
+    // shapes turning alike gain too little: on bench/ccd's random set it costs more than
+    // it saves).
     if (spin > 0.0f && reach < end && otherSpin == 0.0f &&
         lo.distance - aim - (lo.approach - spin) * (reach - lo.t) > kToiAxisGate * tolerance)
       reach = maxf(reach, axisReach(lo, end));

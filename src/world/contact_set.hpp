@@ -34,7 +34,7 @@ struct Contact {
   // Accumulated impulses of the manifold points, for warm starting (matched by id).
   float normalImpulse[kMaxManifoldPoints] = {};
   float tangentImpulse[kMaxManifoldPoints] = {};
-  // Contact recycling (docs/world.md, "What made columns drift"). When the manifold was
+  // Contact recycling (docs/world.md, "Contact recycling and point order"). When the manifold was
   // last computed: the bodies' transforms, and each point as a point fixed on A and one
   // fixed on B (body frames, from each body's origin) with its separation then. While the
   // bodies stay near that relative pose the manifold is kept: the normal as it was (world

@@ -1,5 +1,6 @@
 // The continuous phase of a step: swept boxes for fast bodies, time of impact between
-// sweeps, and the time-ordered handling of the impacts (the seeds' execution phase).
+// sweeps, and the time-ordered handling of the impacts (the execution phase of
+// docs/background.md).
 // docs/continuous.md, "In the world", explains the choices.
 
 #include <algorithm>

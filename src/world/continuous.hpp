@@ -1,8 +1,8 @@
 #pragma once
 // The continuous phase: one part of the world. Swept boxes for fast bodies, time of impact
 // between sweeps (against static and kinematic shapes, and between moving bodies), and the
-// time-ordered handling of the impacts (the seeds' execution phase). docs/continuous.md,
-// "In the world", explains the choices.
+// time-ordered handling of the impacts (the execution phase of docs/background.md).
+// docs/continuous.md, "In the world", explains the choices.
 
 #include <cstdint>
 #include <vector>
@@ -100,8 +100,8 @@ class ContinuousPhase {
   std::vector<std::uint32_t> participantOf_;  // per body index: its FastBody, or kNoParticipant
   // The participants' swept boxes, indexed for overlap queries: sorted by lower x at the
   // start of the phase (a query scans the lower-x window [lower - widest, upper]); those
-  // whose boxes changed since are in moved_ and scanned one by one. A tree cost a fifth of
-  // the phase in inserts alone (1,000 bullets); the sort is a few microseconds.
+  // whose boxes changed since are in moved_ and scanned one by one. A tree would spend a
+  // large share of the phase on inserts (1,000 bullets); one sort is cheap.
   std::vector<std::uint32_t> sorted_;
   std::vector<float> sortedLower_;  // lower x of sorted_'s boxes, for the binary search
   std::vector<Aabb> sortedBoxes_;   // sorted_'s boxes as they were sorted, scanned in place

@@ -110,7 +110,8 @@ template <class F>
 // The normal impulses of a manifold's points are solved one after the other, and whichever
 // goes first takes more of the load in that pass: a box resting flat on another gets a
 // little more push under one corner than the other, the same corner every sub-step, and a
-// column turns that steady nudge into a lean (docs/world.md, "What made columns drift").
+// column turns that steady nudge into a lean (docs/world.md, "Contact recycling and point
+// order").
 // `lastFirst` solves the points in the opposite order; the solver alternates it between
 // sub-steps and between the solve and the relax pass, so the nudges cancel.
 // The normal impulse at one point of each lane's manifold. `useBias`: the soft push (the
@@ -159,7 +160,8 @@ template <bool useBias, class F>
 // The normal impulses of a manifold's points are solved one after the other, and whichever
 // goes first takes more of the load in that pass: a box resting flat on another gets a
 // little more push under one corner than the other, the same corner every sub-step, and a
-// column turns that steady nudge into a lean (docs/world.md, "What made columns drift").
+// column turns that steady nudge into a lean (docs/world.md, "Contact recycling and point
+// order").
 // `lastFirst` solves the points in the opposite order; the solver alternates it between
 // sub-steps and between the solve and the relax pass, so the nudges cancel.
 template <bool useBias, class F>
@@ -427,7 +429,7 @@ void prepareLane(ContactBlock<F>& b, int lane, const Contact& c, const Body& bod
       // contact is recycled; physics_world.c and contact_solver.c, read for
       // understanding). Arms that turn with the bodies while the normal stays put let a
       // column's tilt move its contact forces the way that tilts it further: columns of
-      // 15 boxes or more toppled so (docs/world.md, "What made columns drift").
+      // 15 boxes or more topple so (docs/world.md, "Contact recycling and point order").
       rA = rotate(c.cachedA.q, c.localA[j] - bodyA.localCenter);
       rB = rotate(c.cachedB.q, c.localB[j] - bodyB.localCenter);
     } else {

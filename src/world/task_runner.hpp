@@ -127,11 +127,10 @@ class TaskRunner {
   /// the stage's end, and cost a claim each.
   static constexpr int kRangesPerWorker = 4;
   /// Ranges per worker of a heavy stage (a tenth of a step or more: preparing constraints,
-  /// updating manifolds, placing bodies), where the wait for the last range dominates. On
-  /// the 100-row pyramid on 2 workers, with 4 ranges a worker the first worker to finish
-  /// preparing waited a fifth of the stage for the other (measured with rdtsc around each
-  /// stage's wait); with 16, about 2%. The pyramid's 2-worker speed-up went from
-  /// 1.66-1.79x to 1.70-1.80x (docs/world.md, "Threads").
+  /// updating manifolds, placing bodies), where the wait for the last range dominates: with
+  /// few large ranges, the first worker to finish waits for the other to end its last one.
+  /// Finer ranges shorten that wait for a claim each, which a heavy stage can afford
+  /// (docs/world.md, "Threads").
   static constexpr int kHeavyRangesPerWorker = 16;
 
   /// Items per block for `count` items: `perWorker` blocks per worker, none below minRange.

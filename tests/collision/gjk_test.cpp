@@ -1,4 +1,4 @@
-// GJK distance and overlap: hand-worked cases, the degenerate cases the seeds hit, warm
+// GJK distance and overlap: hand-worked cases, the degenerate cases of docs/background.md, warm
 // starting, and invariance under swapping the shapes and under a rigid motion of both.
 
 #include <gtest/gtest.h>
@@ -116,7 +116,7 @@ TEST(Gjk, CoincidentCentres) {
   EXPECT_TRUE(std::isfinite(d.pointA.x) && std::isfinite(d.pointA.y));
 }
 
-// The seeds' trouble case: the search direction along an edge of the difference, so that
+// The classic trouble case: the search direction along an edge of the difference, so that
 // a triple-product scheme would produce a zero direction. Here the origin lies on the line
 // through the first two support points.
 TEST(Gjk, DirectionAlignedWithEdge) {
@@ -138,7 +138,7 @@ TEST(Gjk, DirectionAlignedWithEdge) {
 }
 
 TEST(Gjk, RepeatedSupportEndsWithTheRightAnswer) {
-  // Parallel faces: the support point along -v comes back, the seeds' "simplex seen before".
+  // Parallel faces: the support point along -v comes back (a "simplex seen before").
   Polygon a = box(1, 1);
   DistanceOutput d =
       computeDistance(makeProxy(a), Transform{}, makeProxy(a), makeTransform({0, 2.5f}, 0));

@@ -1,6 +1,6 @@
 // Columns, pyramids and a heavy-on-light stack standing for a minute at 60 Hz: a symmetric
 // scene must stay symmetric to rounding, so nothing may drift sideways or topple.
-// docs/world.md ("What made columns drift") tells what used to make columns fall. Sleeping is
+// docs/world.md ("Contact recycling and point order") tells what makes columns fall. Sleeping is
 // off: what is measured is the solver holding the pile up, every step.
 
 #include <gtest/gtest.h>
@@ -149,7 +149,7 @@ TEST(Stacking, HeavyBoxOnALightOneSinksOnlyCentimetres) {
   EXPECT_LT(absf(world.angle(heavy)), kColumnAngle);
 }
 
-// Contact recycling (docs/world.md, "What made columns drift"): a resting contact keeps
+// Contact recycling (docs/world.md, "Contact recycling and point order"): a resting contact keeps
 // its manifold, and its separations follow the bodies; they must agree with a manifold
 // computed afresh at the bodies' current poses.
 TEST(Stacking, RecycledManifoldAgreesWithAFreshOne) {

@@ -1,6 +1,6 @@
 // The WebAssembly face of Quack for the pages in web/: a plain C ABI (called from
-// JavaScript with cwrap) that takes shapes as the JSON of DESIGN.md ("Formats") and answers
-// with JSON strings. Every number the pages show comes from the library's public API
+// JavaScript with cwrap) that takes shapes in the shape JSON (README, "Formats") and
+// answers with JSON strings. Every number the pages show comes from the library's public API
 // (computeDistance, computePenetration, collide, computeMinkowskiDifference, World), and so
 // do the per-iteration pictures: the same computeDistance and computePenetration calls fill
 // the library's GjkTrace and EpaTrace (gjk.hpp, epa.hpp) with every pass of GJK and EPA.
@@ -184,7 +184,7 @@ using namespace quack::web;
 
 extern "C" {
 
-/// Sets shape `slot` (0 = A, 1 = B) of the GJK page from the JSON of DESIGN.md. Returns
+/// Sets shape `slot` (0 = A, 1 = B) of the GJK page from the shape JSON. Returns
 /// {"ok": true, "outline": ...} or {"error": "..."} (the old shape is kept on error).
 EMSCRIPTEN_KEEPALIVE const char* qk_set_shape(int slot, const char* shapeJson) {
   if (slot < 0 || slot > 1) return errorAnswer("slot: must be 0 or 1");
@@ -278,7 +278,7 @@ EMSCRIPTEN_KEEPALIVE const char* qk_world_reset(const char* kind) {
 }
 
 /// Adds a body of type 0 static, 1 kinematic, 2 dynamic at (x, y, angle) with one shape
-/// (JSON of DESIGN.md) and the given restitution. Returns {"shape": index} or {"error"}.
+/// (shape JSON) and the given restitution. Returns {"shape": index} or {"error"}.
 EMSCRIPTEN_KEEPALIVE const char* qk_world_add(const char* shapeJson, int type, double x, double y,
                                               double angle, double vx, double vy,
                                               double restitution) {

@@ -1,4 +1,5 @@
-// Preset shapes, in the JSON of DESIGN.md ("Formats"): the same that `quack query` reads.
+// Preset shapes, in the shape JSON of the README ("Formats") and docs/scenes.md: the same
+// that `quack query` reads.
 // No DOM here, so that the node tests can import it.
 
 const regular = (n, r, phase = 0) =>

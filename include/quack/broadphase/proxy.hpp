@@ -23,12 +23,13 @@ struct ProxyId {
   friend constexpr bool operator==(ProxyId, ProxyId) noexcept = default;
 };
 
-/// Whether a proxy can move. Pairs of two static proxies are never reported (the seeds'
-/// proximity phase): static geometry cannot start touching other static geometry. Kinematic
-/// bodies are `dynamicProxy` at this layer; the world applies body-type rules on top.
+/// Whether a proxy can move. Pairs of two static proxies are never reported (the proximity
+/// phase of docs/background.md): static geometry cannot start touching other static
+/// geometry. Kinematic bodies are `dynamicProxy` at this layer; the world applies body-type
+/// rules on top.
 enum class ProxyKind : std::uint8_t { dynamicProxy, staticProxy };
 
-/// Collision filter of a proxy (the seeds' proximity phase), 64 categories wide.
+/// Collision filter of a proxy (the proximity phase), 64 categories wide.
 struct Filter {
   /// The categories this proxy belongs to (one bit per category, usually one bit set).
   std::uint64_t category = 1;

@@ -8,18 +8,18 @@
 /// repeatedly take the polytope edge nearest the origin and push it out to the support
 /// point of B - A along its outward normal, until the support point lies on the edge. The
 /// nearest edge is then an edge of B - A, its distance the depth, and the barycentric
-/// weights of the origin's projection on it rebuild the contact point on each shape (the
-/// seeds' 2D GJK and EPA write-up). The 2D polytope lives in epa2.cpp; a 3D one would be
-/// a sibling epa3.
+/// weights of the origin's projection on it rebuild the contact point on each shape
+/// (docs/background.md, "Narrow phase"). The 2D polytope lives in epa.cpp; a 3D one would
+/// be a sibling epa3.
 ///
 /// Winding: the starting triangle is made counter-clockwise whatever order GJK left it in,
 /// and insertion keeps it so, so outward normals are always the right-hand perpendiculars.
 ///
 /// Tie-break: when two edges are equally near the origin (within kEpaTieRelativeTolerance,
 /// e.g. two equal boxes exactly on top of each other), the one whose normal points most
-/// along the direction from A's centre to B's centre wins, as the Quackworks write-up in
-/// the seeds suggests. When the centres coincide too, the first edge in polytope order
-/// wins; that answer is deterministic but not antisymmetric under swapping A and B.
+/// along the direction from A's centre to B's centre wins (docs/background.md). When the
+/// centres coincide too, the first edge in polytope order wins; that answer is
+/// deterministic but not antisymmetric under swapping A and B.
 
 #include <cstdint>
 

@@ -8,8 +8,8 @@
 /// no triple product is ever formed and no direction can vanish while the shapes are apart.
 /// Termination follows van den Bergen ("A fast and robust GJK implementation for
 /// collision detection of convex objects", J. Graphics Tools 4(2), 1999): stop when the
-/// lower bound v.w / |v| reaches |v|, when a support point comes back (the "simplex seen
-/// before" of the seeds), when |v| stops decreasing, or at the iteration cap. Radii are
+/// lower bound v.w / |v| reaches |v|, when a support point comes back (a "simplex seen
+/// before"), when |v| stops decreasing, or at the iteration cap. Radii are
 /// added at the end (Catto, "Computing Distance", GDC 2010). Ericson, "Real-Time Collision
 /// Detection", 2005, ch. 9, is a readable account of all of it.
 

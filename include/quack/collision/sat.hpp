@@ -8,7 +8,7 @@
 /// the largest separation over the n + m normals is the signed
 /// distance when the cores overlap; when they are apart it is a lower bound on the
 /// distance (exact only if the closest features are an edge and a vertex; GJK gives the
-/// true distance). This is the seeds' "project onto each edge" test, and the method of
+/// true distance). This is the "project onto each edge" test, and the method of
 /// Catto's b2CollidePolygons before clipping.
 
 #include "quack/geometry/shapes.hpp"

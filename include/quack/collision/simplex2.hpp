@@ -7,9 +7,8 @@
 /// algorithm for faster and more reliable distance queries between convex objects", ACM
 /// Trans. Graph. 36(3), 2017: the weights are ratios of signed areas (lengths on a
 /// segment), and a vertex whose sub-area has the wrong sign is dropped. This is Johnson's
-/// sub-algorithm (Gilbert et al. 1988) without its recursion, and what the collision
-/// detector notes in the seeds walk through. The 3D solver (tetrahedra) would be a sibling
-/// `simplex3`.
+/// sub-algorithm (Gilbert et al. 1988) without its recursion (docs/background.md,
+/// "Narrow phase"). The 3D solver (tetrahedra) would be a sibling `simplex3`.
 
 #include "quack/collision/minkowski.hpp"
 

@@ -18,13 +18,13 @@
 ///
 /// It is slow when the bound is loose (a fast spinner whose nearest point moves mostly
 /// sideways: each step shrinks the gap by a fixed ratio). After kToiMaxAdvancements steps
-/// the search becomes a bisection that keeps the same guarantee (the seeds' "binary search
-/// for the collision time"): halve the interval between the last time proven free and the
-/// end; a midpoint closer than the target is a new end (the first contact is before it);
-/// a midpoint that is apart is kept on a stack and becomes the new free time once the
-/// advancement bound from the current free time reaches it. Every interval the search
-/// skips is proven free by the bound, so the answer is never later than the first contact
-/// (no tunnelling), and the stack is a fixed array (no allocation).
+/// the search becomes a bisection that keeps the same guarantee (the binary search for the
+/// collision time of docs/background.md): halve the interval between the last time proven
+/// free and the end; a midpoint closer than the target is a new end (the first contact is
+/// before it); a midpoint that is apart is kept on a stack and becomes the new free time
+/// once the advancement bound from the current free time reaches it. Every interval the
+/// search skips is proven free by the bound, so the answer is never later than the first
+/// contact (no tunnelling), and the stack is a fixed array (no allocation).
 ///
 /// Read for understanding, not copied: Catto, "Continuous Collision", GDC 2013, and Box2D
 /// 2.4's b2TimeOfImpact (which root-finds on separating-axis functions instead).

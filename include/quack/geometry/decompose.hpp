@@ -21,8 +21,8 @@
 namespace quack {
 
 /// Most points (outline plus holes) a concave shape may have. The simplicity check and ear
-/// clipping are quadratic: about 0.1 ms at 64 points, 1.7 ms at 256 and 23 ms at 1,024
-/// (random stars, release build, docs/concave.md), which is still a load-time cost.
+/// clipping are quadratic, so the bound keeps a decomposition a load-time cost, never a
+/// frame's (docs/concave.md, "Measured", has the times and the command that measures them).
 inline constexpr int kMaxConcaveVertices = 1024;
 
 /// A polygon split into convex pieces. Shape frame (the frame of the input points).

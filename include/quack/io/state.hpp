@@ -11,7 +11,7 @@
 /// `--timing FILE`); a "timing" object in a file from an older Quack is accepted and
 /// ignored. Numbers are written so that reading them back gives the same floats.
 /// "awake" is World::isAwake at the end (false for a sleeping body, and always for a
-/// static one); a file from before sleeping (issue 16) has none, and reads as awake.
+/// static one); a file from a Quack without sleeping has none, and reads as awake.
 
 #include <cstdint>
 #include <string>

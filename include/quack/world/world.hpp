@@ -1,5 +1,5 @@
 #pragma once
-/// `World`: rigid bodies carrying shapes, stepped through the seeds' four phases —
+/// `World`: rigid bodies carrying shapes, stepped through four phases (docs/background.md) —
 /// proximity (filters), broad phase (fat boxes in any of the five structures), narrow phase
 /// (contact manifolds) and execution (a soft-contact sequential-impulse solver, then events
 /// to the game). docs/world.md explains the solver and every default.
@@ -79,7 +79,7 @@ struct WorldDef {
   /// into the cone of the faces that really meet there; chains (createChain) use their
   /// neighbours the same way. Costs nothing per contact when no static shape is flagged.
   bool removeGhostCollisions = true;
-  /// Contact recycling (docs/world.md, "What made columns drift"): while two touching
+  /// Contact recycling (docs/world.md, "Contact recycling and point order"): while two touching
   /// bodies have moved less than this (metres, plus their largest extent times the sine of
   /// their relative turn) relative to each other since their manifold was computed, and
   /// neither has turned more than about 11 degrees, the manifold is kept: same normal, same
