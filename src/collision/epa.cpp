@@ -1,7 +1,7 @@
 // The 2D expanding polytope: a counter-clockwise polygon of support points of B - A.
 
-#include "gjk_internal.hpp"
 #include "quack/collision/epa.hpp"
+#include "gjk_internal.hpp"
 
 namespace quack {
 
