@@ -17,8 +17,10 @@
 #include <string_view>
 #include <thread>
 #include <utility>
+#include <variant>
 #include <vector>
 
+#include "quack/geometry/bounds.hpp"
 #include "quack/io/render.hpp"
 #include "quack/io/scene.hpp"
 #include "quack/io/state.hpp"
@@ -379,6 +381,40 @@ Status readRunSnapshot(const std::string& path, World& world, EventTotals& total
   return {};
 }
 
+// The world lets contacts overlap by up to kLinearSlop (5 mm) before pushing them apart, so
+// a moving shape only a few millimetres thick sinks by a large part of its size, and one of
+// micrometres falls through thin ground (docs/world.md, "Limits"). Such a scene runs as
+// asked, with one warning on stderr naming the thinnest.
+void warnAboutSmallShapes(const SceneWorld& sw, std::ostream& err) {
+  constexpr float kThinnest = 2.0f * kLinearSlop;
+  std::size_t thin = 0;
+  float smallest = kThinnest;
+  std::string where;
+  for (std::size_t i = 0; i < sw.bodies.size(); ++i) {
+    const BodyId body = sw.bodies[i];
+    if (!sw.world.isValid(body) || sw.world.bodyType(body) == BodyType::staticBody) continue;
+    for (ShapeId shape : sw.world.shapes(body)) {
+      const ShapeGeometry& g = sw.world.geometry(shape);
+      if (std::holds_alternative<Segment>(g)) continue;  // no thickness to speak of
+      const Aabb box = computeAabb(g, Transform{});
+      const float size = std::min(box.upper.x - box.lower.x, box.upper.y - box.lower.y);
+      if (size >= kThinnest) continue;
+      ++thin;
+      if (size < smallest) {
+        smallest = size;
+        where = i < sw.names.size() ? sw.names[i] : std::to_string(i);
+      }
+    }
+  }
+  if (thin == 0) return;
+  char size[32];
+  std::snprintf(size, sizeof size, "%.3g", static_cast<double>(smallest));
+  err << "quack run: warning: " << thin << " moving shape" << (thin == 1 ? " is" : "s are")
+      << " thinner than 1 cm (the thinnest, on body \"" << where << "\", is " << size
+      << " m); contacts may overlap by 5 mm (kLinearSlop), so such shapes sink or pass "
+         "through thin ground (docs/world.md, \"Limits\")\n";
+}
+
 double msSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
@@ -444,6 +480,7 @@ int runScene(const RunOptions& options, std::ostream& out, std::ostream& err) {
   progress.end([&] { return "done in " + formatSeconds(progress.elapsed()); });
   const double buildMs = msSince(t0);
   SceneWorld& sw = built.value();
+  warnAboutSmallShapes(sw, err);
   // The world has its own copy of everything now: free the parsed bodies (about 1 GB for a
   // million generated bodies) before simulating.
   std::vector<SceneBody>().swap(scene->bodies);
