@@ -173,7 +173,54 @@ double atanPositive(double t) {
   return complement ? kPiOver2 - a : a;
 }
 
+// pi/2 in three parts (Cody and Waite): the first two have short mantissas, so k times each
+// is exact in double for |k| < 2^20, and r = x - k pi/2 loses nothing to cancellation for
+// the angles of the fast path (|k| <= 63,662). The parts were computed from pi to 80 digits.
+constexpr double kPiOver2Part1 = 0x1.921fb544p+0;
+constexpr double kPiOver2Part2 = 0x1.0b4611a6p-34;
+constexpr double kPiOver2Part3 = 0x1.3198a2e037073p-69;
+constexpr double kTwoOverPiDouble = 0x1.45f306dc9c883p-1;
+
 }  // namespace
+
+CosSin portableCosSin(float radians) noexcept {
+  if (radians == 0.0f) return {1.0f, radians};  // sin(-0) is -0, which -0 + -0 * ... is not
+  const double x = static_cast<double>(radians);
+  // NaN fails the comparison and goes the accurate way too.
+  if (!(std::fabs(x) <= static_cast<double>(kFastTrigLimit)))
+    return {portableCos(radians), portableSin(radians)};
+  // The nearest multiple of pi/2: truncation after adding a half of the right sign is exact
+  // integer arithmetic on every platform (no rounding-mode dependence, no C library).
+  const double t = x * kTwoOverPiDouble;
+  const auto k = static_cast<std::int64_t>(t + (t >= 0.0 ? 0.5 : -0.5));
+  const double kd = static_cast<double>(k);
+  const double r = ((x - kd * kPiOver2Part1) - kd * kPiOver2Part2) - kd * kPiOver2Part3;
+  // |r| <= pi/4 (plus rounding): Taylor to r^11 for sine and r^12 for cosine truncate below
+  // 2^-37 and 2^-45 relative ((pi/4)^13 / 13!, (pi/4)^14 / 14!), far below a float ulp.
+  const double z = r * r;
+  const double sinR =
+      r +
+      r * z *
+          (-1.0 / 6.0 + z * (1.0 / 120.0 +
+                             z * (-1.0 / 5040.0 + z * (1.0 / 362880.0 + z * (-1.0 / 39916800.0)))));
+  const double cosR =
+      1.0 +
+      z * (-0.5 + z * (1.0 / 24.0 +
+                       z * (-1.0 / 720.0 + z * (1.0 / 40320.0 + z * (-1.0 / 3628800.0 +
+                                                                     z * (1.0 / 479001600.0))))));
+  const float c = static_cast<float>(cosR);
+  const float s = static_cast<float>(sinR);
+  switch (static_cast<unsigned>(k) & 3u) {
+    case 0:
+      return {c, s};
+    case 1:
+      return {-s, c};
+    case 2:
+      return {-c, -s};
+    default:
+      return {s, -c};
+  }
+}
 
 float portableSin(float radians) noexcept {
   return sinOrCos(radians, false);

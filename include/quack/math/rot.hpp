@@ -11,10 +11,12 @@ struct Rot {
   float c = 1.0f;
   float s = 0.0f;
 
-  /// Rotation by `radians`, counter-clockwise. Quack's own cosine and sine
-  /// (quack/math/trig.hpp): the same bits on every platform.
+  /// Rotation by `radians`, counter-clockwise. Quack's own fast cosine and sine
+  /// (portableCosSin, quack/math/trig.hpp): within 1 float ulp, the same bits on every
+  /// platform.
   static Rot fromAngle(float radians) noexcept {
-    return {portableCos(radians), portableSin(radians)};
+    const CosSin cs = portableCosSin(radians);
+    return {cs.cosine, cs.sine};
   }
   /// Angle in (-pi, pi], by Quack's own atan2 (the same bits on every platform).
   float angle() const noexcept { return portableAtan2(s, c); }

@@ -21,6 +21,27 @@
 
 namespace quack {
 
+/// Cosine and sine of one angle, from portableCosSin.
+struct CosSin {
+  float cosine = 1.0f;
+  float sine = 0.0f;
+};
+
+/// cos(radians) and sin(radians) together, cheaply: the fast path of Rot::fromAngle, where
+/// a simulation builds its rotations. For |radians| <= kFastTrigLimit the angle is reduced
+/// by a three-part pi/2 (Cody and Waite) in double and both results come from short
+/// polynomials in double: each within 1 float ulp of the exact value (within 0.5 ulp plus
+/// about 2^-40 relative; tests/math/trig_test.cpp measures it against the C library's double
+/// functions), for about a quarter of the instructions of portableCos and portableSin
+/// together (docs/determinism.md, "Builds"). Beyond the limit, and for NaN and the
+/// infinities, it returns portableCos and portableSin exactly. The same bits on every
+/// platform, as the functions below (IEEE double operations only, -ffp-contract=off).
+CosSin portableCosSin(float radians) noexcept;
+
+/// Where portableCosSin leaves its fast path: 1e5 rad, ten times the angle a scene file may
+/// give (1e4 rad); there the three-part reduction is still exact to 2^-70 of a turn.
+inline constexpr float kFastTrigLimit = 1.0e5f;
+
 /// sin(radians); any float, see above.
 float portableSin(float radians) noexcept;
 /// cos(radians); any float.
