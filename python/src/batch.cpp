@@ -186,6 +186,7 @@ class BatchResult:
     single query's result fields (points as (N, 2); statuses as small integer codes into
     quack.GJK_STATUSES or quack.EPA_STATUSES)."""
     def to_dict(self):
+        """The fields as a dict of numpy arrays."""
         return {k: getattr(self, k) for k in self._fields}
     def __repr__(self):
         n = len(getattr(self, self._fields[0]))

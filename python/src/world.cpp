@@ -412,6 +412,16 @@ ToiEvent = _collections.namedtuple("ToiEvent", "time shape_a shape_b point norma
 RayHit = _collections.namedtuple("RayHit", "shape body point normal fraction")
 ShapeOverlap = _collections.namedtuple("ShapeOverlap", "shape body depth depenetration")
 ShapeCastHit = _collections.namedtuple("ShapeCastHit", "shape body point normal fraction")
+HitEvent.__doc__ = ("A contact that began faster than the world's hit speed: shapes, point "
+                    "(world frame), normal (from shape_a to shape_b), approach_speed (m/s).")
+ToiEvent.__doc__ = ("An impact found by continuous collision: time (fraction of the step), "
+                    "shapes, point, normal (from shape_a to shape_b), approach_speed (m/s).")
+RayHit.__doc__ = ("A shape a world ray enters: shape, body, point, normal (world frame), "
+                  "fraction (origin + fraction * translation).")
+ShapeOverlap.__doc__ = ("A shape overlapping a query shape: shape, body, depth (metres), "
+                        "depenetration (the vector that moves the query shape out).")
+ShapeCastHit.__doc__ = ("The first shape a swept query shape meets: shape, body, point, normal, "
+                        "fraction of the translation.")
 for _t in (Events, HitEvent, ToiEvent, RayHit, ShapeOverlap, ShapeCastHit):
     _t.__module__ = "quack"
 del _t, _collections
@@ -430,7 +440,9 @@ del _t, _collections
             return worldOf(b.world).world().isValid(b.id);
           },
           "Whether the body still exists (False once destroyed).")
-      .def_property_readonly("world", [](const BodyHandle& b) { return b.world; })
+      .def_property_readonly(
+          "world", [](const BodyHandle& b) { return b.world; },
+          "The quack.World the body belongs to.")
       .def_property_readonly(
           "name",
           [](const BodyHandle& b) {
@@ -444,7 +456,8 @@ del _t, _collections
           "type",
           [](const BodyHandle& b) {
             return bodyTypeName(worldOf(validBody(b).world).world().bodyType(b.id));
-          })
+          },
+          "static, kinematic or dynamic.")
       .def_property(
           "position",
           [](const BodyHandle& b) {
@@ -492,14 +505,17 @@ del _t, _collections
           "mass",
           [](const BodyHandle& b) {
             return static_cast<double>(worldOf(validBody(b).world).world().mass(b.id));
-          })
-      .def_property_readonly("shapes",
-                             [](const BodyHandle& b) {
-                               py::list out;
-                               for (ShapeId s : worldOf(validBody(b).world).world().shapes(b.id))
-                                 out.append(ShapeHandle{b.world, s});
-                               return out;
-                             })
+          },
+          "kg (0 for static and kinematic bodies).")
+      .def_property_readonly(
+          "shapes",
+          [](const BodyHandle& b) {
+            py::list out;
+            for (ShapeId s : worldOf(validBody(b).world).world().shapes(b.id))
+              out.append(ShapeHandle{b.world, s});
+            return out;
+          },
+          "The body's shapes (quack.ShapeHandle), in creation order.")
       .def(
           "apply_impulse",
           [](const BodyHandle& b, py::handle impulse, py::handle point) {
@@ -550,7 +566,8 @@ del _t, _collections
           "body",
           [](const ShapeHandle& s) {
             return BodyHandle{s.world, worldOf(validShape(s).world).world().body(s.id)};
-          })
+          },
+          "The quack.BodyHandle the shape is on.")
       .def_property_readonly(
           "type",
           [](const ShapeHandle& s) {
@@ -562,16 +579,21 @@ del _t, _collections
           "category",
           [](const ShapeHandle& s) {
             return worldOf(validShape(s).world).world().shapeDef(s.id).filter.category;
-          })
-      .def_property_readonly("sensor",
-                             [](const ShapeHandle& s) {
-                               return worldOf(validShape(s).world).world().shapeDef(s.id).sensor;
-                             })
-      .def_property_readonly("friction",
-                             [](const ShapeHandle& s) {
-                               return static_cast<double>(
-                                   worldOf(validShape(s).world).world().shapeDef(s.id).friction);
-                             })
+          },
+          "Category bits (a bit set).")
+      .def_property_readonly(
+          "sensor",
+          [](const ShapeHandle& s) {
+            return worldOf(validShape(s).world).world().shapeDef(s.id).sensor;
+          },
+          "True for a sensor (reports overlaps, no collision response).")
+      .def_property_readonly(
+          "friction",
+          [](const ShapeHandle& s) {
+            return static_cast<double>(
+                worldOf(validShape(s).world).world().shapeDef(s.id).friction);
+          },
+          "Friction coefficient.")
       .def("__eq__", [](const ShapeHandle& a,
                         const ShapeHandle& b) { return a.world.is(b.world) && a.id == b.id; })
       .def("__hash__",
@@ -693,7 +715,7 @@ del _t, _collections
             check(w.world().destroyShape(s.id));
             w.changed();
           },
-          py::arg("shape"))
+          py::arg("shape"), "Destroys a shape (deferred inside a callback).")
       .def_property_readonly(
           "bodies",
           [](py::object self) {
