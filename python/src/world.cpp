@@ -610,12 +610,12 @@ del _t, _collections
   py::class_<PyWorld>(m, "World", worldGc(),
                       "Rigid bodies carrying shapes, stepped by Quack's solver (docs/world.md). "
                       "World frame, SI units.")
-      .def(py::init([](py::handle gravity, double dt, int substeps, const std::string& broadphase,
-                       bool continuous) {
+      .def(py::init([](py::handle gravity, py::handle dt, py::handle substeps,
+                       const std::string& broadphase, bool continuous) {
              WorldDef def;
              def.gravity = toVector(gravity, "gravity", "m/s^2");
-             def.timeStep = static_cast<float>(dt);
-             def.substeps = substeps;
+             def.timeStep = static_cast<float>(toDouble(dt, "dt"));
+             def.substeps = static_cast<int>(toInteger(substeps, "substeps", 1, 64));
              def.broadPhase = toBroadPhase(broadphase);
              def.enableContinuous = continuous;
              World w = valueOrRaise(World::create(def));

@@ -697,6 +697,11 @@ def test_arguments_out_of_range_are_value_errors_naming_them():
         w.step(dt="0.1")
     with pytest.raises(ValueError, match=r"^dt: must be a real number"):
         w.step(dt=0.1 + 1j)
+    with pytest.raises(ValueError, match=r"^substeps: must be an integer in 1\.\.64, got 1099"):
+        quack.World(substeps=2**40)
+    with pytest.raises(ValueError, match=r"^dt: must be a number, not a str"):
+        quack.World(dt="0.1")
+    assert quack.World(dt=np.float32(0.5), substeps=np.int8(3)).step_count == 0
     w.step(dt=np.float32(0.01), substeps=np.uint8(2))
     assert w.step_count == 1
     with pytest.raises(ValueError, match=r"^angles\[1\]: 1e\+30 rad is beyond the limit 1e4 rad"):
