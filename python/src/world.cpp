@@ -1031,7 +1031,8 @@ del _t, _collections
               d[4] = static_cast<double>(v.y);
               d[5] = static_cast<double>(world.angularVelocity(id));
             }
-            a.attr("flags").attr("writeable") = false;
+            // Read-only (numpy's flag, cleared without a Python attribute call).
+            py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
             w.state = a;
             w.stateVersion = w.version;
             return w.state;
