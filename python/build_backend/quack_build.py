@@ -7,8 +7,9 @@ interpreter running pip, and this file packs it into a wheel with the type stubs
 installing", says how to use it.
 
 config_settings (pip --config-settings KEY=VALUE):
-    build-dir   the CMake build directory (default: build/pip-<interpreter tag> in the tree,
-                kept between builds so that a rebuild is quick)
+    build-dir   the CMake build directory (default: build/pip-<interpreter tag>-<hash of the
+                environment's prefix> in the tree, kept between builds so that a rebuild is
+                quick)
     jobs        parallel compile jobs (default: the CPU count)
 The environment variables QUACK_PIP_BUILD_DIR and QUACK_PIP_JOBS do the same.
 """
@@ -81,14 +82,25 @@ def _run(cmd, env):
 
 def _build_module(config_settings):
     """Configures and builds quack_python; returns the path of the built module."""
+    # One default directory per interpreter (two virtual environments of the same Python
+    # differ in their packages, and CMake caches what it found for one).
+    prefix = hashlib.sha256(os.path.abspath(sys.prefix).encode()).hexdigest()[:8]
     build_dir = _setting(config_settings, "build-dir", "QUACK_PIP_BUILD_DIR") or os.path.join(
-        SOURCE, "build", f"pip-{sys.implementation.cache_tag}")
+        SOURCE, "build", f"pip-{sys.implementation.cache_tag}-{prefix}")
     jobs = _setting(config_settings, "jobs", "QUACK_PIP_JOBS") or str(os.cpu_count() or 1)
     # pip's isolated build environment points PYTHONPATH at a site directory that hides the
     # interpreter's own packages; CMake's check for numpy runs this interpreter and must see
     # them, so the CMake commands run without pip's overlay.
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONNOUSERSITE")}
-    configure = ["cmake", "-S", SOURCE, "-B", build_dir, "-DCMAKE_BUILD_TYPE=Release",
+    probe = subprocess.run([sys.executable, "-c", "import numpy"], env=env, capture_output=True)
+    if probe.returncode != 0:
+        raise RuntimeError(
+            f"quack_build: {sys.executable} cannot import numpy, which the module's build "
+            "needs: install it for this interpreter (Debian python3-numpy, and a virtual "
+            "environment made with --system-site-packages to see it)")
+    # -U: what CMake found for another interpreter in this directory is looked for again.
+    configure = ["cmake", "-S", SOURCE, "-B", build_dir, "-U", "Python3_*", "-U", "_Python3_*",
+                 "-DCMAKE_BUILD_TYPE=Release",
                  f"-DPython3_EXECUTABLE={sys.executable}", "-DQUACK_BUILD_PYTHON=ON",
                  "-DQUACK_BUILD_TESTS=OFF", "-DQUACK_BUILD_BENCHMARKS=OFF",
                  "-DQUACK_BUILD_APPS=OFF",
