@@ -474,10 +474,10 @@ del _t, _collections
           [](const BodyHandle& b) {
             return static_cast<double>(worldOf(validBody(b).world).world().angle(b.id));
           },
-          [](const BodyHandle& b, double a) {
+          [](const BodyHandle& b, py::handle a) {
             World& w = worldOf(validBody(b).world).world();
             worldOf(b.world).changed();
-            check(w.setTransform(b.id, w.position(b.id), toAngle(a, "angle")));
+            check(w.setTransform(b.id, w.position(b.id), toAngle(toDouble(a, "angle"), "angle")));
           },
           "Radians; setting it turns the body (|angle| <= 1e4 rad, as in scene files).")
       .def_property(
@@ -496,9 +496,10 @@ del _t, _collections
           [](const BodyHandle& b) {
             return static_cast<double>(worldOf(validBody(b).world).world().angularVelocity(b.id));
           },
-          [](const BodyHandle& b, double v) {
+          [](const BodyHandle& b, py::handle v) {
             worldOf(validBody(b).world).changed();
-            check(worldOf(b.world).world().setAngularVelocity(b.id, static_cast<float>(v)));
+            check(worldOf(b.world).world().setAngularVelocity(
+                b.id, static_cast<float>(toDouble(v, "angular_velocity"))));
           },
           "rad/s.")
       .def_property_readonly(
@@ -627,20 +628,22 @@ del _t, _collections
            "(tree, quadtree, sap, hash, brute), continuous collision on or off.")
       .def(
           "create_body",
-          [](py::object self, const std::string& type, py::handle pos, double angle, py::handle vel,
-             double angvel, double linearDamping, double angularDamping, double gravityScale,
-             bool bullet, const std::string& name) {
+          [](py::object self, const std::string& type, py::handle pos, py::handle angle,
+             py::handle vel, py::handle angvel, py::handle linearDamping, py::handle angularDamping,
+             py::handle gravityScale, bool bullet, const std::string& name) {
             PyWorld& w = worldOf(self);
             w.checkIdle();
             BodyDef def;
             def.type = toBodyType(type);
             def.position = toPosition(pos, "pos");
-            def.angle = toAngle(angle, "angle");
+            def.angle = toAngle(toDouble(angle, "angle"), "angle");
             def.linearVelocity = toVector(vel, "vel", "m/s");
-            def.angularVelocity = static_cast<float>(angvel);
-            def.linearDamping = static_cast<float>(linearDamping);
-            def.angularDamping = static_cast<float>(angularDamping);
-            def.gravityScale = static_cast<float>(gravityScale);
+            // Numbers through toDouble: bool and complex refused (pybind11's float
+            // conversion would take a numpy complex, dropping its imaginary part).
+            def.angularVelocity = static_cast<float>(toDouble(angvel, "angvel"));
+            def.linearDamping = static_cast<float>(toDouble(linearDamping, "linear_damping"));
+            def.angularDamping = static_cast<float>(toDouble(angularDamping, "angular_damping"));
+            def.gravityScale = static_cast<float>(toDouble(gravityScale, "gravity_scale"));
             def.bullet = bullet;
             BodyId id = valueOrRaise(w.world().createBody(def));
             w.changed();
@@ -656,17 +659,17 @@ del _t, _collections
           "A new body (type static, kinematic or dynamic) at pos (world frame) and angle.")
       .def(
           "create_shape",
-          [](py::object self, py::handle body, py::handle shape, double density, double friction,
-             double restitution, bool sensor, std::uint64_t category, std::uint64_t mask,
-             std::int32_t group) -> py::object {
+          [](py::object self, py::handle body, py::handle shape, py::handle density,
+             py::handle friction, py::handle restitution, bool sensor, std::uint64_t category,
+             std::uint64_t mask, std::int32_t group) -> py::object {
             PyWorld& w = worldOf(self);
             w.checkIdle();
             const BodyId b = bodyId(w, body, "body");
             const PyShape& s = toShape(shape, "shape");
             ShapeDef def;
-            def.density = static_cast<float>(density);
-            def.friction = static_cast<float>(friction);
-            def.restitution = static_cast<float>(restitution);
+            def.density = static_cast<float>(toDouble(density, "density"));
+            def.friction = static_cast<float>(toDouble(friction, "friction"));
+            def.restitution = static_cast<float>(toDouble(restitution, "restitution"));
             def.sensor = sensor;
             def.filter.category = category;
             def.filter.mask = mask;

@@ -733,6 +733,26 @@ def test_arguments_out_of_range_are_value_errors_naming_them():
             w.set_positions(bad)
     w.set_positions(np.array([[0, -1], [0, 3]], dtype=np.int32))
     assert ball.position == (0.0, 3.0)
+    # Scalar numbers everywhere: numpy complex (whose imaginary part pybind11's float
+    # conversion dropped) and bool are refused, naming the argument.
+    for call, name in ((lambda v: w.create_body(angle=v), "angle"),
+                       (lambda v: w.create_body(angvel=v), "angvel"),
+                       (lambda v: w.create_body(linear_damping=v), "linear_damping"),
+                       (lambda v: w.create_body(gravity_scale=v), "gravity_scale"),
+                       (lambda v: w.create_shape(ball, quack.circle(1), density=v), "density"),
+                       (lambda v: w.create_shape(ball, quack.circle(1), friction=v), "friction"),
+                       (lambda v: w.create_shape(ball, quack.circle(1), restitution=v),
+                        "restitution"),
+                       (lambda v: setattr(ball, "angle", v), "angle"),
+                       (lambda v: setattr(ball, "angular_velocity", v), "angular_velocity")):
+        count = w.body_count, w.shape_count
+        with pytest.raises(ValueError, match=rf"^{name}: must be a real number"):
+            call(np.complex128(0.5 + 1j))
+        with pytest.raises(ValueError, match=rf"^{name}: must be a number, not a bool"):
+            call(True)
+        assert (w.body_count, w.shape_count) == count
+    w.create_shape(w.create_body(angle=np.float32(0.5), angvel=np.int64(1)), quack.circle(1),
+                   density=np.uint8(2), friction=np.float16(0.5))
 
 
 def test_the_collector_may_run_while_a_world_is_made():
