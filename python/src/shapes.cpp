@@ -89,9 +89,7 @@ json toJsonAt(py::handle value, const std::string& path, const std::string& root
   }
   if (value.is_none()) return nullptr;
   // bool before int: Python's bool is an int.
-  if (py::isinstance<py::bool_>(value) || numpyKind(value) == 'b') {
-    if (!py::isinstance<py::array>(value)) return PyObject_IsTrue(value.ptr()) == 1;
-  }
+  if (py::isinstance<py::bool_>(value)) return PyObject_IsTrue(value.ptr()) == 1;
   // Integers beyond 64 bits become floats, as a JSON reader would read them.
   if (py::isinstance<py::int_>(value)) return intJson(value, path);
   if (py::isinstance<py::float_>(value)) return PyFloat_AsDouble(value.ptr());
@@ -118,8 +116,10 @@ json toJsonAt(py::handle value, const std::string& path, const std::string& root
     }
     return out;
   }
+  // numpy scalars (looked at last: numpyKind costs an attribute lookup) and anything else that
+  // is a number.
+  if (numpyKind(value) == 'b') return PyObject_IsTrue(value.ptr()) == 1;
   if (isComplex(value)) raiseValue(path + ": a complex number is not a JSON value");
-  // numpy scalars and anything else that is a number.
   if (py::hasattr(value, "__index__")) return intJson(indexOf(value, path), path);
   if (py::hasattr(value, "__float__")) return toDouble(value, path);
   raiseValue(path + ": a " + typeName(value) +
@@ -133,20 +133,17 @@ json toJson(py::handle value, const std::string& path) {
 }
 
 double toDouble(py::handle value, const std::string& path) {
-  if (py::isinstance<py::bool_>(value) || numpyKind(value) == 'b')
+  // Python floats (numpy float64 among them) and ints first, without numpyKind's lookup.
+  if (PyFloat_Check(value.ptr())) return PyFloat_AS_DOUBLE(value.ptr());
+  if (PyBool_Check(value.ptr()) || (!PyLong_Check(value.ptr()) && numpyKind(value) == 'b'))
     raiseValue(path + ": must be a number, not a bool");
+  if (PyLong_Check(value.ptr())) return intJson(value, path).get<double>();
   if (isComplex(value)) raiseValue(path + ": must be a real number, not a complex one");
   if (py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value) ||
       py::isinstance<py::array>(value) ||
       (!py::hasattr(value, "__float__") && !py::hasattr(value, "__index__")))
     raiseValue(path + ": must be a number, not a " + typeName(value));
-  if (py::isinstance<py::int_>(value) || !py::hasattr(value, "__float__")) {
-    const json j =
-        intJson(py::isinstance<py::int_>(value) ? py::reinterpret_borrow<py::object>(value)
-                                                : indexOf(value, path),
-                path);
-    return j.get<double>();
-  }
+  if (!py::hasattr(value, "__float__")) return intJson(indexOf(value, path), path).get<double>();
   const double d = PyFloat_AsDouble(value.ptr());
   if (d == -1.0 && PyErr_Occurred()) raiseValue(path + ": " + takeError());
   return d;
