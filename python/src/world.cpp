@@ -1116,9 +1116,16 @@ del _t, _collections
           "_repr_svg_",
           [](PyWorld& w) {
             w.checkIdle();
-            return renderSvg(w.sw, "");
+            // A notebook keeps every picture it shows: a smaller budget than to_svg's (a big
+            // world is drawn as an even sample of its shapes, and the picture says so).
+            SvgOptions options;
+            options.maxShapes = 5000;
+            options.maxContacts = 1000;
+            options.maxBytes = 2u << 20;
+            return renderSvg(w.sw, "", options);
           },
-          "The SVG Jupyter shows for a world (to_svg()).")
+          "The SVG Jupyter shows for a world: to_svg()'s picture within 5,000 shapes, 1,000 "
+          "contact points and 2 MB.")
       .def(
           "ray_cast_closest",
           [m](py::object self, py::handle origin, py::handle translation, std::uint64_t category,

@@ -876,5 +876,12 @@ def test_to_svg_draws_the_world():
     assert svg.rstrip().endswith("</svg>")
     assert "a ball" in svg
     assert w._repr_svg_() == w.to_svg()
+    # A big world: the notebook's picture keeps to its smaller budget and says so.
+    for i in range(6000):
+        b = w.create_body(type="static", pos=(i % 100, 5 + i // 100))
+        w.create_shape(b, quack.circle(radius=0.3))
+    small, full = w._repr_svg_(), w.to_svg()
+    assert len(small) < 2 << 20 and len(small) < len(full)
+    assert small.count("<circle") + small.count("<path") + small.count("<polygon") <= 5000 + 10
     # Two shapes: the ground's box and the ball.
     assert svg.count("<path") + svg.count("<polygon") + svg.count("<circle") >= 2
