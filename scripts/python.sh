@@ -10,6 +10,8 @@
 #   scripts/python.sh uninstall [--prefix D]
 #   scripts/python.sh bench [--n N] [--instructions]  # batch queries vs a C++ loop vs a
 #                                        #   Python loop (--instructions: callgrind counts too)
+#   scripts/python.sh bench-state [--bodies N ...]    # World.body_state() vs the get_*
+#                                        #   copies, set_body_state vs the set_* calls
 # The module is built for Debian's /usr/bin/python3 (whose numpy and pybind11 Debian ships);
 # QUACK_PYTHON=/path/to/python3 chooses another interpreter that has numpy.
 set -euo pipefail
@@ -19,7 +21,7 @@ shift || true
 python=${QUACK_PYTHON:-/usr/bin/python3}
 [ -x "$python" ] || python=$(command -v python3)
 say() { printf 'python.sh: %s\n' "$*" >&2; }
-usage() { sed -n '2,14p' "$0" >&2; exit 2; }
+usage() { sed -n '2,16p' "$0" >&2; exit 2; }
 
 # The release preset's build (build/release), so that CI's release build is reused.
 build() {
@@ -67,6 +69,12 @@ case "$mode" in
     PYTHONPATH="$PWD/build/release/python" "$python" python/bench/bench_batch.py \
       --baseline build/release/python/quack_python_baseline --json build/release/bench_batch.json \
       "$@"
+    ;;
+  bench-state)
+    scripts/setup.sh build python
+    build ""
+    PYTHONPATH="$PWD/build/release/python" "$python" python/bench/bench_state.py \
+      --json build/release/bench_state.json "$@"
     ;;
   *) usage ;;
 esac

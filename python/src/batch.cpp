@@ -68,14 +68,12 @@ struct Rows {
 
 Rows toRows(py::handle value, std::size_t width, const std::string& name, const char* what) {
   Rows r;
-  r.array = Poses::ensure(value);
   const std::string expected = name + ": must be a numpy array of shape (N, " +
                                std::to_string(width) + ") or (" + std::to_string(width) + ",) (" +
                                what + " per row)";
-  if (!r.array) {
-    PyErr_Clear();
-    raiseValue(expected);
-  }
+  // Numbers only: a bool, complex (its imaginary part would be dropped) or string array is
+  // refused, not converted.
+  r.array = toDoubleArray(value, name, expected);
   if (r.array.ndim() == 2 && r.array.shape(1) == static_cast<py::ssize_t>(width)) {
     r.count = static_cast<std::size_t>(r.array.shape(0));
   } else if (r.array.ndim() == 1 && r.array.shape(0) == static_cast<py::ssize_t>(width)) {
@@ -188,6 +186,7 @@ class BatchResult:
     single query's result fields (points as (N, 2); statuses as small integer codes into
     quack.GJK_STATUSES or quack.EPA_STATUSES)."""
     def to_dict(self):
+        """The fields as a dict of numpy arrays."""
         return {k: getattr(self, k) for k in self._fields}
     def __repr__(self):
         n = len(getattr(self, self._fields[0]))

@@ -44,9 +44,25 @@ T valueOrRaise(Result<T> r) {
   return std::move(r).value();
 }
 
+/// How deep toJson follows lists, tuples, dicts and arrays (a shape needs 3 levels); deeper,
+/// or a container that contains itself, is a ValueError naming the argument.
+inline constexpr int kMaxJsonDepth = 64;
 /// A Python value (None, bool, int, float, str, dict with str keys, list, tuple, numpy
 /// array or scalar) as JSON; `path` names it in errors.
 nlohmann::json toJson(py::handle value, const std::string& path);
+
+/// A Python number (int, float, numpy integer or float, anything with __index__ or
+/// __float__) as a double; bool, complex, str and anything else raise ValueError naming
+/// `path`, as does a conversion that fails (an int beyond a double, a raising __float__).
+double toDouble(py::handle value, const std::string& path);
+/// A Python integer (int, numpy integer, anything with __index__; not bool) in lo..hi, or
+/// ValueError naming `path`.
+long long toInteger(py::handle value, const std::string& path, long long lo, long long hi);
+/// `value` as a C-contiguous array of doubles, converted from an array (or nested list) of
+/// integers or floats; bool, complex, string and object arrays raise ValueError naming `path`
+/// with `expected`. A value that is no array at all raises the same.
+py::array_t<double, py::array::c_style | py::array::forcecast> toDoubleArray(
+    py::handle value, const std::string& path, const std::string& expected);
 /// JSON as Python values (objects as dicts, arrays as lists).
 py::object toPython(const nlohmann::json& json);
 
@@ -75,6 +91,11 @@ Transform toTransform(py::handle pose, const std::string& path);
 Vec2 toPosition(py::handle value, const std::string& path);
 /// A float >= 0 within the coordinate limit (a distance option).
 float toLength(py::handle value, const std::string& path);
+/// A vector (x, y) of another quantity (velocity, impulse, force, gravity): finite as
+/// floats and at most 1e9 in size, in `unit` (said in the message).
+Vec2 toVector(py::handle value, const std::string& path, const char* unit);
+/// An angle of a body, radians: finite, |angle| <= 1e4 (kSceneMaxAngle, as in scene files).
+float toAngle(double angle, const std::string& path);
 /// A Vec2 as a tuple of two Python floats.
 py::tuple toTuple(Vec2 v);
 /// A quack.Shape argument (errors name `path`).

@@ -12,6 +12,7 @@
 #include "bindings.hpp"
 #include "quack/geometry/bounds.hpp"
 #include "quack/geometry/mass.hpp"
+#include "quack/io/scene.hpp"
 #include "quack/io/shape_json.hpp"
 
 namespace quack::python {
@@ -30,46 +31,158 @@ PyShape makeShape(json j, const std::string& path) {
   return s;
 }
 
-json toJson(py::handle value, const std::string& path) {
+namespace {
+
+std::string typeName(py::handle value) {
+  return std::string(py::str(value.get_type().attr("__name__")));
+}
+
+// numpy's kind letter of a numpy scalar or array ('b' bool, 'i' 'u' integers, 'f' float,
+// 'c' complex, 'U' 'S' strings, 'O' objects...), or 0 for anything else.
+char numpyKind(py::handle value) {
+  if (py::isinstance<py::array>(value))
+    return py::reinterpret_borrow<py::array>(value).dtype().kind();
+  if (!PyObject_HasAttrString(value.ptr(), "dtype") || py::isinstance<py::str>(value)) return 0;
+  py::object dtype = value.attr("dtype");
+  if (!py::isinstance<py::dtype>(dtype)) return 0;
+  return py::reinterpret_borrow<py::dtype>(dtype).kind();
+}
+
+// The message of the Python exception being raised (cleared).
+std::string takeError() {
+  py::error_already_set e;
+  return e.what();
+}
+
+// A Python int as JSON: 64-bit when it fits, else a float as a JSON reader would read it;
+// beyond a double, ValueError naming `path`.
+json intJson(py::handle value, const std::string& path) {
+  int overflow = 0;
+  const long long v = PyLong_AsLongLongAndOverflow(value.ptr(), &overflow);
+  if (overflow == 0) {
+    if (v == -1 && PyErr_Occurred()) raiseValue(path + ": " + takeError());
+    return v;
+  }
+  const double d = PyLong_AsDouble(value.ptr());
+  if (d == -1.0 && PyErr_Occurred()) {
+    PyErr_Clear();
+    raiseValue(path + ": the integer is too large for a number (beyond 1.8e308)");
+  }
+  return d;
+}
+
+// obj.__index__() as a Python int, or ValueError naming `path` with what it raised.
+py::object indexOf(py::handle value, const std::string& path) {
+  PyObject* i = PyNumber_Index(value.ptr());
+  if (i == nullptr) raiseValue(path + ": " + takeError());
+  return py::reinterpret_steal<py::object>(i);
+}
+
+bool isComplex(py::handle value) {
+  return PyComplex_Check(value.ptr()) || numpyKind(value) == 'c';
+}
+
+json toJsonAt(py::handle value, const std::string& path, const std::string& root, int depth) {
+  if (depth > kMaxJsonDepth) {
+    raiseValue(root + ": nested more than " + std::to_string(kMaxJsonDepth) +
+               " levels deep (or a list or dict that contains itself)");
+  }
   if (value.is_none()) return nullptr;
   // bool before int: Python's bool is an int.
-  if (py::isinstance<py::bool_>(value)) return value.cast<bool>();
-  if (py::isinstance<py::int_>(value)) {
-    // Integers beyond 64 bits become floats, as a JSON reader would read them.
-    try {
-      return value.cast<long long>();
-    } catch (const py::cast_error&) {
-      return value.cast<double>();
-    }
-  }
-  if (py::isinstance<py::float_>(value)) return value.cast<double>();
+  if (py::isinstance<py::bool_>(value)) return PyObject_IsTrue(value.ptr()) == 1;
+  // Integers beyond 64 bits become floats, as a JSON reader would read them.
+  if (py::isinstance<py::int_>(value)) return intJson(value, path);
+  if (py::isinstance<py::float_>(value)) return PyFloat_AsDouble(value.ptr());
   if (py::isinstance<py::str>(value)) return value.cast<std::string>();
   if (py::isinstance<py::dict>(value)) {
     json out = json::object();
     for (auto item : value.cast<py::dict>()) {
       if (!py::isinstance<py::str>(item.first))
-        raiseValue(path + ": dict keys must be strings, not " +
-                   std::string(py::str(item.first.get_type().attr("__name__"))));
+        raiseValue(path + ": dict keys must be strings, not " + typeName(item.first));
       std::string key = item.first.cast<std::string>();
-      out[key] = toJson(item.second, path.empty() ? key : path + "." + key);
+      out[key] = toJsonAt(item.second, path.empty() ? key : path + "." + key, root, depth + 1);
     }
     return out;
   }
   if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value) ||
       py::isinstance<py::array>(value)) {
+    if (py::isinstance<py::array>(value) && py::reinterpret_borrow<py::array>(value).ndim() == 0)
+      return toJsonAt(value.attr("item")(), path, root, depth + 1);
     json out = json::array();
     std::size_t i = 0;
     for (py::handle item : value) {
-      out.push_back(toJson(item, path + "[" + std::to_string(i) + "]"));
+      out.push_back(toJsonAt(item, path + "[" + std::to_string(i) + "]", root, depth + 1));
       ++i;
     }
     return out;
   }
-  // numpy scalars and anything else that is a number.
-  if (py::hasattr(value, "__index__")) return py::int_(value.attr("__index__")()).cast<long long>();
-  if (py::hasattr(value, "__float__")) return value.cast<double>();
-  raiseValue(path + ": a " + std::string(py::str(value.get_type().attr("__name__"))) +
+  // numpy scalars (looked at last: numpyKind costs an attribute lookup) and anything else that
+  // is a number.
+  if (numpyKind(value) == 'b') return PyObject_IsTrue(value.ptr()) == 1;
+  if (isComplex(value)) raiseValue(path + ": a complex number is not a JSON value");
+  if (py::hasattr(value, "__index__")) return intJson(indexOf(value, path), path);
+  if (py::hasattr(value, "__float__")) return toDouble(value, path);
+  raiseValue(path + ": a " + typeName(value) +
              " is not a JSON value (expected a number, string, list, tuple, dict or None)");
+}
+
+}  // namespace
+
+json toJson(py::handle value, const std::string& path) {
+  return toJsonAt(value, path, path, 0);
+}
+
+double toDouble(py::handle value, const std::string& path) {
+  // Python floats (numpy float64 among them) and ints first, without numpyKind's lookup.
+  if (PyFloat_Check(value.ptr())) return PyFloat_AS_DOUBLE(value.ptr());
+  if (PyBool_Check(value.ptr()) || (!PyLong_Check(value.ptr()) && numpyKind(value) == 'b'))
+    raiseValue(path + ": must be a number, not a bool");
+  if (PyLong_Check(value.ptr())) return intJson(value, path).get<double>();
+  if (isComplex(value)) raiseValue(path + ": must be a real number, not a complex one");
+  if (py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value) ||
+      py::isinstance<py::array>(value) ||
+      (!py::hasattr(value, "__float__") && !py::hasattr(value, "__index__")))
+    raiseValue(path + ": must be a number, not a " + typeName(value));
+  if (!py::hasattr(value, "__float__")) return intJson(indexOf(value, path), path).get<double>();
+  const double d = PyFloat_AsDouble(value.ptr());
+  if (d == -1.0 && PyErr_Occurred()) raiseValue(path + ": " + takeError());
+  return d;
+}
+
+long long toInteger(py::handle value, const std::string& path, long long lo, long long hi) {
+  const std::string expected =
+      path + ": must be an integer in " + std::to_string(lo) + ".." + std::to_string(hi);
+  if (py::isinstance<py::bool_>(value) || numpyKind(value) == 'b' ||
+      (!py::isinstance<py::int_>(value) && !py::hasattr(value, "__index__")) ||
+      py::isinstance<py::array>(value))
+    raiseValue(expected + ", not a " + typeName(value));
+  py::object i = indexOf(value, path);
+  int overflow = 0;
+  const long long v = PyLong_AsLongLongAndOverflow(i.ptr(), &overflow);
+  if (v == -1 && PyErr_Occurred()) raiseValue(path + ": " + takeError());
+  if (overflow != 0 || v < lo || v > hi) raiseValue(expected + ", got " + std::string(py::str(i)));
+  return v;
+}
+
+py::array_t<double, py::array::c_style | py::array::forcecast> toDoubleArray(
+    py::handle value, const std::string& path, const std::string& expected) {
+  using Doubles = py::array_t<double, py::array::c_style | py::array::forcecast>;
+  py::array a = py::array::ensure(value);
+  if (!a) {
+    PyErr_Clear();
+    raiseValue(expected);
+  }
+  const char kind = a.dtype().kind();
+  if (kind != 'i' && kind != 'u' && kind != 'f') {
+    raiseValue(path + ": must hold integers or floats, not " + std::string(py::str(a.dtype())) +
+               " (" + expected + ")");
+  }
+  Doubles d = Doubles::ensure(a);
+  if (!d) {
+    PyErr_Clear();
+    raiseValue(expected);
+  }
+  return d;
 }
 
 py::object toPython(const json& j) {
@@ -132,9 +245,7 @@ std::vector<double> toNumbers(py::handle value, std::size_t n, const std::string
   std::size_t i = 0;
   for (py::handle item : value) {
     if (i == n) raiseValue(expected);
-    if (py::isinstance<py::bool_>(item) || !py::hasattr(item, "__float__"))
-      raiseValue(path + "[" + std::to_string(i) + "]: must be a number");
-    out.push_back(item.cast<double>());
+    out.push_back(toDouble(item, path + "[" + std::to_string(i) + "]"));
     ++i;
   }
   if (i != n) raiseValue(expected);
@@ -175,12 +286,31 @@ Vec2 toPosition(py::handle value, const std::string& path) {
 }
 
 float toLength(py::handle value, const std::string& path) {
-  if (py::isinstance<py::bool_>(value) || !py::hasattr(value, "__float__"))
-    raiseValue(path + ": must be a number");
-  const double v = value.cast<double>();
+  const double v = toDouble(value, path);
   if (!(v >= 0.0) || v > static_cast<double>(kMaxCoordinate))
     raiseValue(path + ": must be a number >= 0 within the coordinate limit 1e9 m");
   return static_cast<float>(v);
+}
+
+Vec2 toVector(py::handle value, const std::string& path, const char* unit) {
+  std::vector<double> v = toNumbers(value, 2, path, "a vector (x, y)");
+  for (int i = 0; i < 2; ++i) {
+    const std::string at = path + "[" + std::to_string(i) + "]";
+    const float f = static_cast<float>(v[i]);
+    if (!std::isfinite(f)) raiseValue(at + ": must be finite (as a float)");
+    if (std::fabs(f) > kMaxCoordinate)
+      raiseValue(at + ": " + formatNumber(v[i]) + " " + unit + " is beyond the limit 1e9 " + unit);
+  }
+  return {static_cast<float>(v[0]), static_cast<float>(v[1])};
+}
+
+float toAngle(double angle, const std::string& path) {
+  const float f = static_cast<float>(angle);
+  if (!std::isfinite(f)) raiseValue(path + ": must be finite (as a float)");
+  if (std::fabs(f) > kSceneMaxAngle)
+    raiseValue(path + ": " + formatNumber(angle) +
+               " rad is beyond the limit 1e4 rad (as in scene files)");
+  return f;
 }
 
 py::tuple toTuple(Vec2 v) {

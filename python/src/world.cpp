@@ -13,6 +13,7 @@
 #include <optional>
 
 #include "bindings.hpp"
+#include "quack/io/render.hpp"
 #include "quack/io/scene.hpp"
 #include "quack/io/state.hpp"
 #include "quack/world/world.hpp"
@@ -41,17 +42,29 @@ class PyWorld {
   SceneWorld sw;  // the world, and its bodies in creation (scene) order with their names
   std::vector<std::string> categories;
   EventTotals totals;
-  bool stepping = false;
-  int callbackDepth = 0;
+  bool stepping = false;                         // a step runs (set and cleared by StepGuard)
+  unsigned long stepThread = 0;                  // the Python thread that runs it
   std::optional<py::error_already_set> pending;  // the first exception a callback raised
   std::vector<py::object> callables;             // the callbacks' Python functions
 
+  // body_state(): the array of the last fill, and the world's version it was filled at.
+  // Every step and every write through the module moves `version` on.
+  py::object state;
+  std::uint64_t stateVersion = 0;
+  std::uint64_t version = 1;
+  void changed() { ++version; }
+
   World& world() { return sw.world; }
 
-  // Calls from another Python thread while this one steps (with the GIL released) are
-  // refused; calls from a callback (same thread) are the world's to accept or refuse.
+  // Whether a step runs in another Python thread: that thread released the GIL and the
+  // world's state is changing under it (a callback of that step, on the stepping thread,
+  // is not another thread: the world is consistent while its callbacks run).
+  bool steppingElsewhere() const { return stepping && PyThread_get_thread_ident() != stepThread; }
+  // Every entry point that reads or writes the world calls this first: calls from another
+  // Python thread while this one steps are refused; calls from a callback (same thread) are
+  // the world's to accept or refuse.
   void checkIdle() const {
-    if (stepping && callbackDepth == 0)
+    if (steppingElsewhere())
       throw std::runtime_error("quack.World: the world is stepping (in another thread)");
   }
 
@@ -69,6 +82,26 @@ class PyWorld {
     sw.bodies.resize(out);
     sw.names.resize(out);
   }
+};
+
+// Marks the world as stepping for the lifetime of one `step` call, whatever leaves it (a
+// return, an exception from the world such as std::bad_alloc): the world is never left
+// "stepping" by an exception (issue 28, item 6).
+class StepGuard {
+ public:
+  explicit StepGuard(PyWorld& w) : w_(w) {
+    w_.stepping = true;
+    w_.stepThread = PyThread_get_thread_ident();
+  }
+  ~StepGuard() {
+    w_.stepping = false;
+    w_.changed();
+  }
+  StepGuard(const StepGuard&) = delete;
+  StepGuard& operator=(const StepGuard&) = delete;
+
+ private:
+  PyWorld& w_;
 };
 
 py::object selfObject(PyWorld& w) {
@@ -106,13 +139,16 @@ BodyId bodyId(PyWorld& w, py::handle h, const std::string& path) {
   return b.id;
 }
 
+// The world of a handle, once it is idle (checkIdle) and the body still exists.
 const BodyHandle& validBody(const BodyHandle& b) {
+  worldOf(b.world).checkIdle();
   if (!worldOf(b.world).world().isValid(b.id))
     raiseValue("stale quack.BodyHandle (the body was destroyed)");
   return b;
 }
 
 const ShapeHandle& validShape(const ShapeHandle& s) {
+  worldOf(s.world).checkIdle();
   if (!worldOf(s.world).world().isValid(s.id))
     raiseValue("stale quack.ShapeHandle (the shape was destroyed)");
   return s;
@@ -136,18 +172,21 @@ std::vector<BodyId> bodyList(PyWorld& w, py::handle bodies) {
 
 using Values = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
+// body_state()'s columns: x, y, angle, vx, vy, angular_velocity.
+constexpr std::size_t kStateColumns = 6;
+
 // An array (N, width) (or (N,) for width 1) of finite numbers for N bodies.
 Values toValues(py::handle v, std::size_t n, std::size_t width, const char* name) {
-  Values a = Values::ensure(v);
-  if (!a) PyErr_Clear();
-  const bool ok = a && (width == 1 ? (a.ndim() == 1 && a.shape(0) == static_cast<py::ssize_t>(n))
-                                   : (a.ndim() == 2 && a.shape(0) == static_cast<py::ssize_t>(n) &&
-                                      a.shape(1) == static_cast<py::ssize_t>(width)));
-  if (!ok) {
-    raiseValue(std::string(name) + ": must be a numpy array of shape (" + std::to_string(n) +
-               (width == 1 ? ",)" : ", " + std::to_string(width) + ")") + " for " +
-               std::to_string(n) + " bodies");
-  }
+  const std::string expected = std::string(name) + ": must be a numpy array of shape (" +
+                               std::to_string(n) +
+                               (width == 1 ? ",)" : ", " + std::to_string(width) + ")") + " for " +
+                               std::to_string(n) + " bodies";
+  // Numbers only: a bool, complex or string array is refused, not converted.
+  Values a = toDoubleArray(v, name, expected);
+  const bool ok = (width == 1 ? (a.ndim() == 1 && a.shape(0) == static_cast<py::ssize_t>(n))
+                              : (a.ndim() == 2 && a.shape(0) == static_cast<py::ssize_t>(n) &&
+                                 a.shape(1) == static_cast<py::ssize_t>(width)));
+  if (!ok) raiseValue(expected);
   const double* d = a.data();
   for (std::size_t i = 0; i < n * width; ++i) {
     if (!std::isfinite(static_cast<float>(d[i]))) {
@@ -227,7 +266,6 @@ template <class Call>
 void runCallback(PyWorld& w, Call&& call) {
   py::gil_scoped_acquire gil;
   if (w.pending) return;
-  ++w.callbackDepth;
   try {
     call();
   } catch (py::error_already_set& e) {
@@ -238,7 +276,6 @@ void runCallback(PyWorld& w, Call&& call) {
     PyErr_SetString(PyExc_RuntimeError, e.what());
     w.pending.emplace();
   }
-  --w.callbackDepth;
 }
 
 using Registrar = void (World::*)(std::uint64_t, std::uint64_t, World::ContactCallback);
@@ -303,13 +340,17 @@ std::string bodyTypeName(BodyType t) {
 // Garbage collection: a world holds its callbacks' functions and a handle holds its world,
 // so a callback that refers to its world (directly or through a handle) makes a cycle.
 // These let Python's collector see those references and break such cycles.
+//
+// The collector may run while an instance is being made (any allocation in World's
+// constructor, such as numpy's first import, can start it), before its C++ value exists:
+// the value is looked up in pybind11's instance record, without a cast (which would throw,
+// and set Python errors, inside the collector), and a value not constructed yet is skipped.
 template <class T>
 T* valueOf(PyObject* self) {
-  try {
-    return &py::cast<T&>(py::handle(self));
-  } catch (const std::exception&) {
-    return nullptr;  // not constructed yet (or no more)
-  }
+  auto* inst = reinterpret_cast<py::detail::instance*>(self);
+  py::detail::value_and_holder vh = inst->get_value_and_holder();
+  if (!vh || !vh.holder_constructed()) return nullptr;  // not constructed yet (or no more)
+  return vh.value_ptr<T>();
 }
 
 int visitType(PyObject* self, visitproc visit, void* arg) {
@@ -371,19 +412,37 @@ ToiEvent = _collections.namedtuple("ToiEvent", "time shape_a shape_b point norma
 RayHit = _collections.namedtuple("RayHit", "shape body point normal fraction")
 ShapeOverlap = _collections.namedtuple("ShapeOverlap", "shape body depth depenetration")
 ShapeCastHit = _collections.namedtuple("ShapeCastHit", "shape body point normal fraction")
+HitEvent.__doc__ = ("A contact that began faster than the world's hit speed: shapes, point "
+                    "(world frame), normal (from shape_a to shape_b), approach_speed (m/s).")
+ToiEvent.__doc__ = ("An impact found by continuous collision: time (fraction of the step), "
+                    "shapes, point, normal (from shape_a to shape_b), approach_speed (m/s).")
+RayHit.__doc__ = ("A shape a world ray enters: shape, body, point, normal (world frame), "
+                  "fraction (origin + fraction * translation).")
+ShapeOverlap.__doc__ = ("A shape overlapping a query shape: shape, body, depth (metres), "
+                        "depenetration (the vector that moves the query shape out).")
+ShapeCastHit.__doc__ = ("The first shape a swept query shape meets: shape, body, point, normal, "
+                        "fraction of the translation.")
 for _t in (Events, HitEvent, ToiEvent, RayHit, ShapeOverlap, ShapeCastHit):
     _t.__module__ = "quack"
 del _t, _collections
 )py",
            m.attr("__dict__"));
   m.attr("ALL_CATEGORIES") = ~std::uint64_t{0};
+  m.attr("BODY_STATE_COLUMNS") = py::make_tuple("x", "y", "angle", "vx", "vy", "angular_velocity");
 
   py::class_<BodyHandle>(m, "BodyHandle", handleGc<BodyHandle>(),
                          "A body of a World. Stays usable after the body is destroyed, but "
                          "then says so: valid is False and everything else raises ValueError.")
       .def_property_readonly(
-          "valid", [](const BodyHandle& b) { return worldOf(b.world).world().isValid(b.id); })
-      .def_property_readonly("world", [](const BodyHandle& b) { return b.world; })
+          "valid",
+          [](const BodyHandle& b) {
+            worldOf(b.world).checkIdle();
+            return worldOf(b.world).world().isValid(b.id);
+          },
+          "Whether the body still exists (False once destroyed).")
+      .def_property_readonly(
+          "world", [](const BodyHandle& b) { return b.world; },
+          "The quack.World the body belongs to.")
       .def_property_readonly(
           "name",
           [](const BodyHandle& b) {
@@ -397,7 +456,8 @@ del _t, _collections
           "type",
           [](const BodyHandle& b) {
             return bodyTypeName(worldOf(validBody(b).world).world().bodyType(b.id));
-          })
+          },
+          "static, kinematic or dynamic.")
       .def_property(
           "position",
           [](const BodyHandle& b) {
@@ -405,7 +465,7 @@ del _t, _collections
           },
           [](const BodyHandle& b, py::handle p) {
             World& w = worldOf(validBody(b).world).world();
-            worldOf(b.world).checkIdle();
+            worldOf(b.world).changed();
             check(w.setTransform(b.id, toPosition(p, "position"), w.angle(b.id)));
           },
           "Body origin, world frame, metres (setting it teleports the body).")
@@ -414,20 +474,21 @@ del _t, _collections
           [](const BodyHandle& b) {
             return static_cast<double>(worldOf(validBody(b).world).world().angle(b.id));
           },
-          [](const BodyHandle& b, double a) {
+          [](const BodyHandle& b, py::handle a) {
             World& w = worldOf(validBody(b).world).world();
-            worldOf(b.world).checkIdle();
-            check(w.setTransform(b.id, w.position(b.id), static_cast<float>(a)));
+            worldOf(b.world).changed();
+            check(w.setTransform(b.id, w.position(b.id), toAngle(toDouble(a, "angle"), "angle")));
           },
-          "Radians.")
+          "Radians; setting it turns the body (|angle| <= 1e4 rad, as in scene files).")
       .def_property(
           "velocity",
           [](const BodyHandle& b) {
             return toTuple(worldOf(validBody(b).world).world().linearVelocity(b.id));
           },
           [](const BodyHandle& b, py::handle v) {
-            worldOf(validBody(b).world).checkIdle();
-            check(worldOf(b.world).world().setLinearVelocity(b.id, toPosition(v, "velocity")));
+            World& w = worldOf(validBody(b).world).world();
+            worldOf(b.world).changed();
+            check(w.setLinearVelocity(b.id, toVector(v, "velocity", "m/s")));
           },
           "Of the centre of mass, m/s.")
       .def_property(
@@ -435,31 +496,35 @@ del _t, _collections
           [](const BodyHandle& b) {
             return static_cast<double>(worldOf(validBody(b).world).world().angularVelocity(b.id));
           },
-          [](const BodyHandle& b, double v) {
-            worldOf(validBody(b).world).checkIdle();
-            check(worldOf(b.world).world().setAngularVelocity(b.id, static_cast<float>(v)));
+          [](const BodyHandle& b, py::handle v) {
+            worldOf(validBody(b).world).changed();
+            check(worldOf(b.world).world().setAngularVelocity(
+                b.id, static_cast<float>(toDouble(v, "angular_velocity"))));
           },
           "rad/s.")
       .def_property_readonly(
           "mass",
           [](const BodyHandle& b) {
             return static_cast<double>(worldOf(validBody(b).world).world().mass(b.id));
-          })
-      .def_property_readonly("shapes",
-                             [](const BodyHandle& b) {
-                               py::list out;
-                               for (ShapeId s : worldOf(validBody(b).world).world().shapes(b.id))
-                                 out.append(ShapeHandle{b.world, s});
-                               return out;
-                             })
+          },
+          "kg (0 for static and kinematic bodies).")
+      .def_property_readonly(
+          "shapes",
+          [](const BodyHandle& b) {
+            py::list out;
+            for (ShapeId s : worldOf(validBody(b).world).world().shapes(b.id))
+              out.append(ShapeHandle{b.world, s});
+            return out;
+          },
+          "The body's shapes (quack.ShapeHandle), in creation order.")
       .def(
           "apply_impulse",
           [](const BodyHandle& b, py::handle impulse, py::handle point) {
             World& w = worldOf(validBody(b).world).world();
-            worldOf(b.world).checkIdle();
+            worldOf(b.world).changed();
             const Vec2 at =
                 point.is_none() ? w.worldCenterOfMass(b.id) : toPosition(point, "point");
-            check(w.applyLinearImpulse(b.id, toPosition(impulse, "impulse"), at));
+            check(w.applyLinearImpulse(b.id, toVector(impulse, "impulse", "N s"), at));
           },
           py::arg("impulse"), py::arg("point") = py::none(),
           "Linear impulse (N s) at a world point (default: the centre of mass).")
@@ -467,10 +532,9 @@ del _t, _collections
           "apply_force",
           [](const BodyHandle& b, py::handle force, py::handle point) {
             World& w = worldOf(validBody(b).world).world();
-            worldOf(b.world).checkIdle();
             const Vec2 at =
                 point.is_none() ? w.worldCenterOfMass(b.id) : toPosition(point, "point");
-            check(w.applyForce(b.id, toPosition(force, "force"), at));
+            check(w.applyForce(b.id, toVector(force, "force", "N"), at));
           },
           py::arg("force"), py::arg("point") = py::none(),
           "Force (N) at a world point through the next step (default: the centre of mass).")
@@ -481,21 +545,30 @@ del _t, _collections
              return py::hash(py::make_tuple(b.id.world, b.id.index, b.id.generation));
            })
       .def("__repr__", [](const BodyHandle& b) {
+        // No look at the world while another thread steps it (the repr of a handle must not
+        // raise, and must not race).
+        const PyWorld& w = worldOf(b.world);
         return "BodyHandle(index=" + std::to_string(b.id.index) +
                ", generation=" + std::to_string(b.id.generation) +
-               (worldOf(b.world).world().isValid(b.id) ? "" : ", stale") + ")";
+               (w.steppingElsewhere() || w.sw.world.isValid(b.id) ? "" : ", stale") + ")";
       });
 
   py::class_<ShapeHandle>(m, "ShapeHandle", handleGc<ShapeHandle>(),
                           "A shape on a body of a World; valid says whether it still exists "
                           "(everything else raises ValueError once it is destroyed).")
       .def_property_readonly(
-          "valid", [](const ShapeHandle& s) { return worldOf(s.world).world().isValid(s.id); })
+          "valid",
+          [](const ShapeHandle& s) {
+            worldOf(s.world).checkIdle();
+            return worldOf(s.world).world().isValid(s.id);
+          },
+          "Whether the shape still exists (False once destroyed).")
       .def_property_readonly(
           "body",
           [](const ShapeHandle& s) {
             return BodyHandle{s.world, worldOf(validShape(s).world).world().body(s.id)};
-          })
+          },
+          "The quack.BodyHandle the shape is on.")
       .def_property_readonly(
           "type",
           [](const ShapeHandle& s) {
@@ -507,16 +580,21 @@ del _t, _collections
           "category",
           [](const ShapeHandle& s) {
             return worldOf(validShape(s).world).world().shapeDef(s.id).filter.category;
-          })
-      .def_property_readonly("sensor",
-                             [](const ShapeHandle& s) {
-                               return worldOf(validShape(s).world).world().shapeDef(s.id).sensor;
-                             })
-      .def_property_readonly("friction",
-                             [](const ShapeHandle& s) {
-                               return static_cast<double>(
-                                   worldOf(validShape(s).world).world().shapeDef(s.id).friction);
-                             })
+          },
+          "Category bits (a bit set).")
+      .def_property_readonly(
+          "sensor",
+          [](const ShapeHandle& s) {
+            return worldOf(validShape(s).world).world().shapeDef(s.id).sensor;
+          },
+          "True for a sensor (reports overlaps, no collision response).")
+      .def_property_readonly(
+          "friction",
+          [](const ShapeHandle& s) {
+            return static_cast<double>(
+                worldOf(validShape(s).world).world().shapeDef(s.id).friction);
+          },
+          "Friction coefficient.")
       .def("__eq__", [](const ShapeHandle& a,
                         const ShapeHandle& b) { return a.world.is(b.world) && a.id == b.id; })
       .def("__hash__",
@@ -524,20 +602,21 @@ del _t, _collections
              return py::hash(py::make_tuple(s.id.world, s.id.index, s.id.generation));
            })
       .def("__repr__", [](const ShapeHandle& s) {
+        const PyWorld& w = worldOf(s.world);
         return "ShapeHandle(index=" + std::to_string(s.id.index) +
                ", generation=" + std::to_string(s.id.generation) +
-               (worldOf(s.world).world().isValid(s.id) ? "" : ", stale") + ")";
+               (w.steppingElsewhere() || w.sw.world.isValid(s.id) ? "" : ", stale") + ")";
       });
 
   py::class_<PyWorld>(m, "World", worldGc(),
                       "Rigid bodies carrying shapes, stepped by Quack's solver (docs/world.md). "
                       "World frame, SI units.")
-      .def(py::init([](py::handle gravity, double dt, int substeps, const std::string& broadphase,
-                       bool continuous) {
+      .def(py::init([](py::handle gravity, py::handle dt, py::handle substeps,
+                       const std::string& broadphase, bool continuous) {
              WorldDef def;
-             def.gravity = toPosition(gravity, "gravity");
-             def.timeStep = static_cast<float>(dt);
-             def.substeps = substeps;
+             def.gravity = toVector(gravity, "gravity", "m/s^2");
+             def.timeStep = static_cast<float>(toDouble(dt, "dt"));
+             def.substeps = static_cast<int>(toInteger(substeps, "substeps", 1, 64));
              def.broadPhase = toBroadPhase(broadphase);
              def.enableContinuous = continuous;
              World w = valueOrRaise(World::create(def));
@@ -549,22 +628,25 @@ del _t, _collections
            "(tree, quadtree, sap, hash, brute), continuous collision on or off.")
       .def(
           "create_body",
-          [](py::object self, const std::string& type, py::handle pos, double angle, py::handle vel,
-             double angvel, double linearDamping, double angularDamping, double gravityScale,
-             bool bullet, const std::string& name) {
+          [](py::object self, const std::string& type, py::handle pos, py::handle angle,
+             py::handle vel, py::handle angvel, py::handle linearDamping, py::handle angularDamping,
+             py::handle gravityScale, bool bullet, const std::string& name) {
             PyWorld& w = worldOf(self);
             w.checkIdle();
             BodyDef def;
             def.type = toBodyType(type);
             def.position = toPosition(pos, "pos");
-            def.angle = static_cast<float>(angle);
-            def.linearVelocity = toPosition(vel, "vel");
-            def.angularVelocity = static_cast<float>(angvel);
-            def.linearDamping = static_cast<float>(linearDamping);
-            def.angularDamping = static_cast<float>(angularDamping);
-            def.gravityScale = static_cast<float>(gravityScale);
+            def.angle = toAngle(toDouble(angle, "angle"), "angle");
+            def.linearVelocity = toVector(vel, "vel", "m/s");
+            // Numbers through toDouble: bool and complex refused (pybind11's float
+            // conversion would take a numpy complex, dropping its imaginary part).
+            def.angularVelocity = static_cast<float>(toDouble(angvel, "angvel"));
+            def.linearDamping = static_cast<float>(toDouble(linearDamping, "linear_damping"));
+            def.angularDamping = static_cast<float>(toDouble(angularDamping, "angular_damping"));
+            def.gravityScale = static_cast<float>(toDouble(gravityScale, "gravity_scale"));
             def.bullet = bullet;
             BodyId id = valueOrRaise(w.world().createBody(def));
+            w.changed();
             w.sw.bodies.push_back(id);
             w.sw.names.push_back(name);
             return BodyHandle{self, id};
@@ -577,17 +659,17 @@ del _t, _collections
           "A new body (type static, kinematic or dynamic) at pos (world frame) and angle.")
       .def(
           "create_shape",
-          [](py::object self, py::handle body, py::handle shape, double density, double friction,
-             double restitution, bool sensor, std::uint64_t category, std::uint64_t mask,
-             std::int32_t group) -> py::object {
+          [](py::object self, py::handle body, py::handle shape, py::handle density,
+             py::handle friction, py::handle restitution, bool sensor, std::uint64_t category,
+             std::uint64_t mask, std::int32_t group) -> py::object {
             PyWorld& w = worldOf(self);
             w.checkIdle();
             const BodyId b = bodyId(w, body, "body");
             const PyShape& s = toShape(shape, "shape");
             ShapeDef def;
-            def.density = static_cast<float>(density);
-            def.friction = static_cast<float>(friction);
-            def.restitution = static_cast<float>(restitution);
+            def.density = static_cast<float>(toDouble(density, "density"));
+            def.friction = static_cast<float>(toDouble(friction, "friction"));
+            def.restitution = static_cast<float>(toDouble(restitution, "restitution"));
             def.sensor = sensor;
             def.filter.category = category;
             def.filter.mask = mask;
@@ -619,6 +701,7 @@ del _t, _collections
           [](PyWorld& w, py::handle body) {
             w.checkIdle();
             check(w.world().destroyBody(bodyId(w, body, "body")));
+            w.changed();
             w.compact();
           },
           py::arg("body"), "Destroys a body and its shapes (deferred inside a callback).")
@@ -633,22 +716,40 @@ del _t, _collections
             if (!w.world().isValid(s.id))
               raiseValue("shape: stale handle (the shape was destroyed)");
             check(w.world().destroyShape(s.id));
+            w.changed();
           },
-          py::arg("shape"))
+          py::arg("shape"), "Destroys a shape (deferred inside a callback).")
       .def_property_readonly(
           "bodies",
           [](py::object self) {
             PyWorld& w = worldOf(self);
+            w.checkIdle();
             py::list out;
             for (BodyId id : w.sw.bodies)
               out.append(BodyHandle{self, id});
             return out;
           },
           "Every live body, in creation (scene) order.")
-      .def_property_readonly("body_count", [](PyWorld& w) { return w.world().bodyCount(); })
-      .def_property_readonly("shape_count", [](PyWorld& w) { return w.world().shapeCount(); })
       .def_property_readonly(
-          "contact_count", [](PyWorld& w) { return w.world().touchingContactCount(); },
+          "body_count",
+          [](PyWorld& w) {
+            w.checkIdle();
+            return w.world().bodyCount();
+          },
+          "Live bodies.")
+      .def_property_readonly(
+          "shape_count",
+          [](PyWorld& w) {
+            w.checkIdle();
+            return w.world().shapeCount();
+          },
+          "Live shapes.")
+      .def_property_readonly(
+          "contact_count",
+          [](PyWorld& w) {
+            w.checkIdle();
+            return w.world().touchingContactCount();
+          },
           "Touching contacts.")
       .def_property_readonly(
           "categories", [](PyWorld& w) { return w.categories; },
@@ -657,6 +758,7 @@ del _t, _collections
           "body",
           [](py::object self, const std::string& name) {
             PyWorld& w = worldOf(self);
+            w.checkIdle();
             for (std::size_t i = 0; i < w.sw.bodies.size(); ++i)
               if (w.sw.names[i] == name) return BodyHandle{self, w.sw.bodies[i]};
             raiseValue("body: no body named \"" + name + "\"");
@@ -669,17 +771,23 @@ del _t, _collections
             if (w.stepping) raiseValue("step: called from a callback");
             std::optional<float> stepDt;
             int sub = w.world().def().substeps;
-            if (!dt.is_none()) stepDt = static_cast<float>(dt.cast<double>());
-            if (!substeps.is_none()) sub = substeps.cast<int>();
+            if (!dt.is_none()) stepDt = static_cast<float>(toDouble(dt, "dt"));
+            if (!substeps.is_none()) sub = static_cast<int>(toInteger(substeps, "substeps", 1, 64));
             StepStatus s;
-            w.stepping = true;
             {
-              py::gil_scoped_release release;
-              s = stepDt || !substeps.is_none()
-                      ? w.world().step(stepDt.value_or(w.world().def().timeStep), sub)
-                      : w.world().step();
+              // Cleared however the step ends; an exception (MemoryError from std::bad_alloc)
+              // drops what the callbacks raised before it.
+              StepGuard guard(w);
+              try {
+                py::gil_scoped_release release;
+                s = stepDt || !substeps.is_none()
+                        ? w.world().step(stepDt.value_or(w.world().def().timeStep), sub)
+                        : w.world().step();
+              } catch (...) {
+                w.pending.reset();
+                throw;
+              }
             }
-            w.stepping = false;
             if (s) {
               const StepEvents& e = w.world().events();
               w.totals.begin += e.begin.size();
@@ -699,19 +807,40 @@ del _t, _collections
           "Advances by dt seconds (default: the world's) with substeps. The GIL is released. "
           "Callbacks run at the end; the first exception one raises is raised here, after the "
           "step is complete.")
-      .def_property_readonly("time", [](PyWorld& w) { return w.world().time(); })
-      .def_property_readonly("step_count", [](PyWorld& w) { return w.world().stepCount(); })
+      .def_property_readonly(
+          "time",
+          [](PyWorld& w) {
+            w.checkIdle();
+            return w.world().time();
+          },
+          "Simulated seconds since the world was made.")
+      .def_property_readonly(
+          "step_count",
+          [](PyWorld& w) {
+            w.checkIdle();
+            return w.world().stepCount();
+          },
+          "Steps taken.")
       .def(
-          "state_hash", [](PyWorld& w) { return w.world().stateHash(); },
+          "state_hash",
+          [](PyWorld& w) {
+            w.checkIdle();
+            return w.world().stateHash();
+          },
           "A hash of every body's position, angle and velocities (bitwise): equal in C++ "
           "(World::stateHash) for the same scene and steps.")
       .def(
-          "validate", [](PyWorld& w) { check(w.world().validate()); },
+          "validate",
+          [](PyWorld& w) {
+            w.checkIdle();
+            check(w.world().validate());
+          },
           "Checks every internal cross-reference; raises ValueError when one is broken.")
       .def(
           "events",
           [m](py::object self) mutable {
             PyWorld& w = worldOf(self);
+            w.checkIdle();
             const StepEvents& e = w.world().events();
             auto pairs = [&](const auto& list, auto first, auto second) {
               py::list out;
@@ -830,6 +959,7 @@ del _t, _collections
             const std::vector<BodyId> ids = bodyList(w, bodies);
             const Values a = toValues(values, ids.size(), 2, "positions");
             World& world = w.world();
+            w.changed();
             for (std::size_t i = 0; i < ids.size(); ++i) {
               std::string bad = checkPosition(a.data()[2 * i], a.data()[2 * i + 1],
                                               "positions[" + std::to_string(i) + "]");
@@ -847,7 +977,10 @@ del _t, _collections
             w.checkIdle();
             const std::vector<BodyId> ids = bodyList(w, bodies);
             const Values a = toValues(values, ids.size(), 1, "angles");
+            for (std::size_t i = 0; i < ids.size(); ++i)
+              (void)toAngle(a.data()[i], "angles[" + std::to_string(i) + "]");
             World& world = w.world();
+            w.changed();
             bulkWrite(
                 ids, toFloats(a, ids.size()), [&](BodyId id) { return world.angle(id); },
                 [&](BodyId id, auto v) { return world.setTransform(id, world.position(id), v); });
@@ -861,6 +994,7 @@ del _t, _collections
             const std::vector<BodyId> ids = bodyList(w, bodies);
             const Values a = toValues(values, ids.size(), 2, "velocities");
             World& world = w.world();
+            w.changed();
             bulkWrite(
                 ids, toVecs(a, ids.size()), [&](BodyId id) { return world.linearVelocity(id); },
                 [&](BodyId id, auto v) { return world.setLinearVelocity(id, v); });
@@ -874,12 +1008,124 @@ del _t, _collections
             const std::vector<BodyId> ids = bodyList(w, bodies);
             const Values a = toValues(values, ids.size(), 1, "angular_velocities");
             World& world = w.world();
+            w.changed();
             bulkWrite(
                 ids, toFloats(a, ids.size()), [&](BodyId id) { return world.angularVelocity(id); },
                 [&](BodyId id, auto v) { return world.setAngularVelocity(id, v); });
           },
           py::arg("angular_velocities"), py::arg("bodies") = py::none(),
           "Angular velocities (N,), rad/s. All or none are set.")
+      .def(
+          "body_state",
+          [](PyWorld& w) -> py::object {
+            w.checkIdle();
+            if (w.state && w.stateVersion == w.version) return w.state;
+            const World& world = w.world();
+            const std::size_t n = w.sw.bodies.size();
+            py::array_t<double> a({static_cast<py::ssize_t>(n), py::ssize_t{kStateColumns}});
+            double* d = a.mutable_data();
+            for (std::size_t i = 0; i < n; ++i, d += kStateColumns) {
+              const BodyId id = w.sw.bodies[i];
+              const Vec2 p = world.position(id), v = world.linearVelocity(id);
+              d[0] = static_cast<double>(p.x);
+              d[1] = static_cast<double>(p.y);
+              d[2] = static_cast<double>(world.angle(id));
+              d[3] = static_cast<double>(v.x);
+              d[4] = static_cast<double>(v.y);
+              d[5] = static_cast<double>(world.angularVelocity(id));
+            }
+            // Read-only (numpy's flag, cleared without a Python attribute call).
+            py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+            w.state = a;
+            w.stateVersion = w.version;
+            return w.state;
+          },
+          "Every body's state as one read-only array (N, 6), bodies in creation order, columns "
+          "quack.BODY_STATE_COLUMNS: x, y, angle, vx, vy, angular_velocity (float64). Filled "
+          "once after each step or write; until the next one every call returns the same "
+          "array (no copy), and slices such as state[:, 0:2] are views of it. After the next "
+          "step (or any write) it is stale: it keeps its values and stays valid memory, and "
+          "body_state() returns a new array. See docs/python.md.")
+      .def(
+          "set_body_state",
+          [](PyWorld& w, py::handle values) {
+            w.checkIdle();
+            const std::vector<BodyId>& ids = w.sw.bodies;
+            const std::size_t n = ids.size();
+            const Values a = toValues(values, n, kStateColumns, "state");
+            const double* d = a.data();
+            for (std::size_t i = 0; i < n; ++i) {
+              const double* row = d + i * kStateColumns;
+              const std::string path = "state[" + std::to_string(i) + "]";
+              std::string bad = checkPosition(row[0], row[1], path);
+              if (!bad.empty()) raiseValue(bad);
+              (void)toAngle(row[2], path + "[2]");
+            }
+            struct Row {
+              Vec2 p;
+              float angle;
+              Vec2 v;
+              float w;
+            };
+            std::vector<Row> rows(n);
+            for (std::size_t i = 0; i < n; ++i) {
+              const double* r = d + i * kStateColumns;
+              rows[i] = {{static_cast<float>(r[0]), static_cast<float>(r[1])},
+                         static_cast<float>(r[2]),
+                         {static_cast<float>(r[3]), static_cast<float>(r[4])},
+                         static_cast<float>(r[5])};
+            }
+            World& world = w.world();
+            w.changed();
+            auto set = [&](BodyId id, const Row& r) {
+              Status s = world.setTransform(id, r.p, r.angle);
+              if (s) s = world.setLinearVelocity(id, r.v);
+              if (s) s = world.setAngularVelocity(id, r.w);
+              return s;
+            };
+            bulkWrite(
+                ids, rows,
+                [&](BodyId id) {
+                  return Row{world.position(id), world.angle(id), world.linearVelocity(id),
+                             world.angularVelocity(id)};
+                },
+                [&](BodyId id, const Row& r) {
+                  const Row old{world.position(id), world.angle(id), world.linearVelocity(id),
+                                world.angularVelocity(id)};
+                  Status s = set(id, r);
+                  if (!s) (void)set(id, old);  // this body whole too
+                  return s;
+                });
+          },
+          py::arg("state"),
+          "Writes every body's state from an array (N, 6) laid out as body_state() (columns "
+          "quack.BODY_STATE_COLUMNS, N = body_count, creation order). Checked first: positions "
+          "within the coordinate limit, |angle| <= 1e4 rad, every number finite; then all "
+          "bodies or none are written (a value the world refuses puts the others back). "
+          "Static bodies keep zero velocities.")
+      .def(
+          "to_svg",
+          [](PyWorld& w, const std::string& title) {
+            w.checkIdle();
+            return renderSvg(w.sw, title);
+          },
+          py::arg("title") = "",
+          "An SVG picture of the world now (shapes filled by body type, contact points and "
+          "normals in red), as `quack run --svg` draws it.")
+      .def(
+          "_repr_svg_",
+          [](PyWorld& w) {
+            w.checkIdle();
+            // A notebook keeps every picture it shows: a smaller budget than to_svg's (a big
+            // world is drawn as an even sample of its shapes, and the picture says so).
+            SvgOptions options;
+            options.maxShapes = 5000;
+            options.maxContacts = 1000;
+            options.maxBytes = 2u << 20;
+            return renderSvg(w.sw, "", options);
+          },
+          "The SVG Jupyter shows for a world: to_svg()'s picture within 5,000 shapes, 1,000 "
+          "contact points and 2 MB.")
       .def(
           "ray_cast_closest",
           [m](py::object self, py::handle origin, py::handle translation, std::uint64_t category,
@@ -987,6 +1233,7 @@ del _t, _collections
           "Writes the state file `quack run --out` writes (bodies in creation order, event "
           "totals since the world was made).")
       .def("__repr__", [](PyWorld& w) {
+        if (w.steppingElsewhere()) return std::string("World(stepping)");
         return "World(bodies=" + std::to_string(w.world().bodyCount()) +
                ", shapes=" + std::to_string(w.world().shapeCount()) +
                ", steps=" + std::to_string(w.world().stepCount()) + ")";

@@ -172,3 +172,25 @@ def test_the_check_sees_a_call_that_holds_the_gil():
     data = [random.random() for _ in range(1_000_000)]
     call, stall = _longest_stall_while(lambda: sorted(data))
     assert call > 0.05 and stall >= call / 2, (call, stall)
+
+
+@pytest.mark.parametrize("bad, kind", [
+    (np.zeros((3, 3), dtype=complex), "complex128"),
+    (np.zeros((3, 3), dtype=np.complex64), "complex64"),
+    (np.zeros((3, 3), dtype=bool), "bool"),
+    (np.array([["0", "0", "0"]] * 3), "<U1"),
+    (np.array([[0, 0, None]] * 3), "object"),
+])
+def test_batches_refuse_complex_bool_and_string_poses(bad, kind):
+    """Issue 28, item 10: complex poses were taken with their imaginary part dropped, and
+    bool and string arrays were converted to numbers."""
+    c = quack.circle(radius=0.5)
+    for call, name in ((lambda: quack.distance_many(c, bad, c, np.zeros(3)), "poses_a"),
+                       (lambda: quack.overlap_many(c, np.zeros(3), c, bad), "poses_b"),
+                       (lambda: quack.raycast_many(c, bad, np.zeros(4)), "poses")):
+        with pytest.raises(ValueError, match=rf"^{name}: must hold integers or floats, not {kind}"):
+            call()
+    # Integers of any width are numbers.
+    got = quack.distance_many(c, np.array([[0, 0, 0]] * 3, dtype=np.uint8), c,
+                              np.array([3, 0, 0], dtype=np.int64))
+    assert got.distance.tolist() == [2.0, 2.0, 2.0]

@@ -99,3 +99,62 @@ def test_bad_shapes_raise_value_error_with_the_message(make, message):
 
 def test_repr_shows_the_json():
     assert repr(quack.circle(radius=0.5)) == 'quack.shape({"radius":0.5,"type":"circle"})'
+
+
+class _Index:
+    """An integer-like object: __index__ only."""
+
+    def __init__(self, value):
+        self.value = value
+
+    def __index__(self):
+        return self.value
+
+
+def test_a_self_referencing_or_very_deep_container_is_a_value_error():
+    """Issue 28, item 1: the Python to JSON conversion followed a list or dict that contains
+    itself (and a 200,000-deep list) until the C++ stack overflowed (SIGSEGV)."""
+    looped = []
+    looped.append(looped)
+    with pytest.raises(ValueError, match=r"^polygon\.points: nested more than 64 levels deep"):
+        quack.polygon(looped)
+    d = {"type": "circle", "radius": 1}
+    d["center"] = d
+    with pytest.raises(ValueError, match=r"^shape: nested more than 64 levels deep"):
+        quack.shape(d)
+    deep = [0.0, 0.0]
+    for _ in range(200_000):
+        deep = [deep]
+    with pytest.raises(ValueError, match=r"^circle\.center: nested more than 64 levels deep"):
+        quack.circle(radius=1, center=deep)
+    # A tuple in a tuple, and a dict in a list in a dict: the same limit.
+    t = (1.0,)
+    for _ in range(100):
+        t = (t,)
+    with pytest.raises(ValueError, match=r"^circle\.center: nested"):
+        quack.circle(radius=1, center=t)
+    # Shallow nesting is still read (and refused by the format, with its own message).
+    with pytest.raises(ValueError, match=r"circle\.center"):
+        quack.circle(radius=1, center=[[[0.0]]])
+
+
+def test_out_of_range_integers_are_value_errors_naming_the_argument():
+    """Issue 28, item 10: numpy uint64 beyond int64, and an __index__ returning 2**70, gave
+    RuntimeError: Unable to cast ...; a complex number lost its imaginary part."""
+    with pytest.raises(ValueError, match=r"^circle\.radius"):
+        quack.circle(radius=np.uint64(2**64 - 1))
+    with pytest.raises(ValueError, match=r"^circle\.radius"):
+        quack.circle(radius=_Index(2**70))
+    with pytest.raises(ValueError, match=r"^circle\.radius"):
+        quack.circle(radius=10**400)
+    with pytest.raises(ValueError, match=r"^circle\.radius: a complex number"):
+        quack.circle(radius=np.complex128(1 + 2j))
+    with pytest.raises(ValueError, match=r"^circle\.radius: a complex number"):
+        quack.circle(radius=1j)
+    # In range, the same objects are numbers.
+    assert quack.circle(radius=_Index(2)).to_dict()["radius"] == 2
+    assert quack.circle(radius=np.uint64(3)).to_dict()["radius"] == 3
+    with pytest.raises(ValueError, match=r"^pa\[0\]: must be a real number"):
+        quack.distance(quack.circle(1), (np.complex128(1 + 1j), 0, 0), quack.circle(1), None)
+    with pytest.raises(ValueError, match=r"^pa\[0\]: must be a number, not a bool"):
+        quack.distance(quack.circle(1), (True, 0, 0), quack.circle(1), None)

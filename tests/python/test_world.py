@@ -4,7 +4,9 @@ world queries, scene and state files, agreement with C++, and reference counting
 import gc
 import math
 import os
+import re
 import subprocess
+import sys
 import threading
 import time
 import tracemalloc
@@ -383,9 +385,14 @@ def test_the_gil_is_released_during_step(source_dir):
 def test_another_thread_cannot_use_the_world_while_it_steps(source_dir):
     w = quack.load_scene(_scene(source_dir, "rain.json"))
     refused = []
+    stop = threading.Event()
 
     def stepper():
-        for _ in range(10):
+        # Steps until this thread has been refused once (10 steps were sometimes over before
+        # this thread ran).
+        for _ in range(5000):
+            if stop.is_set():
+                break
             w.step()
 
     t = threading.Thread(target=stepper)
@@ -396,6 +403,7 @@ def test_another_thread_cannot_use_the_world_while_it_steps(source_dir):
         except RuntimeError as e:
             refused.append(str(e))
             break
+    stop.set()
     t.join()
     assert refused == ["quack.World: the world is stepping (in another thread)"]
 
@@ -510,3 +518,379 @@ def test_sensor_end_callback():
         w.step()
         ended += len(w.events().sensor_end)
     assert ended == 1 and left == [ball]
+
+
+def _entry_points(w, ball, shape):
+    """Every call that reads or writes the world, by name (issue 28, item 5)."""
+    n = w.body_count
+    return {
+        "validate": w.validate,
+        "state_hash": w.state_hash,
+        "events": w.events,
+        "body_count": lambda: w.body_count,
+        "shape_count": lambda: w.shape_count,
+        "contact_count": lambda: w.contact_count,
+        "bodies": lambda: w.bodies,
+        "time": lambda: w.time,
+        "step_count": lambda: w.step_count,
+        "body": lambda: w.body("ball"),
+        "step": w.step,
+        "create_body": w.create_body,
+        "destroy_shape": lambda: w.destroy_shape(shape),
+        "on_contact_end": lambda: w.on_contact_end(lambda a, b: None),
+        "get_positions": w.get_positions,
+        "get_angles": w.get_angles,
+        "get_velocities": w.get_velocities,
+        "get_angular_velocities": w.get_angular_velocities,
+        "set_positions": lambda: w.set_positions(np.zeros((n, 2))),
+        "set_angles": lambda: w.set_angles(np.zeros(n)),
+        "body_state": w.body_state,
+        "set_body_state": lambda: w.set_body_state(np.zeros((n, 6))),
+        "to_svg": w.to_svg,
+        "ray_cast_closest": lambda: w.ray_cast_closest((0, 5), (0, -10)),
+        "ray_cast_all": lambda: w.ray_cast_all((0, 5), (0, -10)),
+        "overlap_aabb": lambda: w.overlap_aabb((-1, -1), (1, 1)),
+        "overlap_shape": lambda: w.overlap_shape(quack.circle(1), (0, 0, 0)),
+        "cast_shape": lambda: w.cast_shape(quack.circle(1), (0, 5, 0), (0, -10)),
+        "body.valid": lambda: ball.valid,
+        "body.position": lambda: ball.position,
+        "body.angle": lambda: ball.angle,
+        "body.velocity": lambda: ball.velocity,
+        "body.angular_velocity": lambda: ball.angular_velocity,
+        "body.mass": lambda: ball.mass,
+        "body.type": lambda: ball.type,
+        "body.name": lambda: ball.name,
+        "body.shapes": lambda: ball.shapes,
+        "body.apply_impulse": lambda: ball.apply_impulse((0, 1)),
+        "shape.valid": lambda: shape.valid,
+        "shape.body": lambda: shape.body,
+        "shape.type": lambda: shape.type,
+        "shape.category": lambda: shape.category,
+        "shape.sensor": lambda: shape.sensor,
+        "shape.friction": lambda: shape.friction,
+    }
+
+
+def test_every_entry_point_refuses_while_another_thread_steps():
+    """Issue 28, item 5: validate, state_hash, events, body_count, contact_count, bodies and a
+    handle's position, angle, valid and shapes read the world while another thread stepped it
+    (validate reported false corruption). A callback holds the step open until this thread
+    has tried every entry point: each must raise RuntimeError."""
+    w, ground, ball = ball_world()
+    ball.position = (0, 0.45)  # touching the ground: a contact begins in the first step
+    shape = ball.shapes[0]
+    in_step, done = threading.Event(), threading.Event()
+    held = []
+
+    def hold_the_step(a, b):
+        held.append(threading.get_ident())
+        in_step.set()
+        done.wait(60)
+
+    w.on_contact_begin(hold_the_step)
+    calls = _entry_points(w, ball, shape)
+    t = threading.Thread(target=w.step)
+    t.start()
+    refused, accepted = [], []
+    try:
+        assert in_step.wait(60), "the step's callback never ran"
+        for name, call in calls.items():
+            try:
+                call()
+                accepted.append(name)
+            except RuntimeError as e:
+                assert str(e) == "quack.World: the world is stepping (in another thread)"
+                refused.append(name)
+        # The reprs say nothing of the world's state, and do not raise.
+        assert repr(w) == "World(stepping)"
+        assert re.fullmatch(r"BodyHandle\(index=1, generation=\d+\)", repr(ball))
+    finally:
+        done.set()
+        t.join()
+    assert held == [t.ident]
+    assert accepted == []
+    assert refused == list(calls)
+    # Once the step is over every call is accepted again.
+    w.validate()
+    assert w.step_count == 1 and ball.valid and w.body_count == 2
+
+
+def test_reads_from_another_thread_never_see_a_step_half_done(source_dir):
+    """Issue 28, item 5, unheld: while a thread steps a scene, validate() and state_hash()
+    from this thread either raise RuntimeError or see a whole world (never ValueError)."""
+    w = quack.load_scene(_scene(source_dir, "rain.json"))
+    stop = threading.Event()
+
+    def stepper():
+        for _ in range(3000):
+            if stop.is_set():
+                break
+            w.step()
+
+    t = threading.Thread(target=stepper)
+    refused = accepted = 0
+    t.start()
+    while t.is_alive() and refused < 50:
+        for call in (w.validate, w.state_hash, lambda: w.bodies[0].position):
+            try:
+                call()
+                accepted += 1
+            except RuntimeError:
+                refused += 1
+    stop.set()
+    t.join()
+    assert refused >= 50
+    w.validate()
+
+
+def test_a_memory_error_from_step_leaves_the_world_usable(tmp_path):
+    """Issue 28, item 6 (the Python side): after a MemoryError from step (std::bad_alloc, here
+    under an address-space limit), every call said "the world is stepping (in another
+    thread)" for good. The in-step mark is now cleared however step ends."""
+    code = r"""
+import resource, quack
+w = quack.World(gravity=(0, 0))
+for i in range(2000):
+    b = w.create_body(pos=(0, 0))
+    w.create_shape(b, quack.circle(radius=1))
+def vm_bytes():
+    with open("/proc/self/status") as f:
+        for line in f:
+            if line.startswith("VmSize:"):
+                return int(line.split()[1]) * 1024
+soft, hard = resource.getrlimit(resource.RLIMIT_AS)
+resource.setrlimit(resource.RLIMIT_AS, (vm_bytes() + (64 << 20), hard))
+try:
+    w.step()
+    print("stepped")
+except MemoryError:
+    print("MemoryError")
+resource.setrlimit(resource.RLIMIT_AS, (soft, hard))
+print(w.body_count, len(w.get_positions()), type(w.state_hash()).__name__)
+import threading
+seen = []
+t = threading.Thread(target=lambda: seen.append(w.body_count))
+t.start(); t.join()
+print("another thread reads", seen)
+try:
+    w.step(substeps=1)
+    print("stepped again")
+except ValueError as e:
+    print("ValueError:", e)
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         timeout=300, check=False)
+    assert out.returncode == 0, out.stderr
+    lines = out.stdout.splitlines()
+    assert lines[0] == "MemoryError", out.stdout
+    assert lines[1] == "2000 2000 int", out.stdout
+    assert lines[2] == "another thread reads [2000]", out.stdout + out.stderr
+    if lines[3].startswith("ValueError: step: called during a step"):
+        # The C++ world itself is left "in a step" by the exception: World::step's own
+        # exception safety (issue 28, item 6, C++ side) is not on this branch.
+        pytest.xfail("World::step is not exception-safe yet (C++ side of issue 28 item 6)")
+    assert lines[3] == "stepped again", out.stdout
+
+
+def test_arguments_out_of_range_are_value_errors_naming_them():
+    """Issue 28, item 10: step(substeps=2**40) and an __index__ returning 2**70 raised
+    RuntimeError: Unable to cast...; set_angles took 1e30 rad although scenes limit angles
+    to 1e4; an oversized impulse was "1e+30 m"."""
+
+    class Index:
+        def __index__(self):
+            return 2**70
+
+    w, ground, ball = ball_world()
+    with pytest.raises(ValueError, match=r"^substeps: must be an integer in 1\.\.64, got 1099"):
+        w.step(substeps=2**40)
+    with pytest.raises(ValueError, match=r"^substeps: must be an integer in 1\.\.64, got 1180"):
+        w.step(substeps=Index())
+    with pytest.raises(ValueError, match=r"^substeps: must be an integer in 1\.\.64, not a str"):
+        w.step(substeps="4")
+    with pytest.raises(ValueError, match=r"^dt: must be a number, not a str"):
+        w.step(dt="0.1")
+    with pytest.raises(ValueError, match=r"^dt: must be a real number"):
+        w.step(dt=0.1 + 1j)
+    with pytest.raises(ValueError, match=r"^substeps: must be an integer in 1\.\.64, got 1099"):
+        quack.World(substeps=2**40)
+    with pytest.raises(ValueError, match=r"^dt: must be a number, not a str"):
+        quack.World(dt="0.1")
+    assert quack.World(dt=np.float32(0.5), substeps=np.int8(3)).step_count == 0
+    w.step(dt=np.float32(0.01), substeps=np.uint8(2))
+    assert w.step_count == 1
+    with pytest.raises(ValueError, match=r"^angles\[1\]: 1e\+30 rad is beyond the limit 1e4 rad"):
+        w.set_angles(np.array([0.0, 1e30]))
+    with pytest.raises(ValueError, match=r"^angle: -20000 rad is beyond the limit 1e4 rad"):
+        ball.angle = -2e4
+    with pytest.raises(ValueError, match=r"^angle: 1e\+30 rad"):
+        w.create_body(angle=1e30)
+    w.set_angles(np.full(2, 1e4))  # at the limit: accepted (and kept within +-pi)
+    assert abs(ball.angle) <= math.pi
+    with pytest.raises(ValueError, match=r"^impulse\[0\]: 1e\+30 N s is beyond the limit 1e9 N s"):
+        ball.apply_impulse((1e30, 0))
+    with pytest.raises(ValueError, match=r"^force\[1\]: 1e\+30 N is beyond"):
+        ball.apply_force((0, 1e30))
+    with pytest.raises(ValueError, match=r"^velocity\[0\]: 1e\+30 m/s is beyond"):
+        ball.velocity = (1e30, 0)
+    with pytest.raises(ValueError, match=r"^gravity\[1\]: 1e\+30 m/s\^2 is beyond"):
+        quack.World(gravity=(0, 1e30))
+    for bad, kind in ((np.zeros((2, 2), dtype=complex), "complex128"),
+                      (np.zeros((2, 2), dtype=bool), "bool"),
+                      (np.array([["0", "1"], ["2", "3"]]), "<U1")):
+        with pytest.raises(ValueError, match=rf"^positions: must hold integers or floats, not {kind}"):
+            w.set_positions(bad)
+    w.set_positions(np.array([[0, -1], [0, 3]], dtype=np.int32))
+    assert ball.position == (0.0, 3.0)
+    # Scalar numbers everywhere: numpy complex (whose imaginary part pybind11's float
+    # conversion dropped) and bool are refused, naming the argument.
+    for call, name in ((lambda v: w.create_body(angle=v), "angle"),
+                       (lambda v: w.create_body(angvel=v), "angvel"),
+                       (lambda v: w.create_body(linear_damping=v), "linear_damping"),
+                       (lambda v: w.create_body(gravity_scale=v), "gravity_scale"),
+                       (lambda v: w.create_shape(ball, quack.circle(1), density=v), "density"),
+                       (lambda v: w.create_shape(ball, quack.circle(1), friction=v), "friction"),
+                       (lambda v: w.create_shape(ball, quack.circle(1), restitution=v),
+                        "restitution"),
+                       (lambda v: setattr(ball, "angle", v), "angle"),
+                       (lambda v: setattr(ball, "angular_velocity", v), "angular_velocity")):
+        count = w.body_count, w.shape_count
+        with pytest.raises(ValueError, match=rf"^{name}: must be a real number"):
+            call(np.complex128(0.5 + 1j))
+        with pytest.raises(ValueError, match=rf"^{name}: must be a number, not a bool"):
+            call(True)
+        assert (w.body_count, w.shape_count) == count
+    w.create_shape(w.create_body(angle=np.float32(0.5), angvel=np.int64(1)), quack.circle(1),
+                   density=np.uint8(2), friction=np.float16(0.5))
+
+
+def test_the_collector_may_run_while_a_world_is_made():
+    """A garbage collection during World's constructor (here started by numpy's first import,
+    which the argument checks trigger) traversed the world before its C++ value existed
+    (SIGSEGV)."""
+    code = ("import gc, quack\n"
+            "gc.set_threshold(1)\n"
+            "worlds = [quack.World(gravity=(0, -9.8)) for _ in range(20)]\n"
+            "print(len(worlds), 'numpy' in __import__('sys').modules)\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         timeout=120, check=False)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout == "20 True\n"
+
+
+def test_body_state_is_one_array_shared_until_the_next_step():
+    w, ground, ball = ball_world()
+    ball.velocity = (1.5, 2.0)
+    ball.angular_velocity = 0.25
+    state = w.body_state()
+    assert quack.BODY_STATE_COLUMNS == ("x", "y", "angle", "vx", "vy", "angular_velocity")
+    assert state.shape == (2, 6) and state.dtype == np.float64
+    assert not state.flags.writeable
+    assert state[1].tolist() == [0.0, 3.0, 0.0, 1.5, 2.0, 0.25]
+    assert state[0, 0:2].tolist() == [0.0, -0.5]
+    # The same array for every read until the world changes: no copy per call, and slices are
+    # views of it.
+    assert w.body_state() is state
+    positions = state[:, 0:2]
+    assert positions.base is state or positions.base is state.base
+    with pytest.raises(ValueError, match="read-only"):
+        state[1, 0] = 5.0
+    w.step()
+    fresh = w.body_state()
+    assert fresh is not state
+    # The stale array keeps the values of its time (never freed, never rewritten).
+    assert state[1].tolist() == [0.0, 3.0, 0.0, 1.5, 2.0, 0.25]
+    assert positions[1].tolist() == [0.0, 3.0]
+    assert np.array_equal(fresh[:, 0:2], w.get_positions())
+    assert np.array_equal(fresh[:, 2], w.get_angles())
+    assert np.array_equal(fresh[:, 3:5], w.get_velocities())
+    assert np.array_equal(fresh[:, 5], w.get_angular_velocities())
+    # Every write makes the next read a new array.
+    for write in (lambda: setattr(ball, "position", (1, 3)),
+                  lambda: setattr(ball, "angle", 0.5),
+                  lambda: setattr(ball, "velocity", (0, 0)),
+                  lambda: setattr(ball, "angular_velocity", 1.0),
+                  lambda: ball.apply_impulse((0, 1)),
+                  lambda: w.set_positions(np.array([[0, -0.5], [2, 3]])),
+                  lambda: w.set_angles(np.zeros(2)),
+                  lambda: w.set_velocities(np.zeros((2, 2))),
+                  lambda: w.set_angular_velocities(np.zeros(2)),
+                  lambda: w.create_body(pos=(5, 5)),
+                  w.step):
+        before = w.body_state()
+        write()
+        after = w.body_state()
+        assert after is not before
+        assert np.array_equal(after[:, 0:2], w.get_positions())
+        assert np.array_equal(after[:, 3:5], w.get_velocities())
+    assert w.body_state().shape == (3, 6)
+    w.destroy_body(w.bodies[2])
+    assert w.body_state().shape == (2, 6)
+
+
+def test_a_stale_body_state_survives_its_world_and_many_bodies_made():
+    """A view into memory that a step may reallocate would be a use-after-free: the array is
+    the module's own, so it outlives new bodies (which reallocate the world's storage), steps
+    and the world itself, with the values of its time."""
+    w, ground, ball = ball_world()
+    state = w.body_state()
+    expected = state.copy()
+    for i in range(2000):
+        w.create_body(pos=(i % 40, 10 + i // 40))
+    for _ in range(3):
+        w.step()
+    del w, ground, ball
+    gc.collect()
+    assert np.array_equal(state, expected)
+
+
+def test_set_body_state_writes_every_body_or_none():
+    w, ground, ball = ball_world()
+    other = w.create_body(pos=(3, 3))
+    w.create_shape(other, quack.box(half=(0.5, 0.5)))
+    state = w.body_state().copy()
+    state[1] = [1.0, 4.0, 0.5, 2.0, -1.0, 0.3]
+    state[2] = [-2.0, 6.0, -0.5, 0.0, 1.0, -0.2]
+    w.set_body_state(state)
+    got = w.body_state()
+    assert np.allclose(got[1:], state[1:], atol=1e-6)
+    assert ground.position == (0.0, -0.5) and ground.velocity == (0.0, 0.0)
+    assert ball.position == pytest.approx((1.0, 4.0)) and ball.angle == pytest.approx(0.5)
+    before = w.body_state()
+    for bad, message in (
+            (np.zeros((2, 6)), r"^state: must be a numpy array of shape \(3, 6\) for 3 bodies"),
+            (np.zeros((3, 5)), r"^state: must be a numpy array of shape \(3, 6\)"),
+            (np.zeros((3, 6), dtype=complex), r"^state: must hold integers or floats"),
+            (np.where(np.arange(18).reshape(3, 6) == 14, np.nan, 0.0),
+             r"^state\[2\]\[2\]: must be finite"),
+            (np.where(np.arange(18).reshape(3, 6) == 8, 1e30, 0.0),
+             r"^state\[1\]\[2\]: 1e\+30 rad is beyond the limit 1e4 rad"),
+            (np.where(np.arange(18).reshape(3, 6) == 12, 2e9, 0.0),
+             r"^state\[2\]\[0\]: 2e\+09 m is beyond the coordinate limit")):
+        with pytest.raises(ValueError, match=message):
+            w.set_body_state(bad)
+        assert w.body_state() is before  # nothing written
+    # A speed the world refuses (its limit, 1e5 m/s) puts every body back.
+    too_fast = state.copy()
+    too_fast[2, 3] = 1e7
+    with pytest.raises(ValueError, match=r"^bodies\[2\]"):
+        w.set_body_state(too_fast)
+    assert np.array_equal(w.body_state(), before)
+
+
+def test_to_svg_draws_the_world():
+    w, ground, ball = ball_world()
+    svg = w.to_svg(title="a ball")
+    assert svg.startswith("<svg") or svg.startswith("<?xml")
+    assert svg.rstrip().endswith("</svg>")
+    assert "a ball" in svg
+    assert w._repr_svg_() == w.to_svg()
+    # A big world: the notebook's picture keeps to its smaller budget and says so.
+    for i in range(6000):
+        b = w.create_body(type="static", pos=(i % 100, 5 + i // 100))
+        w.create_shape(b, quack.circle(radius=0.3))
+    small, full = w._repr_svg_(), w.to_svg()
+    assert len(small) < 2 << 20 and len(small) < len(full)
+    assert small.count("<circle") + small.count("<path") + small.count("<polygon") <= 5000 + 10
+    # Two shapes: the ground's box and the ball.
+    assert svg.count("<path") + svg.count("<polygon") + svg.count("<circle") >= 2
