@@ -837,6 +837,29 @@ del _t, _collections
           },
           "Checks every internal cross-reference; raises ValueError when one is broken.")
       .def(
+          "snapshot",
+          [](PyWorld& w) {
+            w.checkIdle();
+            Result<std::vector<std::uint8_t>> bytes = w.world().snapshot(SnapshotKind::full);
+            if (!bytes) throw py::value_error(bytes.error().message);
+            return py::bytes(reinterpret_cast<const char*>(bytes->data()), bytes->size());
+          },
+          "A full snapshot of the world (bytes): restore() brings the world back to it bit "
+          "for bit (docs/determinism.md, \"Snapshots\"). Raises ValueError when the world "
+          "refuses (after a step that ran out of memory).")
+      .def(
+          "restore",
+          [](PyWorld& w, const py::bytes& data) {
+            w.checkIdle();
+            const std::string_view view = data;
+            check(w.world().restore(std::span<const std::uint8_t>(
+                reinterpret_cast<const std::uint8_t*>(view.data()), view.size())));
+          },
+          py::arg("snapshot"),
+          "Puts the world back to a snapshot() of it; raises ValueError naming what is wrong "
+          "with a snapshot that does not fit. The way back after a MemoryError from step(), "
+          "which leaves the world refusing changes until a snapshot is restored.")
+      .def(
           "events",
           [m](py::object self) mutable {
             PyWorld& w = worldOf(self);

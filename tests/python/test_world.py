@@ -646,7 +646,8 @@ def test_reads_from_another_thread_never_see_a_step_half_done(source_dir):
 def test_a_memory_error_from_step_leaves_the_world_usable(tmp_path):
     """Issue 28, item 6 (the Python side): after a MemoryError from step (std::bad_alloc, here
     under an address-space limit), every call said "the world is stepping (in another
-    thread)" for good. The in-step mark is now cleared however step ends."""
+    thread)" for good. The in-step mark is now cleared however step ends: reads work, step
+    says why it refuses, and restoring a snapshot makes the world step again."""
     code = r"""
 import resource, quack
 w = quack.World(gravity=(0, 0))
@@ -658,6 +659,7 @@ def vm_bytes():
         for line in f:
             if line.startswith("VmSize:"):
                 return int(line.split()[1]) * 1024
+snap = w.snapshot()
 soft, hard = resource.getrlimit(resource.RLIMIT_AS)
 resource.setrlimit(resource.RLIMIT_AS, (vm_bytes() + (64 << 20), hard))
 try:
@@ -677,6 +679,9 @@ try:
     print("stepped again")
 except ValueError as e:
     print("ValueError:", e)
+w.restore(snap)
+w.step()
+print("restored and stepped", w.body_count)
 """
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          timeout=300, check=False)
@@ -685,11 +690,10 @@ except ValueError as e:
     assert lines[0] == "MemoryError", out.stdout
     assert lines[1] == "2000 2000 int", out.stdout
     assert lines[2] == "another thread reads [2000]", out.stdout + out.stderr
-    if lines[3].startswith("ValueError: step: called during a step"):
-        # The C++ world itself is left "in a step" by the exception: World::step's own
-        # exception safety (issue 28, item 6, C++ side) is not on this branch.
-        pytest.xfail("World::step is not exception-safe yet (C++ side of issue 28 item 6)")
-    assert lines[3] == "stepped again", out.stdout
+    # The C++ world refuses to go on from a half-done step (docs/world.md, "Exceptions")
+    # until a snapshot is restored.
+    assert lines[3].startswith("ValueError: step: step 1 ran out of memory"), out.stdout
+    assert lines[4] == "restored and stepped 2000", out.stdout
 
 
 def test_arguments_out_of_range_are_value_errors_naming_them():
