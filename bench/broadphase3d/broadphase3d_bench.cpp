@@ -4,12 +4,15 @@
 // Workload (issue 32): N boxes with half-extents uniform in [0.25, 0.5] m whose volumes sum
 // to an eighth of a cubic world; each frame the moving ones (100% or a given percentage)
 // take a random-walk step of at most 0.05 m in a random direction; W warm-up frames, then F
-// timed frames of "update + pairs". The whole run is repeated R times (each library in turn
-// within a repeat) and the median of the R means is reported, because the machine is shared.
+// timed frames of "update + pairs". Every library drives its own copy of the scene, and the
+// libraries take turns frame by frame (the order rotating), so that the frames compared ran
+// under about the same load: the machine this was written on is shared. Printed: the median
+// ms/frame per repeat and over all frames, and the median over frames of the per-frame
+// ratio of the last library's time to each other one's (Bullet's, with the default list).
 //
 //   broadphase3d_bench [--n 100000] [--moving 100] [--warmup 20] [--frames 50]
 //                      [--repeat 5] [--only tree,octree,bullet] [--margin 0.05]
-//                      [--scale 1] [--callgrind]
+//                      [--scale 1] [--cell 1] [--callgrind]
 //
 // Both libraries get the same fat-box margin (--margin, Bullet's gDbvtMargin default
 // 0.05 m). Quack also stretches fat boxes by --scale times the displacement (its
@@ -38,6 +41,7 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "quack/broadphase/broad_phase3.hpp"
@@ -127,99 +131,119 @@ struct Options {
   int repeat = 5;
   float margin = 0.05f;
   float scale = 1.0f;
+  float cell = 1.0f;  // the octree's smallest cell side, about the fat boxes (0.6 to 1.1 m)
   bool callgrind = false;
   std::vector<std::string> only{"tree", "octree", "bullet"};
 };
 
-struct Measure {
-  double buildMs = 0;
-  double frameMs = 0;  // mean over the timed frames
-  double pairs = 0;    // mean per timed frame
-  double extra = 0;    // Quack: re-insertions per frame; Bullet: 0
-  int height = 0;
+// One library driving its own copy of the scene: frame(f) steps the scene and runs
+// "update + pairs", returning the pair count of that frame.
+class Runner {
+ public:
+  explicit Runner(std::string name) : name_(std::move(name)) {}
+  virtual ~Runner() = default;
+  Runner(const Runner&) = delete;
+  Runner& operator=(const Runner&) = delete;
+  const std::string& name() const noexcept { return name_; }
+  virtual std::size_t frame(int f) = 0;
+  // Proxies re-inserted per frame so far (Quack); 0 where the library does not say.
+  virtual double reinsertsPerFrame() const { return 0.0; }
+  // Tree height or octree depth; -1 where the library does not say.
+  virtual int height() const { return -1; }
+
+ private:
+  std::string name_;
 };
 
-template <class Frame>
-void timeFrames(const Options& o, Measure& m, Frame&& frame) {
-  for (int f = 0; f < o.warmup; ++f)
-    frame(f);
-  double pairs = 0.0;
-  if (o.callgrind) QUACK_BENCH_START_COUNT();
-  const auto t0 = Clock::now();
-  for (int f = 0; f < o.frames; ++f)
-    pairs += static_cast<double>(frame(o.warmup + f));
-  const double ms = msSince(t0);
-  if (o.callgrind) QUACK_BENCH_STOP_COUNT();
-  m.frameMs = ms / o.frames;
-  m.pairs = pairs / o.frames;
-}
-
-Measure runQuack(const Options& o, Scene s, quack::BroadPhase3Kind kind) {
-  Measure m;
-  quack::BroadPhase3Config config;
-  config.kind = kind;
-  config.margin = o.margin;
-  config.displacementScale = o.scale;
-  config.cellSize = 1.0f;  // about the fat boxes (0.55 to 1.1 m)
-  quack::BroadPhase3 bp = quack::BroadPhase3::create(config).value();
-  std::vector<quack::ProxyId> ids(s.boxes.size());
-  const auto t0 = Clock::now();
-  for (std::size_t i = 0; i < s.boxes.size(); ++i)
-    ids[i] = bp.createProxy(s.boxes[i], i).value();
-  bp.rebuild();
-  std::vector<quack::ProxyPair> pairs;
-  bp.updatePairs(pairs);
-  m.buildMs = msSince(t0);
-  std::size_t reinserted = 0;
-  timeFrames(o, m, [&](int f) {
-    stepScene(s, f, [&](std::uint32_t i, Aabb3 b, Vec3 d) {
+class QuackRunner final : public Runner {
+ public:
+  QuackRunner(const Options& o, const Scene& scene, quack::BroadPhase3Kind kind)
+      : Runner(quack::toString(kind)), s_(scene), bp_(make(o, kind)), ids_(scene.boxes.size()) {
+    for (std::size_t i = 0; i < s_.boxes.size(); ++i)
+      ids_[i] = bp_.createProxy(s_.boxes[i], i).value();
+    bp_.rebuild();
+    bp_.updatePairs(pairs_);
+  }
+  std::size_t frame(int f) override {
+    stepScene(s_, f, [&](std::uint32_t i, Aabb3 b, Vec3 d) {
       // Checked once per frame by a world, not per call.
-      const quack::Result<bool> r = bp.moveProxy(ids[i], b, d);
-      reinserted += r.ok() && r.value() ? 1 : 0;
+      const quack::Result<bool> r = bp_.moveProxy(ids_[i], b, d);
+      reinserted_ += r.ok() && r.value() ? 1 : 0;
     });
-    bp.updatePairs(pairs);
-    return pairs.size();
-  });
-  m.extra = static_cast<double>(reinserted) / (o.warmup + o.frames);
-  m.height = bp.stats().height;
-  return m;
-}
+    bp_.updatePairs(pairs_);
+    ++frames_;
+    return pairs_.size();
+  }
+  double reinsertsPerFrame() const override {
+    return frames_ == 0 ? 0.0 : static_cast<double>(reinserted_) / frames_;
+  }
+  int height() const override { return bp_.stats().height; }
+
+ private:
+  static quack::BroadPhase3 make(const Options& o, quack::BroadPhase3Kind kind) {
+    quack::BroadPhase3Config config;
+    config.kind = kind;
+    config.margin = o.margin;
+    config.displacementScale = o.scale;
+    config.cellSize = o.cell;
+    return quack::BroadPhase3::create(config).value();
+  }
+  Scene s_;
+  quack::BroadPhase3 bp_;
+  std::vector<quack::ProxyId> ids_;
+  std::vector<quack::ProxyPair> pairs_;
+  std::size_t reinserted_ = 0;
+  int frames_ = 0;
+};
 
 #if defined(QUACK_BENCH_HAS_BULLET)
 btVector3 bt(Vec3 v) {
   return {v.x, v.y, v.z};
 }
 
-Measure runBullet(const Options& o, Scene s) {
-  Measure m;
-  gDbvtMargin = o.margin;
-  btDefaultCollisionConfiguration configuration;
-  btCollisionDispatcher dispatcher(&configuration);
-  auto bp = std::make_unique<btDbvtBroadphase>();
-  std::vector<btBroadphaseProxy*> proxies(s.boxes.size());
-  const auto t0 = Clock::now();
-  for (std::size_t i = 0; i < s.boxes.size(); ++i) {
-    proxies[i] = bp->createProxy(bt(s.boxes[i].lower), bt(s.boxes[i].upper), BOX_SHAPE_PROXYTYPE,
-                                 reinterpret_cast<void*>(static_cast<std::uintptr_t>(i)),
-                                 btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter,
-                                 &dispatcher);
+class BulletRunner final : public Runner {
+ public:
+  BulletRunner(const Options& o, const Scene& scene)
+      : Runner("bullet"), s_(scene), dispatcher_(&configuration_), proxies_(scene.boxes.size()) {
+    gDbvtMargin = o.margin;
+    for (std::size_t i = 0; i < s_.boxes.size(); ++i) {
+      proxies_[i] = bp_.createProxy(
+          bt(s_.boxes[i].lower), bt(s_.boxes[i].upper), BOX_SHAPE_PROXYTYPE,
+          reinterpret_cast<void*>(static_cast<std::uintptr_t>(i)), btBroadphaseProxy::DefaultFilter,
+          btBroadphaseProxy::AllFilter, &dispatcher_);
+    }
+    bp_.optimize();
+    bp_.calculateOverlappingPairs(&dispatcher_);
   }
-  bp->optimize();
-  bp->calculateOverlappingPairs(&dispatcher);
-  m.buildMs = msSince(t0);
-  timeFrames(o, m, [&](int f) {
-    stepScene(s, f, [&](std::uint32_t i, Aabb3 b, Vec3) {
-      bp->setAabb(proxies[i], bt(b.lower), bt(b.upper), &dispatcher);
+  ~BulletRunner() override {
+    for (btBroadphaseProxy* p : proxies_)
+      bp_.destroyProxy(p, &dispatcher_);
+  }
+  std::size_t frame(int f) override {
+    stepScene(s_, f, [&](std::uint32_t i, Aabb3 b, Vec3) {
+      bp_.setAabb(proxies_[i], bt(b.lower), bt(b.upper), &dispatcher_);
     });
-    bp->calculateOverlappingPairs(&dispatcher);
-    return static_cast<std::size_t>(bp->getOverlappingPairCache()->getNumOverlappingPairs());
-  });
-  m.height = -1;
-  for (btBroadphaseProxy* p : proxies)
-    bp->destroyProxy(p, &dispatcher);
-  return m;
-}
+    bp_.calculateOverlappingPairs(&dispatcher_);
+    return static_cast<std::size_t>(bp_.getOverlappingPairCache()->getNumOverlappingPairs());
+  }
+
+ private:
+  Scene s_;
+  btDefaultCollisionConfiguration configuration_;
+  btCollisionDispatcher dispatcher_;
+  btDbvtBroadphase bp_;
+  std::vector<btBroadphaseProxy*> proxies_;
+};
 #endif
+
+std::unique_ptr<Runner> makeRunner(const std::string& name, const Options& o, const Scene& s) {
+  if (name == "tree") return std::make_unique<QuackRunner>(o, s, quack::BroadPhase3Kind::tree);
+  if (name == "octree") return std::make_unique<QuackRunner>(o, s, quack::BroadPhase3Kind::octree);
+#if defined(QUACK_BENCH_HAS_BULLET)
+  if (name == "bullet") return std::make_unique<BulletRunner>(o, s);
+#endif
+  return nullptr;
+}
 
 std::vector<std::string> splitList(const char* s) {
   std::vector<std::string> out;
@@ -261,6 +285,8 @@ Options parse(int argc, char** argv) {
       o.margin = std::strtof(next(), nullptr);
     } else if (a == "--scale") {
       o.scale = std::strtof(next(), nullptr);
+    } else if (a == "--cell") {
+      o.cell = std::strtof(next(), nullptr);
     } else if (a == "--only") {
       o.only = splitList(next());
     } else if (a == "--callgrind") {
@@ -268,13 +294,13 @@ Options parse(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "usage: broadphase3d_bench [--n N] [--moving PERCENT] [--warmup W] "
-                   "[--frames F] [--repeat R] [--margin M] [--scale S] "
+                   "[--frames F] [--repeat R] [--margin M] [--scale S] [--cell C] "
                    "[--only tree,octree,bullet] [--callgrind]\n");
       std::exit(2);
     }
   }
   if (o.n == 0 || o.frames <= 0 || o.repeat <= 0 || o.warmup < 0 || !(o.margin >= 0.0f) ||
-      !(o.scale >= 0.0f)) {
+      !(o.scale >= 0.0f) || !(o.cell >= quack::kMinCellSize)) {
     std::fprintf(stderr, "bad option value\n");
     std::exit(2);
   }
@@ -293,61 +319,75 @@ int main(int argc, char** argv) {
   const Options o = parse(argc, argv);
   const Scene scene = makeScene(o.n, o.moving, 12345u);
   std::printf(
-      "# %zu boxes in a %.1f m cube, %zu moving; margin %.3f m, Quack stretch %.2f; "
-      "%d warm-up + %d timed frames, %d repeats\n",
+      "# %zu boxes in a %.1f m cube, %zu moving; margin %.3f m, Quack stretch %.2f, octree "
+      "cell %.2f m; %d warm-up + %d timed frames, %d repeats, libraries interleaved frame by "
+      "frame\n",
       o.n, static_cast<double>(scene.side), scene.moving.size(), static_cast<double>(o.margin),
-      static_cast<double>(o.scale), o.warmup, o.frames, o.repeat);
-  std::printf("%-8s %6s %10s %12s %12s %10s %7s\n", "library", "repeat", "build ms", "ms/frame",
-              "pairs/frame", "reinserts", "height");
+      static_cast<double>(o.scale), static_cast<double>(o.cell), o.warmup, o.frames, o.repeat);
   std::vector<std::string> names;
-  std::vector<std::vector<double>> times;
   for (const std::string& name : o.only) {
+    if (name != "tree" && name != "octree" && name != "bullet") {
+      std::fprintf(stderr, "unknown library '%s' (tree, octree, bullet)\n", name.c_str());
+      return 2;
+    }
 #if !defined(QUACK_BENCH_HAS_BULLET)
     if (name == "bullet") {
       std::printf("# bullet: not built in (apt-get install libbullet-dev, then reconfigure)\n");
       continue;
     }
 #endif
-    if (name != "tree" && name != "octree" && name != "bullet") {
-      std::fprintf(stderr, "unknown library '%s' (tree, octree, bullet)\n", name.c_str());
-      return 2;
-    }
     names.push_back(name);
-    times.emplace_back();
   }
+  if (names.empty()) return 2;
+  std::printf("%-8s %6s %10s %12s %12s %10s %7s\n", "library", "repeat", "build ms", "ms/frame",
+              "pairs/frame", "reinserts", "height");
+  // Per library, every timed frame of every repeat; and per frame, the ratio of the last
+  // library's time to each one's (the frames of one index run back to back, so under about
+  // the same load: the ratio is steadier than the times on a shared machine).
+  std::vector<std::vector<double>> all(names.size());
+  std::vector<std::vector<double>> ratios(names.size());
   for (int r = 0; r < o.repeat; ++r) {
-    for (std::size_t k = 0; k < names.size(); ++k) {
-      const std::string& name = names[k];
-      Measure m;
-      if (name == "tree") {
-        m = runQuack(o, scene, quack::BroadPhase3Kind::tree);
-      } else if (name == "octree") {
-        m = runQuack(o, scene, quack::BroadPhase3Kind::octree);
-      }
-#if defined(QUACK_BENCH_HAS_BULLET)
-      else {
-        m = runBullet(o, scene);
-      }
-#endif
-      times[k].push_back(m.frameMs);
-      std::printf("%-8s %6d %10.1f %12.3f %12.0f %10.0f %7d\n", name.c_str(), r, m.buildMs,
-                  m.frameMs, m.pairs, m.extra, m.height);
-      std::fflush(stdout);
+    std::vector<std::unique_ptr<Runner>> runners;
+    std::vector<double> buildMs;
+    for (const std::string& name : names) {
+      const auto t0 = Clock::now();
+      runners.push_back(makeRunner(name, o, scene));
+      buildMs.push_back(msSince(t0));
     }
+    for (auto& runner : runners) {
+      for (int f = 0; f < o.warmup; ++f)
+        runner->frame(f);
+    }
+    std::vector<std::vector<double>> ms(names.size());
+    std::vector<double> pairs(names.size(), 0.0);
+    for (int f = 0; f < o.frames; ++f) {
+      // Rotate the order each frame, so that no library always runs first or last.
+      for (std::size_t j = 0; j < runners.size(); ++j) {
+        const std::size_t k = (j + static_cast<std::size_t>(f)) % runners.size();
+        if (o.callgrind) QUACK_BENCH_START_COUNT();
+        const auto t0 = Clock::now();
+        pairs[k] += static_cast<double>(runners[k]->frame(o.warmup + f));
+        ms[k].push_back(msSince(t0));
+        if (o.callgrind) QUACK_BENCH_STOP_COUNT();
+      }
+      for (std::size_t k = 0; k < runners.size(); ++k)
+        ratios[k].push_back(ms.back().back() / ms[k].back());
+    }
+    for (std::size_t k = 0; k < runners.size(); ++k) {
+      all[k].insert(all[k].end(), ms[k].begin(), ms[k].end());
+      std::printf("%-8s %6d %10.1f %12.3f %12.0f %10.0f %7d\n", names[k].c_str(), r, buildMs[k],
+                  median(ms[k]), pairs[k] / o.frames, runners[k]->reinsertsPerFrame(),
+                  runners[k]->height());
+    }
+    std::fflush(stdout);
   }
-  std::printf("# median ms/frame over %d repeats:", o.repeat);
+  std::printf("# median ms/frame over all %d x %d timed frames:", o.repeat, o.frames);
   for (std::size_t k = 0; k < names.size(); ++k)
-    std::printf(" %s %.3f", names[k].c_str(), median(times[k]));
+    std::printf(" %s %.3f", names[k].c_str(), median(all[k]));
   std::printf("\n");
-  for (std::size_t k = 0; k < names.size(); ++k) {
-    if (names[k] == "bullet") {
-      for (std::size_t j = 0; j < names.size(); ++j) {
-        if (j != k) {
-          std::printf("# bullet / %s: %.2fx\n", names[j].c_str(),
-                      median(times[k]) / median(times[j]));
-        }
-      }
-    }
+  for (std::size_t k = 0; k + 1 < names.size(); ++k) {
+    std::printf("# %s / %s, median of the per-frame ratios: %.2fx\n", names.back().c_str(),
+                names[k].c_str(), median(ratios[k]));
   }
   return 0;
 }
