@@ -1,0 +1,218 @@
+// 3D contact manifolds: hand-worked resting contacts (four points for a box on a box, two
+// for a capsule lying on a face or along a capsule), ids that stay put under small motion,
+// swapping A and B, and random pairs whose deepest point agrees with EPA / the brute-force
+// distance and whose every point lies on both surfaces.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+
+#include "oracle3.hpp"
+#include "quack/collision/epa3.hpp"
+#include "quack/collision/manifold3.hpp"
+
+namespace quack {
+namespace {
+
+using namespace testing3;
+
+constexpr float kTol = 1e-5f;
+
+float deepest(const Manifold3& m) {
+  float s = m.points[0].separation;
+  for (int i = 1; i < m.pointCount; ++i)
+    s = std::min(s, m.points[i].separation);
+  return s;
+}
+
+std::set<std::uint32_t> ids(const Manifold3& m) {
+  std::set<std::uint32_t> out;
+  for (int i = 0; i < m.pointCount; ++i)
+    out.insert(m.points[i].id);
+  return out;
+}
+
+TEST(Manifold3, BoxRestingOnBoxHasFourPoints) {
+  Hull3 ground = makeBox3({5, 1, 5}).value();
+  Hull3 box = makeBox3({0.5f, 0.5f, 0.5f}).value();
+  Transform3 tb{{0.3f, 1.5f - 0.01f, -0.2f}, Quat::fromAxisAngle({0, 1, 0}, 0.3f)};
+  Manifold3 m = collideHulls(ground, {}, box, tb);
+  ASSERT_EQ(m.pointCount, 4);
+  EXPECT_NEAR(m.normal.y, 1, kTol);
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_NEAR(m.points[i].separation, -0.01f, kTol);
+    EXPECT_NEAR(m.points[i].point.y, 1 - 0.005f, kTol);
+  }
+  EXPECT_EQ(ids(m).size(), 4u);
+  // A small motion keeps the same features, so the same ids.
+  Transform3 moved{tb.p + Vec3{1e-3f, 2e-4f, -1e-3f}, tb.q};
+  EXPECT_EQ(ids(collideHulls(ground, {}, box, moved)), ids(m));
+  // Swapped: the normal flips, the points and separations stay.
+  Manifold3 s = collideHulls(box, tb, ground, {});
+  ASSERT_EQ(s.pointCount, 4);
+  EXPECT_NEAR(s.normal.y, -1, kTol);
+  EXPECT_NEAR(deepest(s), -0.01f, kTol);
+}
+
+TEST(Manifold3, TwistedBoxesReduceEightPointsToFour) {
+  // Two equal boxes face to face, one turned 45 degrees: the overlap is an octagon.
+  Hull3 box = makeBox3({1, 1, 1}).value();
+  Transform3 tb{{0, 2 - 0.02f, 0}, Quat::fromAxisAngle({0, 1, 0}, 0.25f * kPi)};
+  Manifold3 m = collideHulls(box, {}, box, tb);
+  ASSERT_EQ(m.pointCount, 4);
+  EXPECT_NEAR(deepest(m), -0.02f, kTol);
+  // The four kept points span the octagon: the area of their quadrilateral is most of it.
+  Vec3 p[4];
+  for (int i = 0; i < 4; ++i)
+    p[i] = m.points[i].point;
+  float area =
+      0.5f * (length(cross(p[1] - p[0], p[2] - p[0])) + length(cross(p[2] - p[0], p[3] - p[0])));
+  float octagon = 8.0f * (std::sqrt(2.0f) - 1.0f);  // side-1 square and its 45-degree twin
+  EXPECT_GT(area, 0.6f * octagon);
+}
+
+TEST(Manifold3, CrossedEdgesGiveOnePoint) {
+  Hull3 box = makeBox3({1, 1, 1}).value();
+  float r2 = std::sqrt(2.0f);
+  Transform3 ta{{}, Quat::fromAxisAngle({1, 0, 0}, 0.25f * kPi)};
+  Transform3 tb{{0.1f, 2 * r2 - 0.01f, 0.2f}, Quat::fromAxisAngle({0, 0, 1}, 0.25f * kPi)};
+  Manifold3 m = collideHulls(box, ta, box, tb);
+  ASSERT_EQ(m.pointCount, 1);
+  EXPECT_NEAR(m.points[0].separation, -0.01f, 1e-5f);
+  EXPECT_NE(m.points[0].id & kManifold3IdEdges, 0u);
+  EXPECT_NEAR(m.points[0].point.x, 0.1f, 1e-4f);
+  EXPECT_NEAR(m.points[0].point.z, 0.0f, 1e-4f);
+}
+
+TEST(Manifold3, CapsuleLyingOnABoxAndAlongACapsule) {
+  Hull3 box = makeBox3({2, 1, 2}).value();
+  Capsule3 cap = makeCapsule3({-1, 0, 0}, {1, 0, 0}, 0.25f).value();
+  Manifold3 m = collideHullAndCapsule(box, {}, cap, {{0.5f, 1.24f, 0.3f}, {}});
+  ASSERT_EQ(m.pointCount, 2);
+  EXPECT_NEAR(m.normal.y, 1, kTol);
+  EXPECT_NEAR(m.points[0].separation, -0.01f, kTol);
+  EXPECT_NEAR(m.points[1].separation, -0.01f, kTol);
+  // Half over the edge: clipped at x = 2.
+  m = collideHullAndCapsule(box, {}, cap, {{1.5f, 1.24f, 0.3f}, {}});
+  ASSERT_EQ(m.pointCount, 2);
+  EXPECT_NEAR(std::max(m.points[0].point.x, m.points[1].point.x), 2, kTol);
+  // Standing up: one point.
+  m = collideHullAndCapsule(box, {}, cap,
+                            {{0, 2.2f, 0}, Quat::fromAxisAngle({0, 0, 1}, 0.5f * kPi)});
+  EXPECT_EQ(m.pointCount, 1);
+  EXPECT_NEAR(m.points[0].separation, -0.05f, kTol);
+  // Two parallel capsules: two points; crossed: one.
+  Manifold3 c = collideCapsules(cap, {}, cap, {{0.5f, 0.45f, 0}, {}});
+  ASSERT_EQ(c.pointCount, 2);
+  EXPECT_NEAR(c.points[0].separation, -0.05f, kTol);
+  c = collideCapsules(cap, {}, cap, {{0, 0.45f, 0}, Quat::fromAxisAngle({0, 1, 0}, 1.0f)});
+  EXPECT_EQ(c.pointCount, 1);
+}
+
+TEST(Manifold3, SpheresAndSpeculativeDistance) {
+  Sphere s = makeSphere({}, 1).value();
+  Manifold3 m = collideSpheres(s, {}, s, {{0, 0, 2.01f}, {}});
+  ASSERT_EQ(m.pointCount, 1);
+  EXPECT_NEAR(m.points[0].separation, 0.01f, kTol);
+  EXPECT_EQ(collideSpheres(s, {}, s, {{0, 0, 2.5f}, {}}).pointCount, 0);
+  Hull3 box = makeBox3({1, 1, 1}).value();
+  m = collideHullAndSphere(box, {}, s, {{0, 0, 1.9f}, {}});
+  ASSERT_EQ(m.pointCount, 1);
+  EXPECT_NEAR(m.points[0].separation, -0.1f, kTol);
+  EXPECT_NEAR(m.normal.z, 1, kTol);
+}
+
+// Signed distance of a world point from a shape's surface (double).
+double surfaceDistance(const Shape3& s, Transform3 t, Vec3 pWorld) {
+  Features f = s.features(t);
+  D3 p = toD(pWorld);
+  if (s.kind == Kind3::sphere) return lenD(p - f.v[0]) - f.radius;
+  if (s.kind == Kind3::capsule) return lenD(p - closestOnSegment(p, f.v[0], f.v[1])) - f.radius;
+  double best = -1e300;  // hull: the largest face-plane distance
+  for (int k = 0; k < s.hull.faceCount; ++k) {
+    const HullFace3& face = s.hull.faces[k];
+    D3 n = rotateD(t.q, toD(face.normal));
+    D3 onFace = transformD(t, s.hull.vertices[s.hull.faceVertices[face.first]]);
+    best = std::max(best, dotD(n, p - onFace));
+  }
+  return best;
+}
+
+Manifold3 collideAny(const Shape3& a, Transform3 ta, const Shape3& b, Transform3 tb, float spec) {
+  auto isHull = [](Kind3 k) { return k == Kind3::box || k == Kind3::hull; };
+  if (isHull(a.kind) && isHull(b.kind)) return collideHulls(a.hull, ta, b.hull, tb, spec);
+  if (isHull(a.kind) && b.kind == Kind3::capsule)
+    return collideHullAndCapsule(a.hull, ta, b.capsule, tb, spec);
+  if (isHull(a.kind) && b.kind == Kind3::sphere)
+    return collideHullAndSphere(a.hull, ta, b.sphere, tb, spec);
+  if (a.kind == Kind3::capsule && b.kind == Kind3::capsule)
+    return collideCapsules(a.capsule, ta, b.capsule, tb, spec);
+  if (a.kind == Kind3::capsule && b.kind == Kind3::sphere)
+    return collideCapsuleAndSphere(a.capsule, ta, b.sphere, tb, spec);
+  return collideSpheres(a.sphere, ta, b.sphere, tb, spec);
+}
+
+TEST(Manifold3, RandomPairsAgreeWithEpaAndLieOnBothSurfaces) {
+  // Pairs (A, B) with A at least as "big" a kind as B: hull/box, capsule, sphere.
+  const Kind3 kinds[] = {Kind3::hull, Kind3::box, Kind3::capsule, Kind3::sphere};
+  std::mt19937 rng(1001);
+  int mismatches = 0, checked = 0, multi = 0;
+  const int n = 6000;
+  for (int i = 0; i < n; ++i) {
+    int ia = i % 4, ib = ia + (i / 4) % (4 - ia);
+    Shape3 a = randomShape3(rng, kinds[ia], 1.0f, 12), b = randomShape3(rng, kinds[ib], 1.0f, 12);
+    Vec3 origin = (i % 4 == 3) ? Vec3{1e4f, -1e4f, 1e4f} : Vec3{};
+    Transform3 ta{origin + randomVec(rng, 1), randomQuat(rng)};
+    Transform3 tb{ta.p + randomVec(rng, 1.2f), randomQuat(rng)};
+    const float spec = kSpeculativeDistance;
+    Manifold3 m = collideAny(a, ta, b, tb, spec);
+    PenetrationOutput3 p = computePenetration(a.proxy(), ta, b.proxy(), tb);
+    DistanceOutput3 d = computeDistance(a.proxy(), ta, b.proxy(), tb);
+    double size = a.extent() + b.extent() + lenD(toD(tb.p) - toD(ta.p));
+    double tol = 2e-5 * size + 4 * 1.2e-7 * lenD(toD(ta.p));
+    bool ok = true;
+    double expected = p.overlap ? -p.depth : d.distance;
+    if (expected > spec + tol) {
+      ok = m.pointCount == 0;
+    } else if (expected < spec - tol) {
+      ++checked;
+      // Overlapping: the deepest point is EPA's depth. Apart (speculative): a hull pair
+      // reports SAT's separation, a lower bound on the distance (exact for a face and a
+      // vertex, conservative otherwise), never a false overlap.
+      bool hulls = m.pointCount > 0 && a.kind != Kind3::sphere && a.kind != Kind3::capsule &&
+                   b.kind != Kind3::sphere && b.kind != Kind3::capsule;
+      if (m.pointCount == 0) {
+        ok = false;
+      } else if (expected < 0 || !hulls) {
+        ok = std::fabs(deepest(m) - expected) <= tol;
+      } else {
+        ok = deepest(m) >= -tol && deepest(m) <= expected + tol;
+      }
+      if (m.pointCount > 1) ++multi;
+      // Every point lies on both surfaces: exactly for hull pairs (clipped faces); within
+      // the slop for a capsule's two points (kept only while the capsule is parallel to
+      // within kLinearSlop, so its ends' true normals differ from the manifold's by that).
+      double surfaceTol = (hulls || m.pointCount == 1) ? tol : tol + kLinearSlop;
+      for (int k = 0; k < m.pointCount && ok; ++k) {
+        const ManifoldPoint3& mp = m.points[k];
+        Vec3 onA = mp.point - (0.5f * mp.separation) * m.normal;
+        Vec3 onB = mp.point + (0.5f * mp.separation) * m.normal;
+        if (std::fabs(surfaceDistance(a, ta, onA)) > surfaceTol) ok = false;
+        if (std::fabs(surfaceDistance(b, tb, onB)) > surfaceTol) ok = false;
+        if (mp.separation > spec + tol) ok = false;
+      }
+    }
+    if (!ok) ++mismatches;
+    EXPECT_TRUE(ok) << "pair " << i << " expected " << expected << " got "
+                    << (m.pointCount ? deepest(m) : 99.0f) << " points " << m.pointCount << " tol "
+                    << tol << "\nA " << describe(a) << "\nB " << describe(b);
+    if (mismatches > 10) break;
+  }
+  EXPECT_EQ(mismatches, 0);
+  EXPECT_GT(checked, n / 4);
+  EXPECT_GT(multi, n / 50);
+}
+
+}  // namespace
+}  // namespace quack
