@@ -129,7 +129,7 @@ TEST(Epa3, RandomOverlapsAgreeWithTheMinkowskiDifference) {
 #else
   std::mt19937 rng(606);
   int mismatches = 0;
-  const int n = 20000;
+  const int n = 20000 * testScale();
   for (int i = 0; i < n; ++i) {
     Pair3 p;
     p.a = randomShape3(rng, kKinds[i % 5], 1.0f);

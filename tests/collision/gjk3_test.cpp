@@ -216,7 +216,7 @@ bool checkPair(const Pair3& p, int index) {
 TEST(Gjk3, RandomPairsAgreeWithBruteForce) {
   std::mt19937 rng(404);
   int mismatches = 0;
-  const int n = 20000;
+  const int n = 20000 * testScale();
   for (int i = 0; i < n; ++i) {
     // Near the origin and 1e4 m from it; reach chosen so that about half overlap.
     Vec3 origin = (i % 4 == 3) ? Vec3{1e4f, -1e4f, 1e4f} : Vec3{};

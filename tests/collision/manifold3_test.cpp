@@ -158,7 +158,7 @@ TEST(Manifold3, RandomPairsAgreeWithEpaAndLieOnBothSurfaces) {
   const Kind3 kinds[] = {Kind3::hull, Kind3::box, Kind3::capsule, Kind3::sphere};
   std::mt19937 rng(1001);
   int mismatches = 0, checked = 0, multi = 0;
-  const int n = 6000;
+  const int n = 6000 * testScale();
   for (int i = 0; i < n; ++i) {
     int ia = i % 4, ib = ia + (i / 4) % (4 - ia);
     Shape3 a = randomShape3(rng, kinds[ia], 1.0f, 12), b = randomShape3(rng, kinds[ib], 1.0f, 12);

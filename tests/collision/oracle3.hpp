@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <random>
 #include <string>
 #include <utility>
@@ -196,6 +197,14 @@ inline MinkowskiAnswer minkowskiDepth(const Features& A, const Features& B) {
   return out;
 }
 #endif
+
+// How many times the random-pair loops run their default count: QUACK_TEST_SCALE (1 to
+// 1000, default 1). The ctest entry collision3_slow (label `slow`) runs them at 10.
+inline int testScale() {
+  const char* text = std::getenv("QUACK_TEST_SCALE");
+  int scale = text != nullptr ? std::atoi(text) : 1;
+  return std::clamp(scale, 1, 1000);
+}
 
 // A 3D test shape of any kind.
 enum class Kind3 { sphere, capsule, triangle, box, hull };

@@ -47,7 +47,7 @@ TEST(Sat3, RandomHullPairsAgreeWithTheOracles) {
   std::mt19937 rng(909);
   int mismatches = 0, overlapChecked = 0, apartChecked = 0;
   long pairsTested = 0, pairsTotal = 0;
-  const int n = 3000;
+  const int n = 3000 * testScale();
   for (int i = 0; i < n; ++i) {
     Shape3 a = randomShape3(rng, i % 2 ? Kind3::box : Kind3::hull, 1.0f, 20);
     Shape3 b = randomShape3(rng, i % 3 ? Kind3::hull : Kind3::box, 1.0f, 20);
