@@ -3,6 +3,7 @@
 #include "quack/collision/manifold3.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "quack/collision/epa3.hpp"
 #include "quack/collision/gjk3.hpp"
@@ -335,9 +336,17 @@ Manifold3 collideHulls(const Hull3& a, Transform3 worldFromA, const Hull3& b, Tr
     if (refOnB) id |= kManifold3IdReferenceOnB;
     pts[n2++] = makePoint(transformPoint(worldFromRef, mid), sep, id, worldFromA, worldFromB);
   }
-  if (n2 == 0) {
-    // The faces only graze (the incident face lies outside the reference face's sides):
-    // one point from GJK / EPA.
+  // The deepest clipped point should be SAT's support vertex. When clipping lost it (the
+  // faces only graze: the incident face lies outside the reference face's sides, or, apart,
+  // the nearest features are not over the reference face), the clipped points are further
+  // than the shapes are: one point from GJK / EPA instead (found by the slow random run).
+  float minSep = std::numeric_limits<float>::infinity();
+  for (int i = 0; i < n2; ++i)
+    minSep = minf(minSep, pts[i].separation);
+  float size = 0.0f;
+  for (int i = 0; i < ref.vertexCount; ++i)
+    size = maxf(size, length(ref.vertices[i] - ref.centroid));
+  if (n2 == 0 || minSep > sat.separation + 1e-5f * size) {
     return collideGeneral(makeProxy(a), worldFromA, makeProxy(b), worldFromB, speculativeDistance);
   }
   n2 = reduceToFour(pts, n2, normalWorld);

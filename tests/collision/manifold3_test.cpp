@@ -123,6 +123,35 @@ TEST(Manifold3, SpheresAndSpeculativeDistance) {
   EXPECT_NEAR(m.normal.z, 1, kTol);
 }
 
+TEST(Manifold3, RegressionApartFaceClipMissedTheNearestVertex) {
+  // Found by the slow random run (pair 13072): a sliver and a hull 1.5 cm apart, within the
+  // speculative distance. SAT chose a face whose clipped incident points were all further
+  // than the nearest features (1.63 cm against 1.48 cm); the manifold now falls back to
+  // GJK's point when the clip loses SAT's support vertex.
+  std::vector<Vec3> pa{{-0.740097344f, 0.213846892f, 0.0192335825f},
+                       {0.680381835f, 0.005843536f, 0.00905461516f},
+                       {-0.263985276f, 0.274863511f, 0.0191878993f},
+                       {0.761431456f, -0.187080443f, -0.0123052876f},
+                       {0.29503879f, -0.270674109f, -0.00929864403f},
+                       {-0.312593311f, 0.154010758f, -0.00570207601f}};
+  std::vector<Vec3> pb{
+      {-0.0762140155f, 0.0175658092f, 0.648395181f}, {-0.00838121213f, 0.123399563f, -0.669669211f},
+      {0.46472317f, 0.259125441f, -0.22211656f},     {-0.324862987f, -0.301736623f, -0.310452402f},
+      {-0.466978818f, 0.22582382f, -0.355622232f},   {0.501687765f, 0.0801637694f, 0.85570693f},
+      {-0.387309581f, -0.200965285f, 0.0826375186f}};
+  Hull3 a = makeHull3(pa).value(), b = makeHull3(pb).value();
+  Transform3 ta{{-0.956360459f, 0.36311698f, 0.425440073f},
+                {0.630128503f, -0.694719493f, -0.132639721f, -0.320483416f}};
+  Transform3 tb{{-0.996554136f, 0.0681886077f, 1.40086961f},
+                {0.755152643f, 0.619742393f, -0.0748410597f, -0.200156271f}};
+  DistanceOutput3 d = computeDistance(makeProxy(a), ta, makeProxy(b), tb);
+  ASSERT_GT(d.distance, 0.01f);
+  Manifold3 m = collideHulls(a, ta, b, tb);
+  ASSERT_GT(m.pointCount, 0);
+  EXPECT_LE(deepest(m), d.distance + 1e-5f);
+  EXPECT_GE(deepest(m), 0.0f);
+}
+
 // Signed distance of a world point from a shape's surface (double).
 double surfaceDistance(const Shape3& s, Transform3 t, Vec3 pWorld) {
   Features f = s.features(t);
