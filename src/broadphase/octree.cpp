@@ -47,6 +47,9 @@ float maxAbs(Aabb3 b) noexcept {
 }  // namespace
 
 Octree::Octree(float smallestCellSize) : base_(smallestCellSize) {
+  static_assert(kTopCellLevel == kTopLevel, "octree.hpp and octree.cpp agree on the top level");
+  for (std::int32_t level = 1; level <= kTopLevel; ++level)
+    childSide_[level] = std::ldexp(smallestCellSize, level - 1);
   QUACK_ASSERT(smallestCellSize > 0.0f && std::isfinite(smallestCellSize));
 }
 
@@ -108,6 +111,7 @@ std::uint32_t Octree::newCell(Key k, std::uint32_t parent) {
   cell.parent = parent;
   for (std::uint32_t& ch : cell.child)
     ch = kNullIndex;
+  cell.childMask = 0;
   cell.firstItem = kNullIndex;
   ++cellCount_;
   return c;
@@ -138,6 +142,7 @@ std::uint32_t Octree::findOrCreateCell(Key k) {
     const std::uint32_t old = root_;
     root_ = newCell(up, kNullIndex);
     cells_[root_].child[slot] = old;
+    cells_[root_].childMask = static_cast<std::uint8_t>(1u << slot);
     cells_[old].parent = root_;
   }
   // Walk down, creating the missing cells.
@@ -152,6 +157,7 @@ std::uint32_t Octree::findOrCreateCell(Key k) {
     if (next == kNullIndex) {
       next = newCell({cx, cy, cz, cells_[c].level - 1}, c);
       cells_[c].child[slot] = next;
+      cells_[c].childMask = static_cast<std::uint8_t>(cells_[c].childMask | (1u << slot));
     }
     c = next;
   }
@@ -192,7 +198,10 @@ void Octree::prune(std::uint32_t c) noexcept {
     if (parent == kNullIndex) {
       root_ = kNullIndex;
     } else {
-      cells_[parent].child[slotOf(cells_[c].x, cells_[c].y, cells_[c].z)] = kNullIndex;
+      const int slot = slotOf(cells_[c].x, cells_[c].y, cells_[c].z);
+      cells_[parent].child[slot] = kNullIndex;
+      cells_[parent].childMask =
+          static_cast<std::uint8_t>(cells_[parent].childMask & ~(1u << slot));
     }
     freeCell(c);
     c = parent;
@@ -325,6 +334,10 @@ Status Octree::validate() const {
       stack.push_back(ch);
     }
     if (!hasChild && c.firstItem == kNullIndex) return fail("empty leaf cell" + where);
+    for (int s = 0; s < 8; ++s) {
+      if (((c.childMask >> s) & 1u) != (c.child[s] != kNullIndex ? 1u : 0u))
+        return fail("child mask disagrees with the children" + where);
+    }
     std::uint32_t prev = kNullIndex;
     for (std::uint32_t i = c.firstItem; i != kNullIndex; i = items_[i].next) {
       if (i >= items_.size()) return fail("item index outside the item table" + where);

@@ -146,6 +146,26 @@ void randomSequence(Make&& make, std::uint32_t seed, int steps, std::uint32_t sl
         if (model[k] && overlaps(*model[k], q)) expected.push_back(k);
       }
       ASSERT_EQ(queryAll3(s, q), expected) << "step " << i;
+      // Point queries at the corners of a stored box: touching counts, so the box must be
+      // found, and those corners are where a structure's pruning is tightest (a box at the
+      // edge of its loose cell, a node's box that this box bounds).
+      for (int tries = 0; tries < 3; ++tries) {
+        const std::uint32_t k = pick(rng);
+        if (!model[k]) continue;
+        for (int corner = 0; corner < 8; ++corner) {
+          const Vec3 pt{(corner & 1) ? model[k]->upper.x : model[k]->lower.x,
+                        (corner & 2) ? model[k]->upper.y : model[k]->lower.y,
+                        (corner & 4) ? model[k]->upper.z : model[k]->lower.z};
+          const std::vector<std::uint32_t> hit = queryAll3(s, Aabb3{pt, pt});
+          ASSERT_TRUE(std::binary_search(hit.begin(), hit.end(), k))
+              << "step " << i << ": corner " << corner << " of proxy " << k << " not found";
+          std::vector<std::uint32_t> all;
+          for (std::uint32_t j = 0; j < slots; ++j) {
+            if (model[j] && overlaps(*model[j], Aabb3{pt, pt})) all.push_back(j);
+          }
+          ASSERT_EQ(hit, all) << "step " << i;
+        }
+      }
       for (std::uint32_t k = 0; k < slots; ++k) {
         if (model[k]) {
           ASSERT_EQ(s.box(k), *model[k]) << "step " << i << " proxy " << k;
