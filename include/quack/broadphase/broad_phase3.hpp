@@ -66,6 +66,7 @@ Result<BroadPhase3Kind> parseBroadPhase3Kind(std::string_view name);
 
 /// How a `BroadPhase3` is made. Every field has a default that suits boxes of about 1 m.
 struct BroadPhase3Config {
+  /// The structure: the tree suits most scenes (docs/3d-broad-phase.md has the figures).
   BroadPhase3Kind kind = BroadPhase3Kind::tree;
   /// Metres added to every side of a tight box to make its fat box (>= 0). Larger means fewer
   /// re-insertions but more candidate pairs. 0.1 m, as in 2D, for metre-sized bodies.
@@ -82,6 +83,7 @@ struct BroadPhase3Config {
 
 /// Size and shape figures of a `BroadPhase3`.
 struct BroadPhase3Stats {
+  /// Live proxies.
   std::uint32_t proxyCount = 0;
   /// Bytes held by the structure itself (nodes or cells and items).
   std::size_t structureBytes = 0;
@@ -94,13 +96,16 @@ struct BroadPhase3Stats {
   float areaRatio = 0.0f;
 };
 
+/// The 3D broad phase (see the top of this file). A value: copies are independent.
 class BroadPhase3 {
  public:
   /// A broad phase using `config`; fails on a non-finite or negative margin or displacement
   /// scale, or a cell size out of range, naming the field.
   static Result<BroadPhase3> create(BroadPhase3Config config = {});
 
+  /// The structure chosen at creation.
   BroadPhase3Kind kind() const noexcept { return config_.kind; }
+  /// The configuration given at creation (validated).
   const BroadPhase3Config& config() const noexcept { return config_; }
 
   /// Adds a proxy for the tight box `box` (world frame). `userData` is returned with pairs

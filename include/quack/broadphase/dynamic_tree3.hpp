@@ -36,6 +36,7 @@
 
 namespace quack {
 
+/// The 3D dynamic AABB tree (see the top of this file).
 class DynamicTree3 {
  public:
   /// Adds proxy `proxy` with box `box` (world frame, metres). Grows the leaf table as needed.

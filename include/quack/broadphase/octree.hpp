@@ -35,6 +35,7 @@
 
 namespace quack {
 
+/// The loose octree (see the top of this file).
 class Octree {
  public:
   /// `smallestCellSize`: side of a level-0 cell in metres, > 0 and finite; boxes smaller than

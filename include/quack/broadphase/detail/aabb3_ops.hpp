@@ -34,6 +34,7 @@ struct Ray3 {
   Vec3 translation;
   Vec3 inverse;  ///< 1 / translation per axis; unused where the component is 0
 
+  /// The ray from `o` along `t` (any finite values; a zero component is handled apart).
   Ray3(Vec3 o, Vec3 t) noexcept
       : origin(o),
         translation(t),
