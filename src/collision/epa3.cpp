@@ -35,14 +35,32 @@ struct Face {
   int v[3];
   Vec3 normal;     // outward unit normal, A frame
   float distance;  // signed distance of the plane from the origin (positive: origin inside)
+  int adj[3];      // the face across edge k (v[k] -> v[k + 1])
+  int adjEdge[3];  // that edge's index in the face across
+  bool live;
 };
 
-// A polytope in fixed buffers.
+// A polytope in fixed buffers. Faces live in slots; removed slots are reused through a
+// free list, so the adjacency indices stay valid.
 struct Polytope {
   SupportPoint3 vertices[kEpa3MaxVertices];
   Face faces[kEpa3MaxFaces];
+  int freeSlots[kEpa3MaxFaces];
   int vertexCount = 0;
-  int faceCount = 0;
+  int slotCount = 0;  // slots ever used
+  int freeCount = 0;
+  int liveCount = 0;
+
+  int allocate() noexcept {
+    int slot = freeCount > 0 ? freeSlots[--freeCount] : slotCount++;
+    ++liveCount;
+    return slot;
+  }
+  void release(int slot) noexcept {
+    faces[slot].live = false;
+    freeSlots[freeCount++] = slot;
+    --liveCount;
+  }
 };
 
 // Face a, b, c (counter-clockwise seen from outside); false when it has no normal.
@@ -54,7 +72,12 @@ bool makeFace(const Polytope& p, int a, int b, int c, float sizeSquared, Face& o
   if (!(len2 > 1e-24f * sizeSquared * sizeSquared)) return false;
   n = (1.0f / std::sqrt(len2)) * n;
   // The distance from the three vertices' mean: less rounding than from one vertex.
-  out = {{a, b, c}, n, dot(n, (1.0f / 3.0f) * (pa + pb + pc))};
+  out.v[0] = a;
+  out.v[1] = b;
+  out.v[2] = c;
+  out.normal = n;
+  out.distance = dot(n, (1.0f / 3.0f) * (pa + pb + pc));
+  out.live = true;
   return true;
 }
 
@@ -181,7 +204,8 @@ PenetrationOutput3 computePenetration(const ShapeProxy3& a, Transform3 worldFrom
     return out;
   }
 
-  // The tetrahedron, each face turned to face away from the fourth vertex.
+  // The tetrahedron, each face turned to face away from the fourth vertex, and its
+  // adjacency by matching each directed edge with its reverse.
   static constexpr int kTet[4][4] = {{0, 1, 2, 3}, {0, 3, 1, 2}, {1, 3, 2, 0}, {2, 3, 0, 1}};
   for (const auto& t : kTet) {
     Face f;
@@ -189,20 +213,49 @@ PenetrationOutput3 computePenetration(const ShapeProxy3& a, Transform3 worldFrom
       out.status = Epa3Status::gaveUp;
       break;
     }
-    if (dot(f.normal, poly.vertices[t[3]].w) > f.distance) {
+    if (dot(f.normal, poly.vertices[t[3]].w) > f.distance)
       makeFace(poly, t[0], t[2], t[1], size2, f);
+    poly.faces[poly.allocate()] = f;
+  }
+  if (out.status != Epa3Status::gaveUp) {
+    for (int f = 0; f < 4; ++f) {
+      for (int k = 0; k < 3; ++k) {
+        int u = poly.faces[f].v[k], w = poly.faces[f].v[(k + 1) % 3];
+        for (int g = 0; g < 4; ++g) {
+          for (int j = 0; j < 3; ++j) {
+            if (poly.faces[g].v[j] == w && poly.faces[g].v[(j + 1) % 3] == u) {
+              poly.faces[f].adj[k] = g;
+              poly.faces[f].adjEdge[k] = j;
+            }
+          }
+        }
+      }
     }
-    poly.faces[poly.faceCount++] = f;
   }
 
-  int best = 0;
+  // Per-pass scratch: which faces the new point sees (by pass stamp), the horizon in order,
+  // and the cone built before the polytope is touched.
+  int seenStamp[kEpa3MaxFaces] = {};
+  struct HorizonEdge {
+    int a, b;     // the edge, as in the seen face (counter-clockwise)
+    int outside;  // the unseen face across it
+    int edge;     // the edge's index in that face
+  };
+  HorizonEdge horizon[kEpa3MaxFaces];
+  Face cone[kEpa3MaxFaces];
+  struct Frame {
+    int face, edge, remaining;
+  };
+  Frame stack[kEpa3MaxFaces];
+
   if (out.status != Epa3Status::gaveUp) {
     out.status = Epa3Status::bufferFull;
     // Cap: each pass adds one vertex or stops, so there are fewer passes than vertices.
-    for (int pass = 0; pass < kEpa3MaxVertices; ++pass) {
-      best = 0;
-      for (int f = 1; f < poly.faceCount; ++f) {
-        if (poly.faces[f].distance < poly.faces[best].distance) best = f;
+    for (int pass = 1; pass <= kEpa3MaxVertices; ++pass) {
+      int best = -1;
+      for (int f = 0; f < poly.slotCount; ++f) {
+        if (poly.faces[f].live && (best < 0 || poly.faces[f].distance < poly.faces[best].distance))
+          best = f;
       }
       const Face nearest = poly.faces[best];
       SupportPoint3 s = detail::support3(a, b, aFromB, nearest.normal);
@@ -224,96 +277,95 @@ PenetrationOutput3 computePenetration(const ShapeProxy3& a, Transform3 worldFrom
       }
       if (poly.vertexCount == kEpa3MaxVertices) break;  // bufferFull
 
-      // Faces the new point sees, and their horizon: the directed edges of seen faces whose
-      // reverse belongs to no seen face.
-      int newIndex = poly.vertexCount;
-      bool seen[kEpa3MaxFaces];
-      int seenCount = 0;
-      for (int f = 0; f < poly.faceCount; ++f) {
-        const Face& face = poly.faces[f];
-        seen[f] = f == best || dot(face.normal, s.w) - face.distance > 0.0f;
-        seenCount += seen[f] ? 1 : 0;
-      }
-      int horizon[kEpa3MaxFaces][2];
-      int horizonCount = 0;
-      for (int f = 0; f < poly.faceCount; ++f) {
-        if (!seen[f]) continue;
-        for (int k = 0; k < 3; ++k) {
-          int u = poly.faces[f].v[k], w = poly.faces[f].v[(k + 1) % 3];
-          bool inner = false;
-          for (int g = 0; g < poly.faceCount && !inner; ++g) {
-            if (!seen[g]) continue;
-            for (int j = 0; j < 3; ++j) {
-              if (poly.faces[g].v[j] == w && poly.faces[g].v[(j + 1) % 3] == u) inner = true;
-            }
-          }
-          if (!inner) {
-            if (horizonCount == kEpa3MaxFaces) {
-              horizonCount = -1;
-              break;
-            }
-            horizon[horizonCount][0] = u;
-            horizon[horizonCount][1] = w;
-            ++horizonCount;
-          }
+      // The faces the new point sees, grown from the nearest across edges to the faces that
+      // see it too (Ericson 9.5's silhouette walk, with an explicit stack); the horizon
+      // comes out in order around the seen region.
+      int seenCount = 1, horizonCount = 0, top = 0;
+      seenStamp[best] = pass;
+      stack[top++] = {best, 0, 3};
+      bool overflow = false;
+      while (top > 0 && !overflow) {
+        Frame& fr = stack[top - 1];
+        if (fr.remaining == 0) {
+          --top;
+          continue;
         }
-        if (horizonCount < 0) break;
-      }
-      // The horizon must be one loop: each vertex starts exactly one edge, and following
-      // the edges from the first comes back after all of them.
-      bool loop = horizonCount >= 3;
-      if (loop) {
-        int start = horizon[0][0], at = horizon[0][1], steps = 1;
-        while (at != start && steps <= horizonCount) {
-          int next = -1;
-          for (int e = 0; e < horizonCount; ++e) {
-            if (horizon[e][0] == at) {
-              if (next >= 0)
-                next = -2;  // two edges leave one vertex
-              else
-                next = e;
-            }
+        int k = fr.edge;
+        fr.edge = (k + 1) % 3;
+        --fr.remaining;
+        const Face& face = poly.faces[fr.face];
+        int g = face.adj[k];
+        if (seenStamp[g] == pass) continue;
+        const Face& across = poly.faces[g];
+        if (dot(across.normal, s.w) - across.distance > 0.0f) {
+          seenStamp[g] = pass;
+          ++seenCount;
+          if (top == kEpa3MaxFaces) {
+            overflow = true;
+            break;
           }
-          if (next < 0) break;
-          at = horizon[next][1];
-          ++steps;
+          stack[top++] = {g, (face.adjEdge[k] + 1) % 3, 2};
+        } else {
+          if (horizonCount == kEpa3MaxFaces) {
+            overflow = true;
+            break;
+          }
+          horizon[horizonCount++] = {face.v[k], face.v[(k + 1) % 3], g, face.adjEdge[k]};
         }
-        loop = at == start && steps == horizonCount;
       }
-      if (!loop || poly.faceCount - seenCount + horizonCount > kEpa3MaxFaces) {
+      // The horizon must be one loop in order (rounding can make the seen region other
+      // than a disk), and the new faces must fit.
+      bool loop = !overflow && horizonCount >= 3;
+      for (int e = 0; e < horizonCount && loop; ++e)
+        loop = horizon[e].b == horizon[(e + 1) % horizonCount].a;
+      if (!loop || poly.liveCount - seenCount + horizonCount > kEpa3MaxFaces) {
         out.status = loop ? Epa3Status::bufferFull : Epa3Status::gaveUp;
         break;
       }
-      // Build the cone first (into spare slots), so a face with no normal leaves the
-      // polytope as it was.
+      // Build the cone first, so a face with no normal leaves the polytope as it was.
+      int newIndex = poly.vertexCount;
       poly.vertices[newIndex] = s;
-      Face cone[kEpa3MaxFaces];
-      bool ok = true;
       float size2New = maxf(size2, lengthSquared(s.w));
+      bool ok = true;
       for (int e = 0; e < horizonCount && ok; ++e)
-        ok = makeFace(poly, horizon[e][0], horizon[e][1], newIndex, size2New, cone[e]);
+        ok = makeFace(poly, horizon[e].a, horizon[e].b, newIndex, size2New, cone[e]);
       if (!ok) {
         out.status = Epa3Status::gaveUp;
         break;
       }
       ++poly.vertexCount;
       size2 = size2New;
-      int kept = 0;
-      for (int f = 0; f < poly.faceCount; ++f) {
-        if (!seen[f]) poly.faces[kept++] = poly.faces[f];
+      for (int f = 0; f < poly.slotCount; ++f) {
+        if (poly.faces[f].live && seenStamp[f] == pass) poly.release(f);
       }
+      int slots[kEpa3MaxFaces];
       for (int e = 0; e < horizonCount; ++e)
-        poly.faces[kept++] = cone[e];
-      poly.faceCount = kept;
+        slots[e] = poly.allocate();
+      for (int e = 0; e < horizonCount; ++e) {
+        Face& f = poly.faces[slots[e]];
+        f = cone[e];
+        // Edge 0 (a -> b) faces the outside face; edge 1 (b -> new) the next cone face's
+        // edge 2 (new -> b); edge 2 (new -> a) the previous cone face's edge 1.
+        f.adj[0] = horizon[e].outside;
+        f.adjEdge[0] = horizon[e].edge;
+        f.adj[1] = slots[(e + 1) % horizonCount];
+        f.adjEdge[1] = 2;
+        f.adj[2] = slots[(e + horizonCount - 1) % horizonCount];
+        f.adjEdge[2] = 1;
+        Face& outside = poly.faces[horizon[e].outside];
+        outside.adj[horizon[e].edge] = slots[e];
+        outside.adjEdge[horizon[e].edge] = 0;
+      }
     }
   }
 
   // The answer: the nearest face, the origin's projection on it in barycentric weights.
-  best = 0;
-  for (int f = 1; f < poly.faceCount; ++f) {
-    if (poly.faces[f].distance < poly.faces[best].distance) best = f;
+  int best = -1;
+  for (int f = 0; f < poly.slotCount; ++f) {
+    if (poly.faces[f].live && (best < 0 || poly.faces[f].distance < poly.faces[best].distance))
+      best = f;
   }
-  if (poly.faceCount == 0) {
+  if (best < 0) {
     Vec3 pA, pB;
     detail::closestPoints3(gjk.simplex, pA, pB);
     finish(pA, pB, centreDirection(a, b, aFromB), ra + rb);

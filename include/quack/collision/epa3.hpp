@@ -6,7 +6,9 @@
 /// A's frame, from GJK's final simplex grown to a tetrahedron: repeatedly take the polytope
 /// face nearest the origin and push it out to the support point of B - A along its normal,
 /// replacing the faces that point sees by a cone from their horizon, until the support point
-/// lies on the face. Every buffer is a fixed array on the stack (no allocation), and each
+/// lies on the face. Faces keep their adjacency, so the faces a point sees are found by a
+/// walk from the nearest face that also yields the horizon in order (Ericson 9.5). Every
+/// buffer is a fixed array on the stack (no allocation), and each
 /// pass either adds a vertex or stops, so it cannot loop: at worst it runs out of vertices
 /// (kEpa3MaxVertices) and says so. Faces keep signed distances, so a start polytope that
 /// only touches the origin (GJK stopped at contact on a face or an edge) grows to hold it.
@@ -23,7 +25,7 @@ namespace quack {
 
 /// Most polytope vertices. Polytopes of hull pairs end in a few dozen passes; 128 leaves
 /// room for the worst cases seen in the tests (curved-looking 64-vertex hulls) and keeps
-/// the stack buffers small (about 10 kB).
+/// the stack buffers (polytope with face adjacency, horizon, cone) at about 45 kB.
 inline constexpr int kEpa3MaxVertices = 128;
 /// Most polytope faces: a closed triangulated polytope of V vertices has 2V - 4.
 inline constexpr int kEpa3MaxFaces = 2 * kEpa3MaxVertices - 4;
