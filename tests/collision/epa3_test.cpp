@@ -10,6 +10,8 @@
 
 #include "oracle3.hpp"
 #include "quack/collision/epa3.hpp"
+#include "quack/collision/manifold3.hpp"
+#include "quack/collision/sat3.hpp"
 
 namespace quack {
 namespace {
@@ -169,6 +171,64 @@ TEST(Epa3, NearlyParallelFacesAndTouching) {
     if (!checkPair(p, i)) ++mismatches;
   }
   EXPECT_EQ(mismatches, 0);
+#endif
+}
+
+TEST(Epa3, SixtyFourVertexHullsAgreeWithTheOracles) {
+  // The largest hulls (kMaxHullVertices3 vertices: a Fibonacci sphere scaled to an
+  // ellipsoid) through GJK, EPA, SAT and the manifold, against the same oracles.
+  std::vector<Vec3> pts;
+  const int n = kMaxHullVertices3;
+  for (int i = 0; i < n; ++i) {
+    float z = 1.0f - (2.0f * float(i) + 1.0f) / float(n);
+    float r = std::sqrt(1.0f - z * z), phi = 2.39996323f * float(i);
+    pts.push_back({1.0f * r * std::cos(phi), 0.7f * r * std::sin(phi), 0.5f * z});
+  }
+  Result<Hull3Build> built = computeHull3(pts);
+  ASSERT_TRUE(built.ok()) << built.error().message;
+  ASSERT_EQ(built->hull.vertexCount, n);
+  Shape3 s;
+  s.kind = Kind3::hull;
+  s.hull = built->hull;
+  std::mt19937 rng(4242);
+  int mismatches = 0, apart = 0, deep = 0;
+  for (int i = 0; i < 300; ++i) {
+    Transform3 ta{randomVec(rng, 1), randomQuat(rng)};
+    Transform3 tb{ta.p + randomVec(rng, 1.2f), randomQuat(rng)};
+    Features fa = s.features(ta), fb = s.features(tb);
+    double tol = 4e-6 * (2 * s.extent() + 2);
+    DistanceOutput3 d = computeDistance(s.proxy(), ta, s.proxy(), tb);
+    PenetrationOutput3 p = computePenetration(s.proxy(), ta, s.proxy(), tb);
+    SatOutput3 sat = computeSat(s.hull, ta, s.hull, tb);
+    Manifold3 m = collideHulls(s.hull, ta, s.hull, tb);
+    bool ok = p.status != Epa3Status::bufferFull && p.status != Epa3Status::gaveUp;
+    if (d.status != GjkStatus::overlap) {
+      ++apart;
+      ok = ok && std::fabs(bruteCoreDistance(fa, fb) - d.coreDistance) <= tol;
+      ok = ok && sat.separation <= d.distance + tol;
+    } else {
+#if QUACK_HAVE_QHULL
+      MinkowskiAnswer mk = minkowskiDepth(fa, fb);
+      if (mk.ok && mk.inside) {
+        ++deep;
+        ok = ok && std::fabs(mk.depth - p.depth) <= tol &&
+             std::fabs(-sat.separation - p.depth) <= tol;
+        ok = ok && m.pointCount > 0;
+        float deepest = 0;
+        for (int k = 0; k < m.pointCount; ++k)
+          deepest = std::min(deepest, m.points[k].separation);
+        ok = ok && std::fabs(deepest + p.depth) <= 10 * tol;
+      }
+#endif
+    }
+    if (!ok) ++mismatches;
+    EXPECT_TRUE(ok) << "pair " << i << " gjk " << d.coreDistance << " epa " << p.depth << " "
+                    << toString(p.status) << " sat " << sat.separation;
+  }
+  EXPECT_EQ(mismatches, 0);
+  EXPECT_GT(apart, 30);
+#if QUACK_HAVE_QHULL
+  EXPECT_GT(deep, 30);
 #endif
 }
 
