@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "broadphase/structure3_checks.hpp"
+#include "quack/broadphase/detail/node_stack.hpp"
 
 namespace quack {
 namespace {
@@ -197,6 +198,19 @@ TEST(DynamicTree3, VisitInternalNodesCoversTheHierarchy) {
   EXPECT_LT(deepest, tree.height());
   for (const Aabb3& b : boxes)
     EXPECT_TRUE(contains(root, b));
+}
+
+TEST(NodeStack, SpillsPastItsInlineCapacityAndKeepsTheOrder) {
+  // 128 values fit inline; the rest go to the heap and come back last in, first out.
+  detail::NodeStack stack;
+  EXPECT_TRUE(stack.empty());
+  for (std::uint32_t round = 0; round < 2; ++round) {
+    for (std::uint32_t v = 0; v < 1000; ++v)
+      stack.push(v * 3 + round);
+    for (std::uint32_t v = 1000; v-- > 0;)
+      ASSERT_EQ(stack.pop(), v * 3 + round);
+    EXPECT_TRUE(stack.empty());
+  }
 }
 
 // The slab test against the same test in double precision: they agree on every ray whose

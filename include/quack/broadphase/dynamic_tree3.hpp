@@ -28,7 +28,7 @@
 #include <vector>
 
 #include "quack/broadphase/detail/aabb3_ops.hpp"
-#include "quack/broadphase/detail/traversal_stack.hpp"
+#include "quack/broadphase/detail/node_stack.hpp"
 #include "quack/broadphase/proxy.hpp"
 #include "quack/core/assert.hpp"
 #include "quack/core/result.hpp"
@@ -145,7 +145,7 @@ void DynamicTree3::query(Aabb3 q, Visit&& visit) const {
     visit(root_ & ~kLeafBit);
     return;
   }
-  detail::TraversalStack stack;
+  detail::NodeStack stack;
   stack.push(root_);
   while (!stack.empty()) {
     const Node& node = nodes_[stack.pop()];
@@ -171,7 +171,7 @@ void DynamicTree3::rayCast(Vec3 origin, Vec3 translation, float maxFraction, Vec
     visit(root_ & ~kLeafBit, maxFraction);
     return;
   }
-  detail::TraversalStack stack;
+  detail::NodeStack stack;
   stack.push(root_);
   while (!stack.empty()) {
     const Node& node = nodes_[stack.pop()];

@@ -27,7 +27,7 @@
 #include <vector>
 
 #include "quack/broadphase/detail/aabb3_ops.hpp"
-#include "quack/broadphase/detail/traversal_stack.hpp"
+#include "quack/broadphase/detail/node_stack.hpp"
 #include "quack/broadphase/proxy.hpp"
 #include "quack/core/assert.hpp"
 #include "quack/core/result.hpp"
@@ -139,7 +139,7 @@ class Octree {
 template <class Visit>
 void Octree::query(Aabb3 q, Visit&& visit) const {
   if (root_ == kNullIndex || !overlaps(cells_[root_].loose, q)) return;
-  detail::TraversalStack stack;
+  detail::NodeStack stack;
   stack.push(root_);
   while (!stack.empty()) {
     const Cell& c = cells_[stack.pop()];
@@ -196,7 +196,7 @@ void Octree::rayCast(Vec3 origin, Vec3 translation, float maxFraction, Vec3 infl
     return detail::rayCast3(detail::grow3(b, inflation), ray, maxFraction).hit;
   };
   if (!reaches(cells_[root_].loose)) return;
-  detail::TraversalStack stack;
+  detail::NodeStack stack;
   stack.push(root_);
   while (!stack.empty()) {
     const Cell& c = cells_[stack.pop()];
