@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <variant>
 
 #include "quack/collision/epa3.hpp"
 #include "quack/collision/gjk3.hpp"
@@ -355,6 +356,55 @@ Manifold3 collideHulls(const Hull3& a, Transform3 worldFromA, const Hull3& b, Tr
     m.points[i] = pts[i];
   m.pointCount = n2;
   return m;
+}
+
+namespace {
+
+// The routine for shapes in the order (a, b) when one exists, else an empty optional-like
+// flag; `collide` tries both orders.
+bool collideOrdered(const ShapeGeometry3& a, Transform3 worldFromA, const ShapeGeometry3& b,
+                    Transform3 worldFromB, float spec, Manifold3& out) noexcept {
+  const Sphere* sa = std::get_if<Sphere>(&a);
+  const Capsule3* ca = std::get_if<Capsule3>(&a);
+  const Hull3* ha = std::get_if<Hull3>(&a);
+  const Sphere* sb = std::get_if<Sphere>(&b);
+  const Capsule3* cb = std::get_if<Capsule3>(&b);
+  const Hull3* hb = std::get_if<Hull3>(&b);
+  if (ha && hb) {
+    out = collideHulls(*ha, worldFromA, *hb, worldFromB, spec);
+  } else if (ha && cb) {
+    out = collideHullAndCapsule(*ha, worldFromA, *cb, worldFromB, spec);
+  } else if (ha && sb) {
+    out = collideHullAndSphere(*ha, worldFromA, *sb, worldFromB, spec);
+  } else if (ca && cb) {
+    out = collideCapsules(*ca, worldFromA, *cb, worldFromB, spec);
+  } else if (ca && sb) {
+    out = collideCapsuleAndSphere(*ca, worldFromA, *sb, worldFromB, spec);
+  } else if (sa && sb) {
+    out = collideSpheres(*sa, worldFromA, *sb, worldFromB, spec);
+  } else {
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+Manifold3 collide(const ShapeGeometry3& a, Transform3 worldFromA, const ShapeGeometry3& b,
+                  Transform3 worldFromB, float speculativeDistance) noexcept {
+  Manifold3 m;
+  if (collideOrdered(a, worldFromA, b, worldFromB, speculativeDistance, m)) return m;
+  if (collideOrdered(b, worldFromB, a, worldFromA, speculativeDistance, m)) {
+    m.normal = -m.normal;
+    for (int i = 0; i < m.pointCount; ++i) {
+      Vec3 t = m.points[i].anchorA;
+      m.points[i].anchorA = m.points[i].anchorB;
+      m.points[i].anchorB = t;
+    }
+    return m;
+  }
+  // Triangles: the general path, one point.
+  return collideGeneral(makeProxy(a), worldFromA, makeProxy(b), worldFromB, speculativeDistance);
 }
 
 }  // namespace quack

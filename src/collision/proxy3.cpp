@@ -42,4 +42,8 @@ ShapeProxy3 makeProxy(const Hull3& hull) noexcept {
   return ShapeProxy3::fromPoints(hull.vertices, hull.vertexCount, 0.0f, hull.centroid);
 }
 
+ShapeProxy3 makeProxy(const ShapeGeometry3& geometry) noexcept {
+  return std::visit([](const auto& shape) { return makeProxy(shape); }, geometry);
+}
+
 }  // namespace quack

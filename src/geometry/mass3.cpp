@@ -121,4 +121,8 @@ MassProperties3 computeMass(const Triangle3& triangle, [[maybe_unused]] float de
   return m;
 }
 
+MassProperties3 computeMass(const ShapeGeometry3& geometry, float density) {
+  return std::visit([density](const auto& shape) { return computeMass(shape, density); }, geometry);
+}
+
 }  // namespace quack

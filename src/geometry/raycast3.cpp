@@ -139,4 +139,8 @@ RayHit3 rayCast(const Triangle3& triangle, const RayCastInput3& ray) noexcept {
   return makeHit(ray, t, n);
 }
 
+RayHit3 rayCast(const ShapeGeometry3& geometry, const RayCastInput3& ray) noexcept {
+  return std::visit([&ray](const auto& shape) { return rayCast(shape, ray); }, geometry);
+}
+
 }  // namespace quack

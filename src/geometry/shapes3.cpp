@@ -95,4 +95,23 @@ Result<Hull3> makeBox3(Vec3 half, Transform3 shapeFromBox) {
   return makeHull3(corners);
 }
 
+Status validateShape(const ShapeGeometry3& geometry) {
+  struct Check {
+    Status operator()(const Sphere& s) const {
+      Result<Sphere> r = makeSphere(s.center, s.radius);
+      return r ? Status{} : Status{r.error()};
+    }
+    Status operator()(const Capsule3& c) const {
+      Result<Capsule3> r = makeCapsule3(c.p1, c.p2, c.radius);
+      return r ? Status{} : Status{r.error()};
+    }
+    Status operator()(const Hull3& h) const { return validateHull3(h); }
+    Status operator()(const Triangle3& t) const {
+      Result<Triangle3> r = makeTriangle3(t.v[0], t.v[1], t.v[2]);
+      return r ? Status{} : Status{r.error()};
+    }
+  };
+  return std::visit(Check{}, geometry);
+}
+
 }  // namespace quack

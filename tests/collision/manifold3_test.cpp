@@ -19,6 +19,12 @@ using namespace testing3;
 
 constexpr float kTol = 1e-5f;
 
+void expectNear(Vec3 a, Vec3 b, float tol) {
+  EXPECT_NEAR(a.x, b.x, tol);
+  EXPECT_NEAR(a.y, b.y, tol);
+  EXPECT_NEAR(a.z, b.z, tol);
+}
+
 float deepest(const Manifold3& m) {
   float s = m.points[0].separation;
   for (int i = 1; i < m.pointCount; ++i)
@@ -150,6 +156,59 @@ TEST(Manifold3, RegressionApartFaceClipMissedTheNearestVertex) {
   ASSERT_GT(m.pointCount, 0);
   EXPECT_LE(deepest(m), d.distance + 1e-5f);
   EXPECT_GE(deepest(m), 0.0f);
+}
+
+ShapeGeometry3 geometryOf(const Shape3& s) {
+  switch (s.kind) {
+    case Kind3::sphere:
+      return s.sphere;
+    case Kind3::capsule:
+      return s.capsule;
+    case Kind3::triangle:
+      return s.triangle;
+    default:
+      return s.hull;
+  }
+}
+
+TEST(Manifold3, DispatchMatchesThePairRoutinesAndSwaps) {
+  const Kind3 kinds[] = {Kind3::sphere, Kind3::capsule, Kind3::triangle, Kind3::box, Kind3::hull};
+  std::mt19937 rng(1313);
+  for (int i = 0; i < 1500; ++i) {
+    Shape3 a = randomShape3(rng, kinds[i % 5], 1.0f, 12),
+           b = randomShape3(rng, kinds[(i / 5) % 5], 1.0f, 12);
+    Transform3 ta{randomVec(rng, 1), randomQuat(rng)};
+    Transform3 tb{ta.p + randomVec(rng, 1.2f), randomQuat(rng)};
+    ShapeGeometry3 ga = geometryOf(a), gb = geometryOf(b);
+    Manifold3 ab = collide(ga, ta, gb, tb), ba = collide(gb, tb, ga, ta);
+    bool triangle = a.kind == Kind3::triangle || b.kind == Kind3::triangle;
+    if (!triangle && a.kind != Kind3::sphere && a.kind != Kind3::capsule &&
+        b.kind != Kind3::sphere && b.kind != Kind3::capsule) {
+      // Hull pairs: the dispatch is collideHulls itself.
+      Manifold3 direct = collideHulls(a.hull, ta, b.hull, tb);
+      ASSERT_EQ(ab.pointCount, direct.pointCount) << i;
+      for (int k = 0; k < ab.pointCount; ++k)
+        EXPECT_EQ(ab.points[k].id, direct.points[k].id) << i;
+    }
+    // Same types (a box and a hull are both Hull3): either may be the reference, no swap rule.
+    if (shapeType(ga) == shapeType(gb)) continue;
+    ASSERT_EQ(ab.pointCount, ba.pointCount) << i << " " << name(a.kind) << " " << name(b.kind);
+    if (ab.pointCount == 0) continue;
+    if (triangle) {
+      // The general path runs GJK / EPA in each order: the same answer up to rounding.
+      expectNear(ab.normal, -ba.normal, 1e-3f);
+      EXPECT_NEAR(ab.points[0].separation, ba.points[0].separation, 1e-4f) << i;
+      continue;
+    }
+    // A pair routine in both orders: the same manifold, the normal flipped, anchors swapped.
+    expectNear(ab.normal, -ba.normal, 0);
+    for (int k = 0; k < ab.pointCount; ++k) {
+      EXPECT_EQ(ab.points[k].id, ba.points[k].id) << i;
+      EXPECT_EQ(ab.points[k].separation, ba.points[k].separation) << i;
+      expectNear(ab.points[k].anchorA, ba.points[k].anchorB, 0);
+      expectNear(ab.points[k].anchorA, ab.points[k].point - ta.p, 1e-5f);
+    }
+  }
 }
 
 // Signed distance of a world point from a shape's surface (double).

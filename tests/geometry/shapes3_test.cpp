@@ -47,6 +47,28 @@ TEST(Shapes3, MakeErrorsNameTheArgument) {
   EXPECT_TRUE(makeSphere({1, 2, 3}, 0.5f).ok());
 }
 
+TEST(Shapes3, GeometryVariantDispatchesAndValidates) {
+  ShapeGeometry3 sphere = makeSphere({1, 0, 0}, 2).value();
+  ShapeGeometry3 hull = makeBox3({1, 2, 3}).value();
+  EXPECT_EQ(shapeType(sphere), ShapeType3::sphere);
+  EXPECT_EQ(shapeType(hull), ShapeType3::hull);
+  EXPECT_STREQ(toString(shapeType(hull)), "hull");
+  EXPECT_NEAR(computeMass(hull, 1).volume, 48, 1e-4f);
+  EXPECT_NEAR(computeMass(sphere, 1).volume, computeMass(std::get<Sphere>(sphere), 1).volume, 0);
+  RayHit3 h = rayCast(hull, {{0, 10, 0}, {0, -20, 0}, 1});
+  ASSERT_TRUE(h.hit);
+  EXPECT_NEAR(h.fraction, 0.4f, 1e-6f);
+  EXPECT_TRUE(validateShape(sphere).ok());
+  EXPECT_TRUE(validateShape(hull).ok());
+  EXPECT_NE(validateShape(Sphere{{0, NAN, 0}, 1}).message().find("sphere center"),
+            std::string::npos);
+  EXPECT_NE(validateShape(Capsule3{{}, {1, 0, 0}, 0}).message().find("capsule radius"),
+            std::string::npos);
+  EXPECT_NE(validateShape(Triangle3{{{0, 0, 0}, {1, 1, 1}, {2, 2, 2}}}).message().find("no area"),
+            std::string::npos);
+  EXPECT_NE(validateShape(Hull3{}).message().find("vertexCount"), std::string::npos);
+}
+
 TEST(Mass3, SphereClosedForm) {
   MassProperties3 m = computeMass(makeSphere({1, 2, 3}, 2).value(), 3.0f);
   double vol = 4.0 / 3.0 * kPiD * 8.0;

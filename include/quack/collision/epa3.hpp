@@ -68,5 +68,11 @@ struct PenetrationOutput3 {
 PenetrationOutput3 computePenetration(const ShapeProxy3& a, Transform3 worldFromA,
                                       const ShapeProxy3& b, Transform3 worldFromB,
                                       GjkCache3* cache = nullptr) noexcept;
+/// The same for 3D shapes of any kind, through their proxies.
+inline PenetrationOutput3 computePenetration(const ShapeGeometry3& a, Transform3 worldFromA,
+                                             const ShapeGeometry3& b, Transform3 worldFromB,
+                                             GjkCache3* cache = nullptr) noexcept {
+  return computePenetration(makeProxy(a), worldFromA, makeProxy(b), worldFromB, cache);
+}
 
 }  // namespace quack

@@ -76,4 +76,15 @@ DistanceOutput3 computeDistance(const ShapeProxy3& a, Transform3 worldFromA, con
 bool testOverlap(const ShapeProxy3& a, Transform3 worldFromA, const ShapeProxy3& b,
                  Transform3 worldFromB, GjkCache3* cache = nullptr) noexcept;
 
+/// The same for 3D shapes of any kind, through their proxies.
+inline DistanceOutput3 computeDistance(const ShapeGeometry3& a, Transform3 worldFromA,
+                                       const ShapeGeometry3& b, Transform3 worldFromB,
+                                       GjkCache3* cache = nullptr) noexcept {
+  return computeDistance(makeProxy(a), worldFromA, makeProxy(b), worldFromB, cache);
+}
+inline bool testOverlap(const ShapeGeometry3& a, Transform3 worldFromA, const ShapeGeometry3& b,
+                        Transform3 worldFromB, GjkCache3* cache = nullptr) noexcept {
+  return testOverlap(makeProxy(a), worldFromA, makeProxy(b), worldFromB, cache);
+}
+
 }  // namespace quack

@@ -80,6 +80,12 @@ Manifold3 collideHullAndCapsule(const Hull3& a, Transform3 worldFromA, const Cap
 Manifold3 collideHulls(const Hull3& a, Transform3 worldFromA, const Hull3& b, Transform3 worldFromB,
                        float speculativeDistance = kSpeculativeDistance) noexcept;
 
+/// Manifold of any two 3D shapes: the pair routine for their types (B-versus-A reuses
+/// A-versus-B with the normal flipped and the anchors swapped; the ids are kept), and the
+/// general path for triangles. No allocation.
+Manifold3 collide(const ShapeGeometry3& a, Transform3 worldFromA, const ShapeGeometry3& b,
+                  Transform3 worldFromB, float speculativeDistance = kSpeculativeDistance) noexcept;
+
 /// The general path: any two 3D support proxies, through GJK (apart) or EPA (overlapping),
 /// one point (id 0).
 Manifold3 collideGeneral(const ShapeProxy3& a, Transform3 worldFromA, const ShapeProxy3& b,

@@ -45,6 +45,9 @@ ShapeProxy3 makeProxy(const Sphere& sphere) noexcept;
 ShapeProxy3 makeProxy(const Capsule3& capsule) noexcept;
 ShapeProxy3 makeProxy(const Triangle3& triangle) noexcept;
 ShapeProxy3 makeProxy(const Hull3& hull) noexcept;
+/// The proxy of a 3D shape of any kind; it views the hull a hull geometry holds, so keep
+/// `geometry` alive and unmoved while the proxy is in use.
+ShapeProxy3 makeProxy(const ShapeGeometry3& geometry) noexcept;
 
 /// Index of the proxy point furthest along `direction` (shape frame, any length); the lowest
 /// such index on a tie, so the answer is deterministic. A zero direction gives 0.

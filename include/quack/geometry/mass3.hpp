@@ -27,5 +27,7 @@ MassProperties3 computeMass(const Capsule3& capsule, float density);
 MassProperties3 computeMass(const Hull3& hull, float density);
 /// A triangle has no volume: mass, volume and inertia are 0; the centroid is its centroid.
 MassProperties3 computeMass(const Triangle3& triangle, float density);
+/// Any 3D shape, by its type.
+MassProperties3 computeMass(const ShapeGeometry3& geometry, float density);
 
 }  // namespace quack

@@ -30,5 +30,7 @@ RayHit3 rayCast(const Sphere& sphere, const RayCastInput3& ray) noexcept;
 RayHit3 rayCast(const Capsule3& capsule, const RayCastInput3& ray) noexcept;
 RayHit3 rayCast(const Hull3& hull, const RayCastInput3& ray) noexcept;
 RayHit3 rayCast(const Triangle3& triangle, const RayCastInput3& ray) noexcept;
+/// Any 3D shape, by its type.
+RayHit3 rayCast(const ShapeGeometry3& geometry, const RayCastInput3& ray) noexcept;
 
 }  // namespace quack

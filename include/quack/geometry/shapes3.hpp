@@ -8,6 +8,7 @@
 /// number and return an error naming what is wrong; the structs themselves do not check.
 
 #include <span>
+#include <variant>
 
 #include "quack/core/result.hpp"
 #include "quack/geometry/hull3.hpp"
@@ -48,6 +49,38 @@ Result<Hull3> makeHull3(std::span<const Vec3> points);
 /// at the origin, axis-aligned), as a Hull3 of 8 vertices and 6 faces. Errors: non-finite
 /// numbers, a half-extent below kMinShapeSize.
 Result<Hull3> makeBox3(Vec3 half, Transform3 shapeFromBox = {});
+
+/// The kinds of 3D shape, in the order of ShapeGeometry3's alternatives. A box is a hull.
+enum class ShapeType3 { sphere, capsule, hull, triangle };
+
+/// A 3D shape of any kind, shape frame (the 2D ShapeGeometry's counterpart). The
+/// alternatives are in ShapeType3 order, so `shapeType(g)` is the index of the one held.
+using ShapeGeometry3 = std::variant<Sphere, Capsule3, Hull3, Triangle3>;
+
+/// The type of the shape `geometry` holds.
+inline ShapeType3 shapeType(const ShapeGeometry3& geometry) noexcept {
+  return static_cast<ShapeType3>(geometry.index());
+}
+
+/// The kind's name as in the JSON formats: "sphere", "capsule", "hull", "triangle".
+constexpr const char* toString(ShapeType3 type) noexcept {
+  switch (type) {
+    case ShapeType3::sphere:
+      return "sphere";
+    case ShapeType3::capsule:
+      return "capsule";
+    case ShapeType3::hull:
+      return "hull";
+    case ShapeType3::triangle:
+      return "triangle";
+  }
+  return "unknown";
+}
+
+/// Checks a 3D shape of any kind as the make* functions check their arguments (a hull with
+/// validateHull3), so a hand-built struct cannot pass a NaN or a zero radius; the error is
+/// the make* function's message.
+Status validateShape(const ShapeGeometry3& geometry);
 
 /// The triangle's unit normal, cross(v1 - v0, v2 - v0) normalised. Shape frame.
 inline Vec3 triangleNormal(const Triangle3& t) noexcept {
