@@ -108,19 +108,27 @@ void DynamicTree3::insertLeaf(std::uint32_t proxy, Aabb3 b) {
   // Greedy descent by the surface-area heuristic: at each node compare the cost of making the
   // new leaf the node's sibling with a lower bound of the cost of descending into a child
   // (the growth of the child's box, plus what every ancestor grows by: the inheritance).
+  // The areas of the node and of its merge with the new box were formed one level up, as
+  // those of the child chosen (the same operations on the same values: the same bits).
   std::uint32_t siblingRef = kNullIndex;
   std::uint32_t sibling = root_;
   Aabb3 siblingBox = rootBox_;
+  float area = surfaceArea(siblingBox);
+  float combined = surfaceArea(merge(siblingBox, b));
   while (!isLeaf(sibling)) {
     const Node& n = nodes_[sibling];
-    const float area = surfaceArea(siblingBox);
-    const float combined = surfaceArea(merge(siblingBox, b));
     const float costHere = 2.0f * combined;
     const float inheritance = 2.0f * (combined - area);
     float cost[2];
+    float childArea[2] = {0.0f, 0.0f};
+    float childCombined[2];
     for (int s = 0; s < 2; ++s) {
-      float grown = surfaceArea(merge(n.childBox[s], b));
-      if (!isLeaf(n.child[s])) grown -= surfaceArea(n.childBox[s]);
+      childCombined[s] = surfaceArea(merge(n.childBox[s], b));
+      float grown = childCombined[s];
+      if (!isLeaf(n.child[s])) {
+        childArea[s] = surfaceArea(n.childBox[s]);
+        grown -= childArea[s];
+      }
       cost[s] = grown + inheritance;
     }
     if (costHere < cost[0] && costHere < cost[1]) break;
@@ -128,6 +136,8 @@ void DynamicTree3::insertLeaf(std::uint32_t proxy, Aabb3 b) {
     siblingRef = (sibling << 1) | static_cast<std::uint32_t>(s);
     siblingBox = n.childBox[s];
     sibling = n.child[s];
+    area = childArea[s];
+    combined = childCombined[s];
   }
 
   const std::uint32_t parent = allocateNode();
