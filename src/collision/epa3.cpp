@@ -63,13 +63,22 @@ struct Polytope {
   }
 };
 
+// A face has no normal when its doubled area squared is below this fraction of the size
+// to the fourth: an area of 1e-12 of the size squared, the float rounding of the cross
+// product of two edges of that size.
+constexpr float kFaceAreaRelative2 = 1e-24f;
+
+// A support point grows the start simplex only if it leaves its point, line or plane by
+// more than this fraction of the size: about 8 float ulps, above the rounding of the
+// support points.
+constexpr float kGrowRelativeTolerance = 1e-6f;
+
 // Face a, b, c (counter-clockwise seen from outside); false when it has no normal.
 bool makeFace(const Polytope& p, int a, int b, int c, float sizeSquared, Face& out) noexcept {
   Vec3 pa = p.vertices[a].w, pb = p.vertices[b].w, pc = p.vertices[c].w;
   Vec3 n = cross(pb - pa, pc - pa);
   float len2 = lengthSquared(n);
-  // No normal when the doubled area is at the float rounding of the size squared.
-  if (!(len2 > 1e-24f * sizeSquared * sizeSquared)) return false;
+  if (!(len2 > kFaceAreaRelative2 * sizeSquared * sizeSquared)) return false;
   n = (1.0f / std::sqrt(len2)) * n;
   // The distance from the three vertices' mean: less rounding than from one vertex.
   out.v[0] = a;
@@ -171,7 +180,7 @@ PenetrationOutput3 computePenetration(const ShapeProxy3& a, Transform3 worldFrom
       if (sameIndices(s)) continue;
       // Accept it only if it leaves the current affine hull by more than rounding.
       float size = std::sqrt(maxf(size2, lengthSquared(s.w)));
-      float eps = 1e-6f * size;
+      float eps = kGrowRelativeTolerance * size;
       float off = 0.0f;
       if (poly.vertexCount == 1) {
         off = length(s.w - p0);

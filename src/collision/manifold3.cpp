@@ -13,6 +13,11 @@
 namespace quack {
 namespace {
 
+// A clip whose deepest point is above SAT's separation by more than this fraction of the
+// reference hull's size has lost SAT's support vertex (rounding of the clipped points is
+// about 1e-7 of the size; a lost vertex is a real feature away).
+constexpr float kClipLostSupportRelative = 1e-5f;
+
 // Capacity of the clipping buffers: an incident face of at most 64 vertices clipped by at
 // most 64 side planes gains at most one vertex per plane.
 constexpr int kClipCapacity = 2 * kMaxHullVertices3 + 2;
@@ -347,7 +352,7 @@ Manifold3 collideHulls(const Hull3& a, Transform3 worldFromA, const Hull3& b, Tr
   float size = 0.0f;
   for (int i = 0; i < ref.vertexCount; ++i)
     size = maxf(size, length(ref.vertices[i] - ref.centroid));
-  if (n2 == 0 || minSep > sat.separation + 1e-5f * size) {
+  if (n2 == 0 || minSep > sat.separation + kClipLostSupportRelative * size) {
     return collideGeneral(makeProxy(a), worldFromA, makeProxy(b), worldFromB, speculativeDistance);
   }
   n2 = reduceToFour(pts, n2, normalWorld);

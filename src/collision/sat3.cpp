@@ -9,6 +9,11 @@
 namespace quack {
 namespace {
 
+// Edges whose cross product is below this fraction of their lengths' product (the sine of
+// a 1e-6 radian angle) are parallel: their axis has no direction a float can trust, and
+// the face of B - A they would span is a face axis of A or B, tested already.
+constexpr float kParallelEdgesRelative = 1e-6f;
+
 // Least projection of the hull's vertices on `direction` (hull frame).
 float minProjection(const Hull3& h, Vec3 direction) noexcept {
   float best = dot(h.vertices[0], direction);
@@ -88,8 +93,7 @@ SatOutput3 computeSat(const Hull3& a, Transform3 worldFromA, const Hull3& b,
       ++out.edgePairsTested;
       Vec3 axis = cross(da, db);
       float len = length(axis);
-      // Nearly parallel edges: their face is also a face axis's, already tested.
-      if (len < 1e-6f * length(da) * length(db)) continue;
+      if (len < kParallelEdgesRelative * length(da) * length(db)) continue;
       axis = (1.0f / len) * axis;
       if (dot(axis, pa - a.centroid) < 0.0f) axis = -axis;
       float s = dot(axis, pb - pa);

@@ -5,6 +5,11 @@
 namespace quack {
 namespace {
 
+// A ray is parallel to a triangle's plane (and misses it) when Moller-Trumbore's
+// determinant is below this fraction of |e1||e2||d|: the sine of the angle between the ray
+// and the plane, at about the float rounding of the determinant.
+constexpr float kTriangleParallelRelative = 1e-7f;
+
 bool validRay(const RayCastInput3& ray) {
   return isFinite(ray.origin) && isFinite(ray.translation) && std::isfinite(ray.maxFraction) &&
          ray.maxFraction >= 0.0f && lengthSquared(ray.translation) > 0.0f;
@@ -124,7 +129,7 @@ RayHit3 rayCast(const Triangle3& triangle, const RayCastInput3& ray) noexcept {
   float det = dot(e1, p);
   // Parallel to the plane (relative test: det is |e1||e2||d| sin sin).
   float scale = length(e1) * length(e2) * length(d);
-  if (absf(det) <= 1e-7f * scale) return {};
+  if (absf(det) <= kTriangleParallelRelative * scale) return {};
   float inv = 1.0f / det;
   Vec3 s = ray.origin - triangle.v[0];
   float u = dot(s, p) * inv;

@@ -34,12 +34,15 @@ constexpr Vec3 operator*(Mat3 m, Vec3 v) noexcept {
 constexpr Mat3 operator*(Mat3 a, Mat3 b) noexcept {
   return {a * b.cx, a * b.cy, a * b.cz};
 }
+/// Sum, entry by entry.
 constexpr Mat3 operator+(Mat3 a, Mat3 b) noexcept {
   return {a.cx + b.cx, a.cy + b.cy, a.cz + b.cz};
 }
+/// Difference, entry by entry.
 constexpr Mat3 operator-(Mat3 a, Mat3 b) noexcept {
   return {a.cx - b.cx, a.cy - b.cy, a.cz - b.cz};
 }
+/// Every entry times s.
 constexpr Mat3 operator*(float s, Mat3 m) noexcept {
   return {s * m.cx, s * m.cy, s * m.cz};
 }

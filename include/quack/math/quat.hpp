@@ -41,9 +41,11 @@ constexpr Quat operator*(Quat r, Quat q) noexcept {
 constexpr Quat conjugate(Quat q) noexcept {
   return {-q.x, -q.y, -q.z, q.w};
 }
+/// The 4D dot product (the cosine of half the angle between two unit rotations, up to sign).
 constexpr float dot(Quat a, Quat b) noexcept {
   return a.x * b.x + a.y * b.y + a.z * b.z + a.w * b.w;
 }
+/// |q|^2 (1 for a unit quaternion).
 constexpr float lengthSquared(Quat q) noexcept {
   return dot(q, q);
 }
@@ -55,6 +57,7 @@ inline Quat normalize(Quat q) noexcept {
   float inv = 1.0f / len;
   return {inv * q.x, inv * q.y, inv * q.z, inv * q.w};
 }
+/// True when all four components are finite.
 inline bool isFinite(Quat q) noexcept {
   return std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z) && std::isfinite(q.w);
 }

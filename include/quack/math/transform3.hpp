@@ -7,6 +7,7 @@
 
 namespace quack {
 
+/// Rigid motion: x_outer = rotate(q, x_inner) + p. Identity by default.
 struct Transform3 {
   Vec3 p;  ///< translation: the origin of the inner frame, in the outer frame, metres
   Quat q;  ///< rotation of the inner frame relative to the outer frame (unit)
