@@ -244,6 +244,31 @@ TEST(Epa3, SwapFlipsTheNormal) {
     ASSERT_EQ(ab.overlap, ba.overlap) << i;
     double tol = kDepthRel * (a.extent() + b.extent() + 2);
     EXPECT_NEAR(ab.depth, ba.depth, 2 * tol) << i;
+    // The normal flips (random poses leave no ties between faces of B - A).
+    if (ab.overlap && ab.status != Epa3Status::degenerate) {
+      EXPECT_NEAR(dot(ab.normal, ba.normal), -1.0f, 1e-4f) << i;
+    }
+  }
+}
+
+TEST(Epa3, RigidMotionOfBothKeepsTheDepthAndTurnsTheNormal) {
+  std::mt19937 rng(909);
+  for (int i = 0; i < 2000; ++i) {
+    Shape3 a = randomShape3(rng, kKinds[i % 5], 1.0f),
+           b = randomShape3(rng, kKinds[(i / 5) % 5], 1.0f);
+    Transform3 ta{randomVec(rng, 1), randomQuat(rng)};
+    Transform3 tb{ta.p + randomVec(rng, 0.7f), randomQuat(rng)};
+    PenetrationOutput3 p0 = computePenetration(a.proxy(), ta, b.proxy(), tb);
+    Transform3 m{randomVec(rng, 100), randomQuat(rng)};
+    Transform3 ma = m * ta, mb = m * tb;
+    ma.q = normalize(ma.q);
+    mb.q = normalize(mb.q);
+    PenetrationOutput3 p1 = computePenetration(a.proxy(), ma, b.proxy(), mb);
+    // Moving the pair 100 m rounds its relative pose by ~1e-5 m.
+    EXPECT_NEAR(p0.depth, p1.depth, 1e-4f) << i;
+    if (p0.overlap && p1.overlap && p0.depth > 1e-2f && p0.status != Epa3Status::degenerate) {
+      EXPECT_NEAR(dot(transformVector(m, p0.normal), p1.normal), 1.0f, 1e-3f) << i;
+    }
   }
 }
 
