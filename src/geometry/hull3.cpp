@@ -62,6 +62,14 @@ struct Face {
   std::vector<int> outside;  // conflict list: input points above this face by > tol
 };
 
+// Quickhull stops once the hull it is building has this many vertices: the answer is then
+// "more than kMaxHullVertices3" however the remaining points fall. It adds the furthest
+// points first, so a hull that large almost never shrinks back under the limit, and without
+// the stop a large round cloud (1e5 points on a sphere) takes minutes to be refused.
+constexpr int kHull3BuildVertexLimit = 4 * kMaxHullVertices3;
+
+enum class RunResult { done, cap, tooManyVertices };
+
 std::uint64_t edgeKey(int a, int b) {
   return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
          static_cast<std::uint32_t>(b);
@@ -94,11 +102,13 @@ class QuickHull {
     for (int k = 0; k < 3; ++k)
       owner_[edgeKey(f.v[k], f.v[(k + 1) % 3])] = id;
     faces_.push_back(std::move(f));
+    ++live_;
     return id;
   }
   void removeFace(int id) {
     Face& f = faces_[static_cast<std::size_t>(id)];
     f.alive = false;
+    --live_;
     for (int k = 0; k < 3; ++k)
       owner_.erase(edgeKey(f.v[k], f.v[(k + 1) % 3]));
   }
@@ -171,9 +181,9 @@ class QuickHull {
     return sq(a + (vb * denom) * ab + (vc * denom) * ac);
   }
 
-  // Runs the quickhull loop from the tetrahedron i0..i3 over `candidates`. Returns false if
-  // the iteration cap is reached (cannot happen: each step adds one point for good).
-  bool run(int i0, int i1, int i2, int i3, const std::vector<int>& candidates) {
+  // Runs the quickhull loop from the tetrahedron i0..i3 over `candidates`: done, or the
+  // iteration cap (cannot happen: each step adds one point for good), or the vertex limit.
+  RunResult run(int i0, int i1, int i2, int i3, const std::vector<int>& candidates) {
     int tet[4] = {i0, i1, i2, i3};
     static constexpr int kTetFaces[4][3] = {{0, 1, 2}, {0, 3, 1}, {1, 3, 2}, {2, 3, 0}};
     std::vector<int> ids;
@@ -191,6 +201,7 @@ class QuickHull {
       for (int k = 0; k < 3; ++k)
         owner_[edgeKey(f.v[k], f.v[(k + 1) % 3])] = id;
     }
+    live_ = 4;
     for (int i : candidates)
       assign(i, ids);
 
@@ -205,7 +216,7 @@ class QuickHull {
           break;
         }
       }
-      if (start < 0) return true;
+      if (start < 0) return RunResult::done;
       Face& sf = faces_[static_cast<std::size_t>(start)];
       int eye = sf.outside[0];
       double best = height(sf, eye);
@@ -217,8 +228,10 @@ class QuickHull {
         }
       }
       addPoint(eye, start);
+      // A closed triangulated hull has F = 2V - 4.
+      if ((live_ + 4) / 2 > kHull3BuildVertexLimit) return RunResult::tooManyVertices;
     }
-    return false;
+    return RunResult::cap;
   }
 
   void addPoint(int eye, int start) {
@@ -276,6 +289,7 @@ class QuickHull {
   double tol_;
   std::vector<Face> faces_;
   std::unordered_map<std::uint64_t, int> owner_;
+  int live_ = 0;
 };
 
 }  // namespace
@@ -392,7 +406,12 @@ Result<Hull3Build> computeHull3(std::span<const Vec3> points) {
   for (int i : kept)
     if (i != i0 && i != i1 && i != i2 && i != i3) rest.push_back(i);
   QuickHull qh(p, tol);
-  if (!qh.run(i0, i1, i2, i3, rest)) return fail("quickhull: iteration cap reached (internal)");
+  RunResult run = qh.run(i0, i1, i2, i3, rest);
+  if (run == RunResult::cap) return fail("quickhull: iteration cap reached (internal)");
+  if (run == RunResult::tooManyVertices) {
+    return fail("the hull has more than " + std::to_string(kMaxHullVertices3) +
+                " vertices (quickhull stopped at " + std::to_string(kHull3BuildVertexLimit) + ")");
+  }
 
   // Merge adjacent triangles within mergeTol of one plane into polygonal faces. Points
   // within tol of the hull were never added, so what is left to merge are faces that are

@@ -99,6 +99,30 @@ TEST(Hull3, EveryErrorNamesItsCause) {
   EXPECT_NE(computeHull3(sphere).error().message.find("more than 64"), std::string::npos);
 }
 
+TEST(Hull3, RegressionLargeRoundCloudIsRefusedEarly) {
+  // 100,000 points on a sphere: the hull would have tens of thousands of vertices. The
+  // build once ran to the end (about three minutes in a release build) before refusing it;
+  // it now stops at four times the vertex limit, in milliseconds.
+  std::mt19937 rng(5);
+  std::normal_distribution<float> n(0, 1);
+  std::vector<Vec3> pts;
+  for (int i = 0; i < 100000; ++i)
+    pts.push_back(normalize(Vec3{n(rng), n(rng), n(rng)}));
+  Result<Hull3Build> r = computeHull3(pts);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("more than 64 vertices"), std::string::npos)
+      << r.error().message;
+  // A large cloud with a small hull still builds.
+  std::uniform_real_distribution<float> u(-1, 1);
+  std::vector<Vec3> box = cubeCorners(1);
+  for (int i = 0; i < 100000; ++i)
+    box.push_back({u(rng), u(rng), u(rng)});
+  Result<Hull3Build> b = computeHull3(box);
+  ASSERT_TRUE(b.ok()) << b.error().message;
+  EXPECT_EQ(b->hull.vertexCount, 8);
+  EXPECT_EQ(b->report.inside + b->report.onBoundary + b->report.duplicates, 100000);
+}
+
 TEST(Hull3, LatticeIsItsBoundingBox) {
   // A 5x5x5 lattice: almost every point is coplanar or collinear with others.
   std::vector<Vec3> pts;

@@ -105,7 +105,8 @@ float hull3Tolerance(Vec3 lower, Vec3 upper) noexcept;
 /// construction, not a query). Errors, naming the problem: no points, a non-finite or
 /// out-of-range coordinate (with its index), all points within the tolerance of one point,
 /// a line or a plane (no volume: use a capsule or a triangle), more than
-/// kMaxHullVertices3 hull vertices, or (never expected) a failed internal check.
+/// kMaxHullVertices3 hull vertices (found early: the build stops once its hull has four
+/// times that many), or (never expected) a failed internal check.
 Result<Hull3Build> computeHull3(std::span<const Vec3> points);
 
 /// Checks every invariant of a Hull3 (see the struct). Tests call it after every hull.
