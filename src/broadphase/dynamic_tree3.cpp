@@ -1,0 +1,412 @@
+#include "quack/broadphase/dynamic_tree3.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace quack {
+
+namespace {
+
+// Number of bins of the binned SAH build: Wald (2007) finds 8-32 bins within a few percent
+// of the full sweep; 16 is the usual middle (as in the 2D tree).
+constexpr int kBinCount = 16;
+// Below this depth the SAH decides; past it the build splits at the object median, which
+// bounds the depth of a degenerate input at 64 + log2(n).
+constexpr int kMaxSahDepth = 64;
+// Node indices are stored shifted left by one (with the child slot), and kAbsent must stay
+// out of reach.
+[[maybe_unused]] constexpr std::uint32_t kMaxNodes = 0x3fffffffu;
+
+std::string at(const char* what, std::uint32_t index) {
+  return std::string(what) + " " + std::to_string(index);
+}
+
+float axisOf(Vec3 v, int axis) noexcept {
+  return axis == 0 ? v.x : (axis == 1 ? v.y : v.z);
+}
+
+}  // namespace
+
+Aabb3 DynamicTree3::box(std::uint32_t proxy) const {
+  QUACK_ASSERT(contains(proxy));
+  const std::uint32_t ref = leafParent_[proxy];
+  if (ref == kNullIndex) return rootBox_;
+  return nodes_[ref >> 1].childBox[ref & 1];
+}
+
+void DynamicTree3::setParent(std::uint32_t ref, std::uint32_t parentRef) noexcept {
+  if (isLeaf(ref)) {
+    leafParent_[ref & ~kLeafBit] = parentRef;
+  } else {
+    nodes_[ref].parent = parentRef;
+  }
+}
+
+void DynamicTree3::link(std::uint32_t parentRef, std::uint32_t ref, Aabb3 b) noexcept {
+  if (parentRef == kNullIndex) {
+    root_ = ref;
+    rootBox_ = b;
+  } else {
+    Node& p = nodes_[parentRef >> 1];
+    p.child[parentRef & 1] = ref;
+    p.childBox[parentRef & 1] = b;
+  }
+  setParent(ref, parentRef);
+}
+
+std::uint32_t DynamicTree3::allocateNode() {
+  std::uint32_t n;
+  if (freeList_ != kNullIndex) {
+    n = freeList_;
+    freeList_ = nodes_[n].parent;
+  } else {
+    QUACK_ASSERT_MSG(nodes_.size() < kMaxNodes, "DynamicTree3: too many nodes");
+    n = static_cast<std::uint32_t>(nodes_.size());
+    nodes_.push_back({});
+  }
+  nodes_[n].height = 1;
+  ++nodeCount_;
+  return n;
+}
+
+void DynamicTree3::freeNode(std::uint32_t node) noexcept {
+  nodes_[node].parent = freeList_;
+  nodes_[node].height = -1;
+  freeList_ = node;
+  --nodeCount_;
+}
+
+void DynamicTree3::insert(std::uint32_t proxy, Aabb3 b) {
+  QUACK_ASSERT(isValid(b));
+  QUACK_ASSERT(proxy < kLeafBit);
+  if (proxy >= leafParent_.size()) leafParent_.resize(std::size_t{proxy} + 1, kAbsent);
+  QUACK_ASSERT_MSG(leafParent_[proxy] == kAbsent, "DynamicTree3::insert: proxy already present");
+  insertLeaf(proxy, b);
+  ++leafCount_;
+}
+
+void DynamicTree3::remove(std::uint32_t proxy) {
+  QUACK_ASSERT_MSG(contains(proxy), "DynamicTree3::remove: proxy not present");
+  removeLeaf(proxy);
+  --leafCount_;
+}
+
+void DynamicTree3::move(std::uint32_t proxy, Aabb3 b) {
+  QUACK_ASSERT(isValid(b));
+  QUACK_ASSERT_MSG(contains(proxy), "DynamicTree3::move: proxy not present");
+  removeLeaf(proxy);
+  insertLeaf(proxy, b);
+}
+
+void DynamicTree3::insertLeaf(std::uint32_t proxy, Aabb3 b) {
+  const std::uint32_t leaf = proxy | kLeafBit;
+  if (root_ == kNullIndex) {
+    link(kNullIndex, leaf, b);
+    return;
+  }
+  // Greedy descent by the surface-area heuristic: at each node compare the cost of making the
+  // new leaf the node's sibling with a lower bound of the cost of descending into a child
+  // (the growth of the child's box, plus what every ancestor grows by: the inheritance).
+  // The areas of the node and of its merge with the new box were formed one level up, as
+  // those of the child chosen (the same operations on the same values: the same bits).
+  std::uint32_t siblingRef = kNullIndex;
+  std::uint32_t sibling = root_;
+  Aabb3 siblingBox = rootBox_;
+  float area = surfaceArea(siblingBox);
+  float combined = surfaceArea(merge(siblingBox, b));
+  while (!isLeaf(sibling)) {
+    const Node& n = nodes_[sibling];
+    const float costHere = 2.0f * combined;
+    const float inheritance = 2.0f * (combined - area);
+    float cost[2];
+    float childArea[2] = {0.0f, 0.0f};
+    float childCombined[2];
+    for (int s = 0; s < 2; ++s) {
+      childCombined[s] = surfaceArea(merge(n.childBox[s], b));
+      float grown = childCombined[s];
+      if (!isLeaf(n.child[s])) {
+        childArea[s] = surfaceArea(n.childBox[s]);
+        grown -= childArea[s];
+      }
+      cost[s] = grown + inheritance;
+    }
+    if (costHere < cost[0] && costHere < cost[1]) break;
+    const int s = cost[0] <= cost[1] ? 0 : 1;
+    siblingRef = (sibling << 1) | static_cast<std::uint32_t>(s);
+    siblingBox = n.childBox[s];
+    sibling = n.child[s];
+    area = childArea[s];
+    combined = childCombined[s];
+  }
+
+  const std::uint32_t parent = allocateNode();
+  Node& p = nodes_[parent];
+  p.child[0] = sibling;
+  p.childBox[0] = siblingBox;
+  p.child[1] = leaf;
+  p.childBox[1] = b;
+  p.height = heightOf(sibling) + 1;
+  setParent(sibling, parent << 1);
+  leafParent_[proxy] = (parent << 1) | 1u;
+  link(siblingRef, parent, merge(siblingBox, b));
+  if (siblingRef != kNullIndex) fixUpward(siblingRef >> 1);
+}
+
+void DynamicTree3::removeLeaf(std::uint32_t proxy) {
+  const std::uint32_t ref = leafParent_[proxy];
+  leafParent_[proxy] = kAbsent;
+  if (ref == kNullIndex) {
+    root_ = kNullIndex;
+    rootBox_ = {};
+    return;
+  }
+  const std::uint32_t parent = ref >> 1;
+  const std::uint32_t other = 1u - (ref & 1u);
+  const std::uint32_t sibling = nodes_[parent].child[other];
+  const Aabb3 siblingBox = nodes_[parent].childBox[other];
+  const std::uint32_t grandRef = nodes_[parent].parent;
+  link(grandRef, sibling, siblingBox);
+  freeNode(parent);
+  if (grandRef != kNullIndex) fixUpward(grandRef >> 1);
+}
+
+void DynamicTree3::fixUpward(std::uint32_t node) {
+  while (node != kNullIndex) {
+    const std::uint32_t before = node;
+    node = balance(node);
+    Node& n = nodes_[node];
+    const std::int32_t h = 1 + std::max(heightOf(n.child[0]), heightOf(n.child[1]));
+    const Aabb3 b = merge(n.childBox[0], n.childBox[1]);
+    const std::uint32_t pref = n.parent;
+    Aabb3& slot = pref == kNullIndex ? rootBox_ : nodes_[pref >> 1].childBox[pref & 1];
+    // Nothing above can change when this node kept its height and box and did not rotate.
+    const bool unchanged = before == node && h == n.height && slot == b;
+    n.height = h;
+    slot = b;
+    if (unchanged || pref == kNullIndex) return;
+    node = pref >> 1;
+  }
+}
+
+std::uint32_t DynamicTree3::balance(std::uint32_t a) {
+  Node& A = nodes_[a];
+  const std::int32_t diff = heightOf(A.child[1]) - heightOf(A.child[0]);
+  if (diff <= 1 && diff >= -1) return a;
+  // Lift the taller child C above A; C keeps its taller child and hands its shorter one to
+  // A, which takes C's old slot. (Handing over the shorter grandchild is what makes one
+  // rotation do the work of AVL's double rotation in the zig-zag case.)
+  const int tall = diff > 1 ? 1 : 0;
+  const std::uint32_t c = A.child[tall];
+  QUACK_ASSERT(!isLeaf(c));
+  Node& C = nodes_[c];
+  const int keep = heightOf(C.child[0]) > heightOf(C.child[1]) ? 0 : 1;
+  const int give = 1 - keep;
+  const std::uint32_t handed = C.child[give];
+  const Aabb3 handedBox = C.childBox[give];
+
+  const std::uint32_t aParent = A.parent;
+  C.parent = aParent;
+  if (aParent == kNullIndex) {
+    root_ = c;
+  } else {
+    nodes_[aParent >> 1].child[aParent & 1] = c;
+  }
+  A.child[tall] = handed;
+  A.childBox[tall] = handedBox;
+  setParent(handed, (a << 1) | static_cast<std::uint32_t>(tall));
+  A.height = 1 + std::max(heightOf(A.child[0]), heightOf(A.child[1]));
+  C.child[give] = a;
+  C.childBox[give] = merge(A.childBox[0], A.childBox[1]);
+  A.parent = (c << 1) | static_cast<std::uint32_t>(give);
+  return c;
+}
+
+void DynamicTree3::rebuild() {
+  std::vector<BuildItem> items;
+  items.reserve(leafCount_);
+  for (std::uint32_t p = 0; p < leafParent_.size(); ++p) {
+    if (leafParent_[p] == kAbsent) continue;
+    const Aabb3 b = box(p);
+    items.push_back({b, center(b), p});
+  }
+  // Release the capacity left over from incremental growth: a bulk load ends up exact.
+  std::vector<Node>().swap(nodes_);
+  leafParent_.shrink_to_fit();
+  freeList_ = kNullIndex;
+  nodeCount_ = 0;
+  root_ = kNullIndex;
+  rootBox_ = {};
+  if (items.empty()) return;
+  nodes_.reserve(items.size() - 1);
+  const Built top = build(items.data(), items.size(), kNullIndex, 0);
+  link(kNullIndex, top.ref, top.box);
+}
+
+DynamicTree3::Built DynamicTree3::build(BuildItem* items, std::size_t count,
+                                        std::uint32_t parentRef, int depth) {
+  if (count == 1) {
+    leafParent_[items[0].proxy] = parentRef;
+    return {items[0].proxy | kLeafBit, items[0].box, 0};
+  }
+  Aabb3 centroids{items[0].centroid, items[0].centroid};
+  for (std::size_t i = 1; i < count; ++i)
+    centroids = merge(centroids, Aabb3{items[i].centroid, items[i].centroid});
+  const Vec3 extent = centroids.upper - centroids.lower;
+  const int axis =
+      extent.x >= extent.y ? (extent.x >= extent.z ? 0 : 2) : (extent.y >= extent.z ? 1 : 2);
+  auto coord = [axis](Vec3 v) { return axisOf(v, axis); };
+  const float lo = coord(centroids.lower);
+  const float width = coord(extent);
+
+  std::size_t mid = count / 2;
+  bool split = false;
+  if (width > 0.0f && depth < kMaxSahDepth) {
+    Aabb3 binBox[kBinCount];
+    std::size_t binCount[kBinCount] = {};
+    const float scale = static_cast<float>(kBinCount) / width;
+    auto binOf = [&](const BuildItem& it) {
+      const int b = static_cast<int>((coord(it.centroid) - lo) * scale);
+      return std::clamp(b, 0, kBinCount - 1);
+    };
+    for (std::size_t i = 0; i < count; ++i) {
+      const int b = binOf(items[i]);
+      binBox[b] = binCount[b] == 0 ? items[i].box : merge(binBox[b], items[i].box);
+      ++binCount[b];
+    }
+    // Cost of splitting after bin k: area(left) * |left| + area(right) * |right|.
+    float rightCost[kBinCount] = {};
+    Aabb3 acc{};
+    std::size_t n = 0;
+    for (int k = kBinCount - 1; k > 0; --k) {
+      if (binCount[k] > 0) acc = n == 0 ? binBox[k] : merge(acc, binBox[k]);
+      n += binCount[k];
+      rightCost[k] = n == 0 ? 0.0f : surfaceArea(acc) * static_cast<float>(n);
+    }
+    float best = 0.0f;
+    int bestK = -1;
+    n = 0;
+    for (int k = 0; k < kBinCount - 1; ++k) {
+      if (binCount[k] > 0) acc = n == 0 ? binBox[k] : merge(acc, binBox[k]);
+      n += binCount[k];
+      if (n == 0 || n == count) continue;
+      const float cost = surfaceArea(acc) * static_cast<float>(n) + rightCost[k + 1];
+      if (bestK < 0 || cost < best) {
+        best = cost;
+        bestK = k;
+      }
+    }
+    if (bestK >= 0) {
+      BuildItem* m = std::partition(items, items + count,
+                                    [&](const BuildItem& it) { return binOf(it) <= bestK; });
+      mid = static_cast<std::size_t>(m - items);
+      split = mid > 0 && mid < count;
+    }
+  }
+  if (!split) {
+    mid = count / 2;
+    std::nth_element(items, items + mid, items + count,
+                     [&](const BuildItem& x, const BuildItem& y) {
+                       return coord(x.centroid) < coord(y.centroid);
+                     });
+  }
+
+  const std::uint32_t node = allocateNode();
+  nodes_[node].parent = parentRef;
+  const Built left = build(items, mid, node << 1, depth + 1);
+  const Built right = build(items + mid, count - mid, (node << 1) | 1u, depth + 1);
+  Node& n = nodes_[node];
+  n.child[0] = left.ref;
+  n.childBox[0] = left.box;
+  n.child[1] = right.ref;
+  n.childBox[1] = right.box;
+  n.height = 1 + std::max(left.height, right.height);
+  return {node, merge(left.box, right.box), n.height};
+}
+
+int DynamicTree3::height() const noexcept {
+  return root_ == kNullIndex ? 0 : heightOf(root_);
+}
+
+float DynamicTree3::areaRatio() const noexcept {
+  if (root_ == kNullIndex || isLeaf(root_)) return 0.0f;
+  const float rootArea = surfaceArea(rootBox_);
+  if (rootArea <= 0.0f) return 0.0f;
+  // Every internal node but the root has its box in its parent's slot; the root's is rootBox_.
+  // Summed in double: 10^5 nodes of similar areas would lose digits in float.
+  double total = static_cast<double>(rootArea);
+  for (const Node& n : nodes_) {
+    if (n.height < 0) continue;
+    for (int s = 0; s < 2; ++s) {
+      if (!isLeaf(n.child[s])) total += static_cast<double>(surfaceArea(n.childBox[s]));
+    }
+  }
+  return static_cast<float>(total / static_cast<double>(rootArea));
+}
+
+std::size_t DynamicTree3::bytesUsed() const noexcept {
+  return nodes_.capacity() * sizeof(Node) + leafParent_.capacity() * sizeof(std::uint32_t);
+}
+
+Status DynamicTree3::validate() const {
+  std::uint32_t freeCount = 0;
+  for (std::uint32_t f = freeList_; f != kNullIndex; f = nodes_[f].parent) {
+    if (f >= nodes_.size()) return fail(at("free list points outside the node array:", f));
+    if (nodes_[f].height != -1) return fail(at("free-list node is not marked free:", f));
+    if (++freeCount > nodes_.size()) return fail("free list has a cycle");
+  }
+  if (freeCount + nodeCount_ != nodes_.size()) {
+    return fail("free nodes + live nodes != node array size");
+  }
+  std::uint32_t leaves = 0;
+  for (std::uint32_t p = 0; p < leafParent_.size(); ++p) {
+    if (leafParent_[p] != kAbsent) ++leaves;
+  }
+  if (leaves != leafCount_) return fail("leaf count does not match the leaf table");
+  if (root_ == kNullIndex) {
+    if (leafCount_ != 0 || nodeCount_ != 0) return fail("empty root but proxies present");
+    return {};
+  }
+  if (leafCount_ == 0) return fail("root present but no proxies");
+  if (nodeCount_ + 1 != leafCount_) return fail("internal nodes != leaves - 1");
+
+  struct Item {
+    std::uint32_t ref;
+    std::uint32_t parentRef;
+    Aabb3 box;
+  };
+  std::vector<Item> stack{{root_, kNullIndex, rootBox_}};
+  std::uint32_t seenNodes = 0;
+  std::uint32_t seenLeaves = 0;
+  while (!stack.empty()) {
+    const Item it = stack.back();
+    stack.pop_back();
+    if (!isValid(it.box)) return fail("a stored box is not valid (NaN or inverted)");
+    if (isLeaf(it.ref)) {
+      const std::uint32_t p = it.ref & ~kLeafBit;
+      if (p >= leafParent_.size()) return fail(at("leaf refers to unknown proxy", p));
+      if (leafParent_[p] != it.parentRef) return fail(at("wrong parent link of proxy", p));
+      ++seenLeaves;
+      continue;
+    }
+    if (it.ref >= nodes_.size()) return fail(at("child refers outside the node array:", it.ref));
+    const Node& n = nodes_[it.ref];
+    if (n.height < 1) return fail(at("free or leaf-height node reachable:", it.ref));
+    if (n.parent != it.parentRef) return fail(at("wrong parent link of node", it.ref));
+    if (++seenNodes > nodeCount_) return fail("more reachable nodes than live nodes (cycle?)");
+    if (n.height != 1 + std::max(heightOf(n.child[0]), heightOf(n.child[1]))) {
+      return fail(at("wrong height at node", it.ref));
+    }
+    if (!(merge(n.childBox[0], n.childBox[1]) == it.box)) {
+      return fail(at("box is not the merge of its children at node", it.ref));
+    }
+    for (std::uint32_t s = 0; s < 2; ++s) {
+      stack.push_back({n.child[s], (it.ref << 1) | s, n.childBox[s]});
+    }
+  }
+  if (seenNodes != nodeCount_) return fail("unreachable live nodes");
+  if (seenLeaves != leafCount_) return fail("unreachable leaves");
+  return {};
+}
+
+}  // namespace quack

@@ -1,0 +1,360 @@
+// GJK in 3D (see gjk3.hpp). The simplex solve is in double; everything else in float.
+
+#include "quack/collision/gjk3.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "gjk3_internal.hpp"
+
+namespace quack {
+namespace detail {
+namespace {
+
+// A fall of |v|^2 (computed in double) smaller than this fraction of the simplex's squared
+// size is rounding, not progress: about 8 double ulps of the squared coordinates.
+constexpr double kGjk3StallRelativeTolerance = 8.0 * std::numeric_limits<double>::epsilon();
+
+struct D3 {
+  double x = 0, y = 0, z = 0;
+};
+D3 toD(Vec3 v) {
+  return {static_cast<double>(v.x), static_cast<double>(v.y), static_cast<double>(v.z)};
+}
+D3 operator-(D3 a, D3 b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+D3 operator+(D3 a, D3 b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+D3 operator*(double s, D3 a) {
+  return {s * a.x, s * a.y, s * a.z};
+}
+double dotD(D3 a, D3 b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+D3 crossD(D3 a, D3 b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+// The nearest point of a sub-simplex to the origin: which vertices (by index into the
+// simplex) carry it and with what weights.
+struct Solution {
+  int count = 0;
+  int index[4] = {};
+  double weight[4] = {};
+  double distanceSquared = std::numeric_limits<double>::infinity();
+};
+
+Solution single(int i, D3 p) {
+  Solution s;
+  s.count = 1;
+  s.index[0] = i;
+  s.weight[0] = 1.0;
+  s.distanceSquared = dotD(p, p);
+  return s;
+}
+
+Solution pair(int i, int j, D3 a, D3 b, double t) {  // (1 - t) a + t b
+  Solution s;
+  s.count = 2;
+  s.index[0] = i;
+  s.index[1] = j;
+  s.weight[0] = 1.0 - t;
+  s.weight[1] = t;
+  D3 q = a + t * (b - a);
+  s.distanceSquared = dotD(q, q);
+  return s;
+}
+
+// Nearest point of segment ab to the origin.
+Solution solveSegment(int i, int j, D3 a, D3 b) {
+  D3 ab = b - a;
+  double t = -dotD(a, ab);
+  if (t <= 0.0) return single(i, a);
+  double len2 = dotD(ab, ab);
+  if (t >= len2) return single(j, b);
+  return pair(i, j, a, b, t / len2);
+}
+
+// Nearest point of triangle abc to the origin, by its Voronoi regions (Ericson 5.1.5 with
+// p = 0).
+Solution solveTriangle(int i, int j, int k, D3 a, D3 b, D3 c) {
+  D3 ab = b - a, ac = c - a;
+  D3 ap = -1.0 * a;
+  double d1 = dotD(ab, ap), d2 = dotD(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return single(i, a);
+  D3 bp = -1.0 * b;
+  double d3 = dotD(ab, bp), d4 = dotD(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return single(j, b);
+  double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return pair(i, j, a, b, d1 / (d1 - d3));
+  D3 cp = -1.0 * c;
+  double d5 = dotD(ab, cp), d6 = dotD(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return single(k, c);
+  double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return pair(i, k, a, c, d2 / (d2 - d6));
+  double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+    return pair(j, k, b, c, (d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  double sum = va + vb + vc;
+  if (!(sum > 0)) {
+    // Degenerate (collinear) triangle: the best of its edges.
+    Solution best = solveSegment(i, j, a, b);
+    Solution s2 = solveSegment(j, k, b, c);
+    if (s2.distanceSquared < best.distanceSquared) best = s2;
+    Solution s3 = solveSegment(i, k, a, c);
+    if (s3.distanceSquared < best.distanceSquared) best = s3;
+    return best;
+  }
+  double v = vb / sum, w = vc / sum;
+  Solution s;
+  s.count = 3;
+  s.index[0] = i;
+  s.index[1] = j;
+  s.index[2] = k;
+  s.weight[0] = 1.0 - v - w;
+  s.weight[1] = v;
+  s.weight[2] = w;
+  D3 q = a + v * ab + w * ac;
+  s.distanceSquared = dotD(q, q);
+  return s;
+}
+
+// Nearest point of tetrahedron abcd to the origin: inside (count 4, distance 0), or the
+// nearest of the faces the origin is outside of (Ericson 5.1.6). A face whose opposite
+// vertex is (nearly) on its plane is also tried, so a flat tetrahedron still gives its
+// nearest face rather than a false "inside".
+Solution solveTetrahedron(const D3 p[4]) {
+  static constexpr int kFaces[4][4] = {{0, 1, 2, 3}, {0, 2, 3, 1}, {0, 3, 1, 2}, {1, 3, 2, 0}};
+  double scale = 0;
+  for (int i = 1; i < 4; ++i)
+    scale = std::max(scale, dotD(p[i] - p[0], p[i] - p[0]));
+  Solution best;
+  bool inside = true;
+  for (const auto& f : kFaces) {
+    D3 a = p[f[0]], b = p[f[1]], c = p[f[2]], d = p[f[3]];
+    D3 n = crossD(b - a, c - a);
+    double signO = -dotD(n, a);  // origin's side
+    double signD = dotD(n, d - a);
+    // Flat when the opposite vertex's height is within double rounding of the face.
+    bool flat = signD * signD <= 1e-24 * dotD(n, n) * scale;
+    if (!flat && signO * signD >= 0) continue;  // origin on the inner side of this face
+    inside = false;
+    Solution s = solveTriangle(f[0], f[1], f[2], a, b, c);
+    if (s.distanceSquared < best.distanceSquared) best = s;
+  }
+  if (inside) {
+    Solution s;
+    s.count = 4;
+    for (int i = 0; i < 4; ++i) {
+      s.index[i] = i;
+      s.weight[i] = 0.25;
+    }
+    s.distanceSquared = 0.0;
+    return s;
+  }
+  return best;
+}
+
+}  // namespace
+
+SupportPoint3 makeSupport3(const ShapeProxy3& a, const ShapeProxy3& b, Transform3 aFromB,
+                           int indexA, int indexB) noexcept {
+  SupportPoint3 s;
+  s.indexA = indexA;
+  s.indexB = indexB;
+  s.pointA = a.points()[indexA];
+  s.pointB = transformPoint(aFromB, b.points()[indexB]);
+  s.w = s.pointB - s.pointA;
+  return s;
+}
+
+SupportPoint3 support3(const ShapeProxy3& a, const ShapeProxy3& b, Transform3 aFromB,
+                       Vec3 direction) noexcept {
+  int ia = findSupport(a, -direction);
+  int ib = findSupport(b, invRotate(aFromB.q, direction));
+  return makeSupport3(a, b, aFromB, ia, ib);
+}
+
+bool solveSimplex3(Simplex3& s, Vec3& closest, double* distanceSquared) noexcept {
+  D3 p[4];
+  for (int i = 0; i < s.count; ++i)
+    p[i] = toD(s.v[i].w);
+  Solution sol;
+  switch (s.count) {
+    case 1:
+      sol = single(0, p[0]);
+      break;
+    case 2:
+      sol = solveSegment(0, 1, p[0], p[1]);
+      break;
+    case 3:
+      sol = solveTriangle(0, 1, 2, p[0], p[1], p[2]);
+      break;
+    default:
+      sol = solveTetrahedron(p);
+      break;
+  }
+  Simplex3 reduced;
+  reduced.count = sol.count;
+  D3 q{};
+  for (int i = 0; i < sol.count; ++i) {
+    reduced.v[i] = s.v[sol.index[i]];
+    reduced.weights[i] = static_cast<float>(sol.weight[i]);
+    q = q + sol.weight[i] * p[sol.index[i]];
+  }
+  s = reduced;
+  closest = {static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z)};
+  if (distanceSquared != nullptr) *distanceSquared = sol.count == 4 ? 0.0 : dotD(q, q);
+  return sol.count == 4;
+}
+
+GjkCore3 runGjk3(const ShapeProxy3& a, const ShapeProxy3& b, Transform3 aFromB, GjkCache3* cache,
+                 float separationRadius) noexcept {
+  GjkCore3 out;
+  Simplex3& s = out.simplex;
+  bool warm = false;
+  if (cache != nullptr && cache->count >= 1 && cache->count <= 4) {
+    warm = true;
+    for (int i = 0; i < cache->count; ++i) {
+      if (cache->indexA[i] >= a.count() || cache->indexB[i] >= b.count()) warm = false;
+    }
+    if (warm) {
+      for (int i = 0; i < cache->count; ++i)
+        s.v[i] = makeSupport3(a, b, aFromB, cache->indexA[i], cache->indexB[i]);
+      s.count = cache->count;
+    }
+  }
+  if (!warm) {
+    Vec3 d = transformPoint(aFromB, b.center()) - a.center();
+    if (lengthSquared(d) == 0.0f) d = {1, 0, 0};
+    s.v[0] = support3(a, b, aFromB, -d);
+    s.count = 1;
+    out.iterations = 1;
+  }
+
+  double previous = std::numeric_limits<double>::infinity();
+  Simplex3 saved = s;
+  Vec3 v;
+  GjkStatus status = GjkStatus::maxIterations;
+  for (int iter = 0; iter < kGjk3MaxIterations; ++iter) {
+    double vvD = 0.0;
+    bool inside = solveSimplex3(s, v, &vvD);
+    float vv = lengthSquared(v);
+    float scale = 0.0f;
+    for (int i = 0; i < s.count; ++i)
+      scale = maxf(scale, lengthSquared(s.v[i].w));
+    float contact = kGjk3ContactRelativeTolerance * kGjk3ContactRelativeTolerance * scale;
+    if (inside || vv <= contact) {
+      status = GjkStatus::overlap;
+      v = {};
+      break;
+    }
+    // Progress is judged on |v|^2 in double: the last steps turn v by angles whose effect
+    // on |v|^2 (the square of the angle) is far below float's resolution, and stopping
+    // there would leave the normal off by ~1e-4 (found by the brute-force oracle).
+    if (vvD >= previous - kGjk3StallRelativeTolerance * static_cast<double>(scale)) {
+      if (vvD > previous) {
+        s = saved;
+        solveSimplex3(s, v, nullptr);
+      }
+      status = GjkStatus::stalled;
+      break;
+    }
+    previous = vvD;
+    saved = s;
+    SupportPoint3 w = support3(a, b, aFromB, -v);
+    ++out.iterations;
+    bool repeated = false;
+    for (int i = 0; i < s.count; ++i) {
+      if (s.v[i].indexA == w.indexA && s.v[i].indexB == w.indexB) repeated = true;
+    }
+    if (repeated) {
+      status = GjkStatus::repeatedSupport;
+      break;
+    }
+    float vw = dot(v, w.w);
+    // Early out for the overlap test: the lower bound on the core distance, v.w / |v|,
+    // already exceeds the radii.
+    if (separationRadius >= 0.0f && vw > 0.0f &&
+        vw * vw > separationRadius * separationRadius * vv) {
+      status = GjkStatus::converged;
+      out.separated = true;
+      break;
+    }
+    if (vv - vw <= 0.0f) {
+      status = GjkStatus::converged;
+      break;
+    }
+    s.v[s.count++] = w;
+  }
+  out.status = status;
+  out.closest = v;
+  if (cache != nullptr) {
+    cache->count = s.count;
+    for (int i = 0; i < s.count; ++i) {
+      cache->indexA[i] = static_cast<std::uint8_t>(s.v[i].indexA);
+      cache->indexB[i] = static_cast<std::uint8_t>(s.v[i].indexB);
+    }
+  }
+  return out;
+}
+
+void closestPoints3(const Simplex3& s, Vec3& pointA, Vec3& pointB) noexcept {
+  pointA = {};
+  pointB = {};
+  for (int i = 0; i < s.count; ++i) {
+    pointA += s.weights[i] * s.v[i].pointA;
+    pointB += s.weights[i] * s.v[i].pointB;
+  }
+}
+
+}  // namespace detail
+
+DistanceOutput3 computeDistance(const ShapeProxy3& a, Transform3 worldFromA, const ShapeProxy3& b,
+                                Transform3 worldFromB, GjkCache3* cache) noexcept {
+  Transform3 aFromB = invMul(worldFromA, worldFromB);
+  detail::GjkCore3 core = detail::runGjk3(a, b, aFromB, cache, -1.0f);
+  DistanceOutput3 out;
+  out.iterations = core.iterations;
+  out.status = core.status;
+  out.simplex = core.simplex;
+  Vec3 pA, pB;
+  detail::closestPoints3(core.simplex, pA, pB);
+  float ra = a.radius(), rb = b.radius();
+  if (core.status == GjkStatus::overlap) {
+    // The cores share a point: report it (the weights place it on both cores).
+    Vec3 p = transformPoint(worldFromA, 0.5f * (pA + pB));
+    out.pointA = out.pointB = p;
+    return out;
+  }
+  // The separating direction from the solved v (more accurate than pB - pA, which
+  // subtracts two rebuilt points).
+  float len = length(core.closest);
+  Vec3 n = (1.0f / len) * core.closest;
+  out.coreDistance = len;
+  out.normal = transformVector(worldFromA, n);
+  if (len > ra + rb) {
+    out.distance = len - ra - rb;
+    out.pointA = transformPoint(worldFromA, pA + ra * n);
+    out.pointB = transformPoint(worldFromA, pB - rb * n);
+  } else {
+    // Only the radii overlap: the shared point halfway between the surfaces.
+    Vec3 p = 0.5f * ((pA + ra * n) + (pB - rb * n));
+    out.pointA = out.pointB = transformPoint(worldFromA, p);
+  }
+  return out;
+}
+
+bool testOverlap(const ShapeProxy3& a, Transform3 worldFromA, const ShapeProxy3& b,
+                 Transform3 worldFromB, GjkCache3* cache) noexcept {
+  Transform3 aFromB = invMul(worldFromA, worldFromB);
+  float radii = a.radius() + b.radius();
+  detail::GjkCore3 core = detail::runGjk3(a, b, aFromB, cache, radii);
+  if (core.separated) return false;
+  if (core.status == GjkStatus::overlap) return true;
+  return length(core.closest) <= radii;
+}
+
+}  // namespace quack

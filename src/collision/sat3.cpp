@@ -1,0 +1,122 @@
+// SAT for two hulls with Gauss-map edge pruning (see sat3.hpp).
+
+#include "quack/collision/sat3.hpp"
+
+#include <cmath>
+
+#include "quack/collision/proxy3.hpp"
+
+namespace quack {
+namespace {
+
+// Edges whose cross product is below this fraction of their lengths' product (the sine of
+// a 1e-6 radian angle) are parallel: their axis has no direction a float can trust, and
+// the face of B - A they would span is a face axis of A or B, tested already.
+constexpr float kParallelEdgesRelative = 1e-6f;
+
+// Least projection of the hull's vertices on `direction` (hull frame).
+float minProjection(const Hull3& h, Vec3 direction) noexcept {
+  float best = dot(h.vertices[0], direction);
+  for (int i = 1; i < h.vertexCount; ++i)
+    best = minf(best, dot(h.vertices[i], direction));
+  return best;
+}
+
+// Whether arcs ab (edge of A: its two face normals) and cd (edge of B, normals negated)
+// cross on the unit sphere: then the two edges form a face of the Minkowski difference.
+// bxa and dxc are the arcs' plane normals (parallel to the edges). Gregorius 2013.
+bool isMinkowskiFace(Vec3 a, Vec3 b, Vec3 bxa, Vec3 c, Vec3 d, Vec3 dxc) noexcept {
+  float cba = dot(c, bxa);
+  float dba = dot(d, bxa);
+  float adc = dot(a, dxc);
+  float bdc = dot(b, dxc);
+  return cba * dba < 0.0f && adc * bdc < 0.0f && cba * bdc > 0.0f;
+}
+
+}  // namespace
+
+SatOutput3 computeSat(const Hull3& a, Transform3 worldFromA, const Hull3& b,
+                      Transform3 worldFromB) noexcept {
+  Transform3 aFromB = invMul(worldFromA, worldFromB);
+  SatOutput3 out;
+  float size = 0.0f;
+  for (int i = 0; i < a.vertexCount; ++i)
+    size = maxf(size, length(a.vertices[i] - a.centroid));
+  for (int i = 0; i < b.vertexCount; ++i)
+    size = maxf(size, length(b.vertices[i] - b.centroid));
+
+  // Faces of A: B's least projection on the normal minus the face's offset.
+  float bestFace = -std::numeric_limits<float>::infinity();
+  Vec3 bestNormal;
+  for (int f = 0; f < a.faceCount; ++f) {
+    const HullFace3& face = a.faces[f];
+    Vec3 nB = invRotate(aFromB.q, face.normal);
+    float s = minProjection(b, nB) + dot(face.normal, aFromB.p) - face.offset;
+    if (s > bestFace) {
+      bestFace = s;
+      bestNormal = face.normal;
+      out.feature = SatFeature3::faceA;
+      out.faceIndex = f;
+    }
+  }
+  // Faces of B (in B's frame): A's least projection on the normal.
+  Transform3 bFromA = inverse(aFromB);
+  for (int f = 0; f < b.faceCount; ++f) {
+    const HullFace3& face = b.faces[f];
+    Vec3 nA = rotate(aFromB.q, face.normal);
+    float s = minProjection(a, invRotate(bFromA.q, face.normal)) + dot(face.normal, bFromA.p) -
+              face.offset;
+    if (s > bestFace) {
+      bestFace = s;
+      bestNormal = -nA;
+      out.feature = SatFeature3::faceB;
+      out.faceIndex = f;
+    }
+  }
+
+  // Edge pairs that are faces of the Minkowski difference.
+  float bestEdge = -std::numeric_limits<float>::infinity();
+  Vec3 bestEdgeNormal;
+  int bestEdgeA = 0, bestEdgeB = 0;
+  for (int i = 0; i < a.edgeCount; ++i) {
+    const HullEdge3& ea = a.edges[i];
+    Vec3 pa = a.vertices[ea.v0], qa = a.vertices[ea.v1];
+    Vec3 na1 = a.faces[ea.faceLeft].normal, na2 = a.faces[ea.faceRight].normal;
+    Vec3 da = qa - pa;
+    for (int j = 0; j < b.edgeCount; ++j) {
+      const HullEdge3& eb = b.edges[j];
+      Vec3 nb1 = -rotate(aFromB.q, b.faces[eb.faceLeft].normal);
+      Vec3 nb2 = -rotate(aFromB.q, b.faces[eb.faceRight].normal);
+      Vec3 pb = transformPoint(aFromB, b.vertices[eb.v0]);
+      Vec3 db = transformPoint(aFromB, b.vertices[eb.v1]) - pb;
+      if (!isMinkowskiFace(na1, na2, cross(na2, na1), nb1, nb2, cross(nb2, nb1))) continue;
+      ++out.edgePairsTested;
+      Vec3 axis = cross(da, db);
+      float len = length(axis);
+      if (len < kParallelEdgesRelative * length(da) * length(db)) continue;
+      axis = (1.0f / len) * axis;
+      if (dot(axis, pa - a.centroid) < 0.0f) axis = -axis;
+      float s = dot(axis, pb - pa);
+      if (s > bestEdge) {
+        bestEdge = s;
+        bestEdgeNormal = axis;
+        bestEdgeA = i;
+        bestEdgeB = j;
+      }
+    }
+  }
+
+  out.separation = bestFace;
+  out.normal = bestNormal;
+  if (bestEdge > bestFace + kSat3FaceBiasRelative * size) {
+    out.separation = bestEdge;
+    out.normal = bestEdgeNormal;
+    out.feature = SatFeature3::edges;
+    out.edgeA = bestEdgeA;
+    out.edgeB = bestEdgeB;
+  }
+  out.normal = transformVector(worldFromA, out.normal);
+  return out;
+}
+
+}  // namespace quack
