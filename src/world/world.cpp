@@ -426,12 +426,20 @@ StepStatus World::step(float dt, int substeps) {
     return fail("step: substeps must be in 1..64, got " + std::to_string(substeps));
   w.inStep = true;
   w.events.beginStep();
+  // The phases throw only std::bad_alloc of their own; a game's job system (enqueueTask)
+  // may throw anything. Either way the step stopped part way.
+  auto stopped = [&](const char* why) {
+    w.inStep = false;
+    w.failure = "step " + std::to_string(w.stepCount + 1) + " " + why +
+                " part way through, so the world's state is not trusted";
+  };
   try {
     runPhases(w, dt, substeps);
   } catch (const std::bad_alloc&) {
-    w.inStep = false;
-    w.failure = "step " + std::to_string(w.stepCount + 1) +
-                " ran out of memory part way through, so the world's state is not trusted";
+    stopped("ran out of memory");
+    throw;
+  } catch (...) {
+    stopped("was stopped by an exception");
     throw;
   }
   ++w.stepCount;

@@ -348,11 +348,12 @@ class World {
   /// Exceptions (docs/world.md, "Exceptions"): an exception thrown by an event callback
   /// leaves step() after the step is complete (bodies moved, stepCount() advanced); the
   /// callbacks after it are not called for this step, and the destruction that earlier
-  /// callbacks asked for is carried out. The world is valid and usable. An allocation
-  /// failure inside the step's phases (std::bad_alloc, the only exception they throw) leaves
-  /// the step half done: the world then refuses every change, step and snapshot with a
-  /// message naming the failed step until a snapshot is restored into it (restore()), and
-  /// can still be read and destroyed.
+  /// callbacks asked for is carried out. The world is valid and usable. An exception from
+  /// inside the step's phases (std::bad_alloc, the only one they throw of their own, or
+  /// whatever a game's job system, WorldDef::enqueueTask, throws) leaves the step half
+  /// done: the world then refuses every change, step and snapshot with a message naming
+  /// the failed step until a snapshot is restored into it (restore()), and can still be
+  /// read and destroyed.
   StepStatus step(float dt, int substeps);
   /// The events of the last step (valid until the next step). Contacts and sensor overlaps
   /// ended by destroying a shape between steps are reported, and their callbacks called,
