@@ -414,7 +414,7 @@ bool agrees(const Peer& peer) {
                              : "distance, separated, exact angles"};
     sample([&](std::size_t i) {
       const QueryPair& q = (*set)[i];
-      const double p = peer.distance(q);
+      const double p = double(peer.distance(q));
       d.largest = std::max(d.largest, std::fabs(double(quackDistance(q, peer.rotationOf)) - p));
       exact.largest =
           std::max(exact.largest, std::fabs(double(quackDistance(q, quackRotation)) - p));
