@@ -63,14 +63,6 @@ b2TOIOutput runToi(const QuerySweep& sweep) {
 
 }  // namespace
 
-bool keepsAllVertices(const PoolPolygon& polygon) {
-  if (polygon.count > B2_MAX_POLYGON_VERTICES) return false;
-  b2Vec2 points[B2_MAX_POLYGON_VERTICES];
-  for (int k = 0; k < polygon.count; ++k)
-    points[k] = {polygon.x[k], polygon.y[k]};
-  return b2ComputeHull(points, polygon.count).count == polygon.count;
-}
-
 bool setPool(const PoolPolygon* polygons, std::size_t count) {
   std::vector<Shape> shapes(count);
   for (std::size_t i = 0; i < count; ++i) {

@@ -9,10 +9,6 @@
 
 namespace quack_bench::v3 {
 
-/// True when Box2D v3's hull of `polygon` keeps all its vertices (it welds close ones and
-/// drops nearly collinear ones, with tolerances of its own).
-bool keepsAllVertices(const PoolPolygon& polygon);
-
 /// Replaces the pool. Returns false (and keeps nothing) when Box2D v3's hull of some
 /// polygon keeps fewer vertices than given, so that the caller can retry with other shapes.
 bool setPool(const PoolPolygon* polygons, std::size_t count);
