@@ -151,9 +151,11 @@ std::vector<QueryPair> makePairs(Placement placement, unsigned seed) {
   std::uniform_int_distribution<std::uint32_t> pick(0, kPoolSize - 1);
   std::vector<QueryPair> pairs;
   pairs.reserve(kQueries);
+  // Mixed: apart and overlapping in turn, each drawn until it is what it should be
+  // (drawing the kind per attempt would favour the kind rejected less often), then shuffled.
   while (pairs.size() < kQueries) {
-    bool overlap = placement == Placement::overlapping ||
-                   (placement == Placement::mixed && (rng() & 1u) != 0u);
+    const bool overlap = placement == Placement::overlapping ||
+                         (placement == Placement::mixed && pairs.size() % 2 == 1);
     QueryPair q;
     q.a = pick(rng);
     q.b = pick(rng);
@@ -172,6 +174,7 @@ std::vector<QueryPair> makePairs(Placement placement, unsigned seed) {
     if (overlap ? d > 0.0f : d < 0.01f) continue;
     pairs.push_back(q);
   }
+  if (placement == Placement::mixed) std::shuffle(pairs.begin(), pairs.end(), rng);
   return pairs;
 }
 
