@@ -899,3 +899,33 @@ def test_to_svg_draws_the_world():
     assert small.count("<circle") + small.count("<path") + small.count("<polygon") <= 5000 + 10
     # Two shapes: the ground's box and the ball.
     assert svg.count("<path") + svg.count("<polygon") + svg.count("<circle") >= 2
+
+
+def test_snapshot_and_restore_round_trip_and_refuse_what_does_not_fit():
+    """snapshot() and restore(): a world put back to a snapshot continues to the same bits;
+    a snapshot that is not one, or is of another world's structure, is a ValueError naming
+    the problem, and the world is left as it was."""
+    w = quack.World()
+    ground = w.create_body(pos=(0, 0), type="static")
+    w.create_shape(ground, quack.box(half=(5, 0.5)))
+    for i in range(5):
+        b = w.create_body(pos=(0.3 * i, 1.0 + i))
+        w.create_shape(b, quack.circle(radius=0.4))
+    for _ in range(10):
+        w.step()
+    snap = w.snapshot()
+    assert isinstance(snap, bytes) and len(snap) > 48
+    for _ in range(20):
+        w.step()
+    later = w.state_hash()
+    w.restore(snap)
+    for _ in range(20):
+        w.step()
+    assert w.state_hash() == later
+    with pytest.raises(ValueError, match="restore: not a Quack snapshot"):
+        w.restore(b"junk")
+    flipped = bytearray(snap)
+    flipped[-1] ^= 1
+    with pytest.raises(ValueError, match="checksum"):
+        w.restore(bytes(flipped))
+    assert w.state_hash() == later
