@@ -1,6 +1,7 @@
 // GJK in 3D (see gjk3.hpp). The simplex solve is in double; everything else in float.
 
 #include "quack/collision/gjk3.hpp"
+#include "quack/math/detail/vec3d.hpp"
 
 #include <cmath>
 #include <limits>
@@ -15,27 +16,8 @@ namespace {
 // size is rounding, not progress: about 8 double ulps of the squared coordinates.
 constexpr double kGjk3StallRelativeTolerance = 8.0 * std::numeric_limits<double>::epsilon();
 
-struct D3 {
-  double x = 0, y = 0, z = 0;
-};
-D3 toD(Vec3 v) {
-  return {static_cast<double>(v.x), static_cast<double>(v.y), static_cast<double>(v.z)};
-}
-D3 operator-(D3 a, D3 b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-D3 operator+(D3 a, D3 b) {
-  return {a.x + b.x, a.y + b.y, a.z + b.z};
-}
-D3 operator*(double s, D3 a) {
-  return {s * a.x, s * a.y, s * a.z};
-}
-double dotD(D3 a, D3 b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-D3 crossD(D3 a, D3 b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
+using D3 = detail::Vec3d;
+using detail::toDouble;
 
 // The nearest point of a sub-simplex to the origin: which vertices (by index into the
 // simplex) carry it and with what weights.
@@ -51,7 +33,7 @@ Solution single(int i, D3 p) {
   s.count = 1;
   s.index[0] = i;
   s.weight[0] = 1.0;
-  s.distanceSquared = dotD(p, p);
+  s.distanceSquared = detail::dot(p, p);
   return s;
 }
 
@@ -63,16 +45,16 @@ Solution pair(int i, int j, D3 a, D3 b, double t) {  // (1 - t) a + t b
   s.weight[0] = 1.0 - t;
   s.weight[1] = t;
   D3 q = a + t * (b - a);
-  s.distanceSquared = dotD(q, q);
+  s.distanceSquared = detail::dot(q, q);
   return s;
 }
 
 // Nearest point of segment ab to the origin.
 Solution solveSegment(int i, int j, D3 a, D3 b) {
   D3 ab = b - a;
-  double t = -dotD(a, ab);
+  double t = -detail::dot(a, ab);
   if (t <= 0.0) return single(i, a);
-  double len2 = dotD(ab, ab);
+  double len2 = detail::dot(ab, ab);
   if (t >= len2) return single(j, b);
   return pair(i, j, a, b, t / len2);
 }
@@ -82,15 +64,15 @@ Solution solveSegment(int i, int j, D3 a, D3 b) {
 Solution solveTriangle(int i, int j, int k, D3 a, D3 b, D3 c) {
   D3 ab = b - a, ac = c - a;
   D3 ap = -1.0 * a;
-  double d1 = dotD(ab, ap), d2 = dotD(ac, ap);
+  double d1 = detail::dot(ab, ap), d2 = detail::dot(ac, ap);
   if (d1 <= 0 && d2 <= 0) return single(i, a);
   D3 bp = -1.0 * b;
-  double d3 = dotD(ab, bp), d4 = dotD(ac, bp);
+  double d3 = detail::dot(ab, bp), d4 = detail::dot(ac, bp);
   if (d3 >= 0 && d4 <= d3) return single(j, b);
   double vc = d1 * d4 - d3 * d2;
   if (vc <= 0 && d1 >= 0 && d3 <= 0) return pair(i, j, a, b, d1 / (d1 - d3));
   D3 cp = -1.0 * c;
-  double d5 = dotD(ab, cp), d6 = dotD(ac, cp);
+  double d5 = detail::dot(ab, cp), d6 = detail::dot(ac, cp);
   if (d6 >= 0 && d5 <= d6) return single(k, c);
   double vb = d5 * d2 - d1 * d6;
   if (vb <= 0 && d2 >= 0 && d6 <= 0) return pair(i, k, a, c, d2 / (d2 - d6));
@@ -117,7 +99,7 @@ Solution solveTriangle(int i, int j, int k, D3 a, D3 b, D3 c) {
   s.weight[1] = v;
   s.weight[2] = w;
   D3 q = a + v * ab + w * ac;
-  s.distanceSquared = dotD(q, q);
+  s.distanceSquared = detail::dot(q, q);
   return s;
 }
 
@@ -129,16 +111,16 @@ Solution solveTetrahedron(const D3 p[4]) {
   static constexpr int kFaces[4][4] = {{0, 1, 2, 3}, {0, 2, 3, 1}, {0, 3, 1, 2}, {1, 3, 2, 0}};
   double scale = 0;
   for (int i = 1; i < 4; ++i)
-    scale = std::max(scale, dotD(p[i] - p[0], p[i] - p[0]));
+    scale = std::max(scale, detail::dot(p[i] - p[0], p[i] - p[0]));
   Solution best;
   bool inside = true;
   for (const auto& f : kFaces) {
     D3 a = p[f[0]], b = p[f[1]], c = p[f[2]], d = p[f[3]];
-    D3 n = crossD(b - a, c - a);
-    double signO = -dotD(n, a);  // origin's side
-    double signD = dotD(n, d - a);
+    D3 n = detail::cross(b - a, c - a);
+    double signO = -detail::dot(n, a);  // origin's side
+    double signD = detail::dot(n, d - a);
     // Flat when the opposite vertex's height is within double rounding of the face.
-    bool flat = signD * signD <= 1e-24 * dotD(n, n) * scale;
+    bool flat = signD * signD <= 1e-24 * detail::dot(n, n) * scale;
     if (!flat && signO * signD >= 0) continue;  // origin on the inner side of this face
     inside = false;
     Solution s = solveTriangle(f[0], f[1], f[2], a, b, c);
@@ -180,7 +162,7 @@ SupportPoint3 support3(const ShapeProxy3& a, const ShapeProxy3& b, Transform3 aF
 bool solveSimplex3(Simplex3& s, Vec3& closest, double* distanceSquared) noexcept {
   D3 p[4];
   for (int i = 0; i < s.count; ++i)
-    p[i] = toD(s.v[i].w);
+    p[i] = toDouble(s.v[i].w);
   Solution sol;
   switch (s.count) {
     case 1:
@@ -206,7 +188,7 @@ bool solveSimplex3(Simplex3& s, Vec3& closest, double* distanceSquared) noexcept
   }
   s = reduced;
   closest = {static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z)};
-  if (distanceSquared != nullptr) *distanceSquared = sol.count == 4 ? 0.0 : dotD(q, q);
+  if (distanceSquared != nullptr) *distanceSquared = sol.count == 4 ? 0.0 : detail::dot(q, q);
   return sol.count == 4;
 }
 

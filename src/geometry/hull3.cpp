@@ -11,6 +11,7 @@
 // which points to add uses the thick planes.
 
 #include "quack/geometry/hull3.hpp"
+#include "quack/math/detail/vec3d.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -29,30 +30,8 @@ namespace {
 
 using detail::formatNumber;
 
-struct D3 {
-  double x = 0, y = 0, z = 0;
-};
-D3 toD(Vec3 v) {
-  return {static_cast<double>(v.x), static_cast<double>(v.y), static_cast<double>(v.z)};
-}
-D3 operator-(D3 a, D3 b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-D3 operator+(D3 a, D3 b) {
-  return {a.x + b.x, a.y + b.y, a.z + b.z};
-}
-D3 operator*(double s, D3 a) {
-  return {s * a.x, s * a.y, s * a.z};
-}
-double dotD(D3 a, D3 b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-D3 crossD(D3 a, D3 b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-double lenD(D3 a) {
-  return std::sqrt(dotD(a, a));
-}
+using D3 = detail::Vec3d;
+using detail::toDouble;
 
 struct Face {
   int v[3];
@@ -89,13 +68,13 @@ class QuickHull {
     f.v[0] = a;
     f.v[1] = b;
     f.v[2] = c;
-    D3 n = crossD(p_[b] - p_[a], p_[c] - p_[a]);
-    double len = lenD(n);
+    D3 n = detail::cross(p_[b] - p_[a], p_[c] - p_[a]);
+    double len = detail::length(n);
     f.n = len > 0 ? (1.0 / len) * n : D3{};
-    f.d = dotD(f.n, p_[a]);
+    f.d = detail::dot(f.n, p_[a]);
     return f;
   }
-  double height(const Face& f, int i) const { return dotD(f.n, p_[i]) - f.d; }
+  double height(const Face& f, int i) const { return detail::dot(f.n, p_[i]) - f.d; }
 
   int addFace(Face f) {
     int id = static_cast<int>(faces_.size());
@@ -161,16 +140,16 @@ class QuickHull {
     D3 a = p_[static_cast<std::size_t>(f.v[0])], b = p_[static_cast<std::size_t>(f.v[1])],
        c = p_[static_cast<std::size_t>(f.v[2])];
     D3 ab = b - a, ac = c - a, ap = pt - a;
-    auto sq = [&](D3 q) { return dotD(pt - q, pt - q); };
-    double d1 = dotD(ab, ap), d2 = dotD(ac, ap);
+    auto sq = [&](D3 q) { return detail::dot(pt - q, pt - q); };
+    double d1 = detail::dot(ab, ap), d2 = detail::dot(ac, ap);
     if (d1 <= 0 && d2 <= 0) return sq(a);
     D3 bp = pt - b;
-    double d3 = dotD(ab, bp), d4 = dotD(ac, bp);
+    double d3 = detail::dot(ab, bp), d4 = detail::dot(ac, bp);
     if (d3 >= 0 && d4 <= d3) return sq(b);
     double vc = d1 * d4 - d3 * d2;
     if (vc <= 0 && d1 >= 0 && d3 <= 0) return sq(a + (d1 / (d1 - d3)) * ab);
     D3 cp = pt - c;
-    double d5 = dotD(ab, cp), d6 = dotD(ac, cp);
+    double d5 = detail::dot(ab, cp), d6 = detail::dot(ac, cp);
     if (d6 >= 0 && d5 <= d6) return sq(c);
     double vb = d5 * d2 - d1 * d6;
     if (vb <= 0 && d2 >= 0 && d6 <= 0) return sq(a + (d2 / (d2 - d6)) * ac);
@@ -326,7 +305,7 @@ Result<Hull3Build> computeHull3(std::span<const Vec3> points) {
   const double tol = static_cast<double>(tolF);
   std::vector<D3> p(points.size());
   for (std::size_t i = 0; i < points.size(); ++i)
-    p[i] = toD(points[i]);
+    p[i] = toDouble(points[i]);
 
   auto build = std::make_unique<Hull3Build>();
   Hull3Report& report = build->report;
@@ -346,7 +325,7 @@ Result<Hull3Build> computeHull3(std::span<const Vec3> points) {
     for (std::size_t j = k; j-- > 0;) {
       const D3& pj = p[static_cast<std::size_t>(order[j])];
       if (pk.x - pj.x > tol) break;
-      if (!duplicate[static_cast<std::size_t>(order[j])] && lenD(pk - pj) <= tol) {
+      if (!duplicate[static_cast<std::size_t>(order[j])] && detail::length(pk - pj) <= tol) {
         duplicate[static_cast<std::size_t>(order[k])] = 1;
         ++report.duplicates;
         break;
@@ -368,15 +347,15 @@ Result<Hull3Build> computeHull3(std::span<const Vec3> points) {
     if (coord(i) < coord(i0)) i0 = i;
     if (coord(i) > coord(i1)) i1 = i;
   }
-  if (lenD(P(i1) - P(i0)) <= tol) {
+  if (detail::length(P(i1) - P(i0)) <= tol) {
     return fail("the " + std::to_string(n) + " points are all within " + formatNumber(tolF) +
                 " m of one point: a hull needs volume (use a sphere)");
   }
-  D3 u = (1.0 / lenD(P(i1) - P(i0))) * (P(i1) - P(i0));
+  D3 u = (1.0 / detail::length(P(i1) - P(i0))) * (P(i1) - P(i0));
   int i2 = -1;
   double bestLine = 0;
   for (int i : kept) {
-    double dl = lenD(crossD(P(i) - P(i0), u));
+    double dl = detail::length(detail::cross(P(i) - P(i0), u));
     if (dl > bestLine) {
       bestLine = dl;
       i2 = i;
@@ -386,12 +365,12 @@ Result<Hull3Build> computeHull3(std::span<const Vec3> points) {
     return fail("the points are collinear (within " + formatNumber(tolF) +
                 " m of a line): a hull needs volume (use a capsule)");
   }
-  D3 pn = crossD(P(i1) - P(i0), P(i2) - P(i0));
-  pn = (1.0 / lenD(pn)) * pn;
+  D3 pn = detail::cross(P(i1) - P(i0), P(i2) - P(i0));
+  pn = (1.0 / detail::length(pn)) * pn;
   int i3 = -1;
   double bestPlane = 0;
   for (int i : kept) {
-    double dp = std::fabs(dotD(pn, P(i) - P(i0)));
+    double dp = std::fabs(detail::dot(pn, P(i) - P(i0)));
     if (dp > bestPlane) {
       bestPlane = dp;
       i3 = i;
@@ -435,7 +414,7 @@ Result<Hull3Build> computeHull3(std::span<const Vec3> points) {
     if (!tri[t].alive) continue;
     seeds.push_back(t);
     const Face& f = tri[t];
-    area[t] = lenD(crossD(P(f.v[1]) - P(f.v[0]), P(f.v[2]) - P(f.v[0])));
+    area[t] = detail::length(detail::cross(P(f.v[1]) - P(f.v[0]), P(f.v[2]) - P(f.v[0])));
   }
   std::stable_sort(seeds.begin(), seeds.end(),
                    [&](std::size_t a, std::size_t b) { return area[a] > area[b]; });
@@ -454,11 +433,12 @@ Result<Hull3Build> computeHull3(std::span<const Vec3> points) {
         // A triangle facing the other way joins only if it is a sliver (height within the
         // tolerance, so its normal means nothing): thick planes can leave such a fold.
         D3 e0 = P(fh.v[1]) - P(fh.v[0]), e1 = P(fh.v[2]) - P(fh.v[1]), e2 = P(fh.v[0]) - P(fh.v[2]);
-        double longest = std::max(lenD(e0), std::max(lenD(e1), lenD(e2)));
-        bool sliver = lenD(crossD(e0, e1)) <= tol * longest;
-        bool coplanar = sliver || dotD(fh.n, seed.n) > 0;
+        double longest =
+            std::max(detail::length(e0), std::max(detail::length(e1), detail::length(e2)));
+        bool sliver = detail::length(detail::cross(e0, e1)) <= tol * longest;
+        bool coplanar = sliver || detail::dot(fh.n, seed.n) > 0;
         for (int q = 0; q < 3 && coplanar; ++q)
-          coplanar = std::fabs(dotD(seed.n, P(fh.v[q])) - seed.d) <= mergeTol;
+          coplanar = std::fabs(detail::dot(seed.n, P(fh.v[q])) - seed.d) <= mergeTol;
         if (!coplanar) continue;
         group[static_cast<std::size_t>(h)] = g;
         members.push_back(h);
@@ -526,10 +506,10 @@ Result<Hull3Build> computeHull3(std::span<const Vec3> points) {
       D3 a = P(loop[k]), b = P(loop[(k + 1) % loop.size()]);
       nn = nn + D3{(a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y)};
     }
-    nn = (1.0 / lenD(nn)) * nn;
+    nn = (1.0 / detail::length(nn)) * nn;
     double off = -std::numeric_limits<double>::infinity();
     for (int v : loop)
-      off = std::max(off, dotD(nn, P(v)));
+      off = std::max(off, detail::dot(nn, P(v)));
     HullFace3& face = hull.faces[fi];
     face.normal = {static_cast<float>(nn.x), static_cast<float>(nn.y), static_cast<float>(nn.z)};
     face.offset = static_cast<float>(off);
@@ -568,7 +548,7 @@ Result<Hull3Build> computeHull3(std::span<const Vec3> points) {
   for (const Poly& f : polys) {
     for (std::size_t k = 1; k + 1 < f.loop.size(); ++k) {
       D3 a = P(f.loop[0]) - ref, b = P(f.loop[k]) - ref, d = P(f.loop[k + 1]) - ref;
-      double v6 = dotD(a, crossD(b, d));
+      double v6 = detail::dot(a, detail::cross(b, d));
       vol6 += v6;
       c = c + v6 * (a + b + d);
     }
@@ -583,7 +563,7 @@ Result<Hull3Build> computeHull3(std::span<const Vec3> points) {
     double h = -std::numeric_limits<double>::infinity();
     for (int fi = 0; fi < hull.faceCount; ++fi) {
       const HullFace3& face = hull.faces[fi];
-      h = std::max(h, dotD(toD(face.normal), P(i)) - static_cast<double>(face.offset));
+      h = std::max(h, detail::dot(toDouble(face.normal), P(i)) - static_cast<double>(face.offset));
     }
     if (h > 2.0 * tol) {
       return fail("quickhull: points[" + std::to_string(i) + "] is outside the hull (internal)");
@@ -601,7 +581,7 @@ namespace {
 // Signed distance of v from the face's plane, in double: far from the origin the float
 // dot product alone rounds by more than the tolerances checked here.
 double planeDistance(const HullFace3& face, Vec3 v) {
-  return dotD(toD(face.normal), toD(v)) - static_cast<double>(face.offset);
+  return detail::dot(toDouble(face.normal), toDouble(v)) - static_cast<double>(face.offset);
 }
 }  // namespace
 
@@ -643,8 +623,9 @@ Status validateHull3(const Hull3& hull) {
         return fail(name + " is not planar: vertex " + std::to_string(ia) + " is off its plane");
       Vec3 b = hull.vertices[hull.faceVertices[face.first + (k + 1) % face.count]];
       Vec3 c = hull.vertices[hull.faceVertices[face.first + (k + 2) % face.count]];
-      if (dotD(crossD(toD(b) - toD(a), toD(c) - toD(b)), toD(face.normal)) <
-          -static_cast<double>(tol) * lenD(toD(c) - toD(b)))
+      if (detail::dot(detail::cross(toDouble(b) - toDouble(a), toDouble(c) - toDouble(b)),
+                      toDouble(face.normal)) <
+          -static_cast<double>(tol) * detail::length(toDouble(c) - toDouble(b)))
         return fail(name + " is not convex (counter-clockwise seen from outside)");
     }
     for (int i = 0; i < nv; ++i) {
