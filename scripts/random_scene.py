@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes scenes/random-2000.json: 2,000 random dynamic shapes of every kind falling into a
-box of twenty bins with static segments in the way, sleeping on (issue 19's determinism scene; see
+box of twenty bins with static segments in the way, sleeping on (the determinism scene; see
 docs/determinism.md, "Builds").
 
     scripts/random_scene.py > scenes/random-2000.json

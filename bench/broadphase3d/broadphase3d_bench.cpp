@@ -1,7 +1,7 @@
 // 3D broad-phase benchmark: Quack's DynamicTree3 and loose Octree (through BroadPhase3)
 // against Bullet's btDbvtBroadphase, on the same workload, in one run.
 //
-// Workload (issue 32): N boxes with half-extents uniform in [0.25, 0.5] m whose volumes sum
+// Workload: N boxes with half-extents uniform in [0.25, 0.5] m whose volumes sum
 // to an eighth of a cubic world; each frame the moving ones (100% or a given percentage)
 // take a random-walk step of at most 0.05 m in a random direction; W warm-up frames, then F
 // timed frames of "update + pairs". Every library drives its own copy of the scene, and the

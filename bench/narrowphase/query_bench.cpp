@@ -1,4 +1,4 @@
-// Queries as a game makes them (issue 31): every query builds its two transforms from the
+// Queries as a game makes them: every query builds its two transforms from the
 // bodies' angles inside the timed loop, then asks the kernel. Quack beside Box2D 2.4.1
 // (Debian libbox2d-dev, QUACK_HAVE_BOX2D) and Box2D v3 (QUACK_BOX2D_V3_DIR,
 // QUACK_HAVE_BOX2D_V3) on the same queries in the same run. docs/narrow-phase.md,

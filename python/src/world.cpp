@@ -86,7 +86,7 @@ class PyWorld {
 
 // Marks the world as stepping for the lifetime of one `step` call, whatever leaves it (a
 // return, an exception from the world such as std::bad_alloc): the world is never left
-// "stepping" by an exception (issue 28, item 6).
+// "stepping" by an exception.
 class StepGuard {
  public:
   explicit StepGuard(PyWorld& w) : w_(w) {

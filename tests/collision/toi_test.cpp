@@ -1,4 +1,4 @@
-// Time of impact: hand-worked cases, the thin-wall cases of issue 7 (a bullet at 1,000 m/s
+// Time of impact: hand-worked cases, the thin-wall cases (a bullet at 1,000 m/s
 // and a fast-spinning rod), dense sampling of the distance along random sweeps, swapping A
 // and B, rigid motion of both sweeps, and bad input.
 
@@ -257,7 +257,7 @@ TEST(Toi, AgreesWithDenseSampling) {
   EXPECT_LE(counts[3], 6);  // failures are allowed, but rare; they are never late
 }
 
-// The second-order search along an axis (issue 18) runs when one shape turns much more than
+// The second-order search along an axis runs when one shape turns much more than
 // the other: a spinning shape against a still one, its answer checked against 2,001 samples
 // of the exact distance, and the answer's distance against the band.
 TEST(Toi, OneShapeTurningAgreesWithDenseSampling) {
@@ -304,8 +304,8 @@ TEST(Toi, OneShapeTurningAgreesWithDenseSampling) {
   EXPECT_LE(counts[3], 4);
 }
 
-// The bounds that answer before any distance evaluation, or say where the search starts
-// (issue 18): the shapes' circles about their centres of mass, and a still shape's edge
+// The bounds that answer before any distance evaluation, or say where the search starts:
+// the shapes' circles about their centres of mass, and a still shape's edge
 // lines against the other's circle.
 // They may settle only pairs that stay beyond the aim (target + half the tolerance)
 // throughout; what they

@@ -521,7 +521,7 @@ def test_sensor_end_callback():
 
 
 def _entry_points(w, ball, shape):
-    """Every call that reads or writes the world, by name (issue 28, item 5)."""
+    """Every call that reads or writes the world, by name."""
     n = w.body_count
     return {
         "validate": w.validate,

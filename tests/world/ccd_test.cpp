@@ -1,4 +1,4 @@
-// Continuous collision in the world (issue 7): bullets at 1,000 m/s against a 1 cm wall, a
+// Continuous collision in the world: bullets at 1,000 m/s against a 1 cm wall, a
 // thin fast-spinning rod against a thin wall, time-of-impact events in time order, hundreds
 // of simultaneous impacts, bullets against dynamic bodies, determinism.
 
@@ -221,7 +221,7 @@ TEST(Ccd, BulletIsRecheckedAgainstABodyThatAnEarlierEventMoved) {
   ASSERT_TRUE(testing::stepAndValidate(world));
   const auto& toi = world.events().toi;
   // The box at the wall, then the bullet and the box (found by either sweep: both are
-  // followed now, issue 18), then possibly the box, set moving by the bullet, at the wall
+  // followed now), then possibly the box, set moving by the bullet, at the wall
   // again.
   ASSERT_GE(toi.size(), 2u);
   EXPECT_EQ(toi[0].shapeA, boxShape);

@@ -1,6 +1,6 @@
-// The HTML replay written by `quack run --html` (issue 8): opened from a file in headless
+// The HTML replay written by `quack run --html`: opened from a file in headless
 // chromium, it draws non-blank frames, plays, pauses on its button and resumes, scrubs,
-// makes no network request and logs no error; sleeping bodies are drawn faded (issue 16).
+// makes no network request and logs no error; sleeping bodies are drawn faded.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
