@@ -138,8 +138,11 @@ void ContactSet::findNew(BroadPhase& broadPhase, BodyStore& store, TaskRunner& t
     ++count_;
     // A contact with nothing awake in it was made by static (or resting kinematic) geometry
     // created or moved by the game next to a sleeping body: wake that body, or the contact
-    // would never be looked at (sensors excepted: they only watch).
-    if (!c.sensor && !bodyA.awake && !bodyB.awake) {
+    // would never be looked at (sensors excepted: they only watch). Between two sleeping
+    // dynamic bodies (created asleep side by side) it rests with them: whichever wakes first
+    // brings it into the narrow phase, and a touch then joins their islands.
+    if (!c.sensor && !bodyA.awake && !bodyB.awake &&
+        (bodyA.type != BodyType::dynamicBody || bodyB.type != BodyType::dynamicBody)) {
       if (bodyA.type == BodyType::dynamicBody) toWake.push_back(shapeA.body);
       if (bodyB.type == BodyType::dynamicBody) toWake.push_back(shapeB.body);
     }
@@ -180,6 +183,9 @@ void ContactSet::update(const WorldDef& def, const BroadPhase& broadPhase, BodyS
                  });
                });
   updateOutcome_.resize(updateList_.size());
+  ++simStamp_;
+  if (sims.size() < contacts.size()) sims.resize(contacts.size());
+  const std::uint64_t stamp = simStamp_;
   // Each contact on its own, on any worker: it reads shapes and bodies and writes only
   // itself and its outcome (docs/world.md, "Threads").
   const BodyStore& cstore = store;
@@ -188,7 +194,9 @@ void ContactSet::update(const WorldDef& def, const BroadPhase& broadPhase, BodyS
       [&](int first, int last, int) {
         for (int k = first; k < last; ++k) {
           const auto at = static_cast<std::size_t>(k);
-          updateOutcome_[at] = updateOne(contacts[updateList_[at]], def, broadPhase, cstore, edges);
+          const std::uint32_t i = updateList_[at];
+          updateOutcome_[at] =
+              updateOne(contacts[i], sims[i], stamp, def, broadPhase, cstore, edges);
         }
       },
       TaskRunner::kHeavyRangesPerWorker);
@@ -220,9 +228,39 @@ void ContactSet::update(const WorldDef& def, const BroadPhase& broadPhase, BodyS
   }
 }
 
-ContactSet::Outcome ContactSet::updateOne(Contact& c, const WorldDef& def,
-                                          const BroadPhase& broadPhase, const BodyStore& store,
-                                          const GhostEdges& edges) {
+void fillContactSim(ContactSim& sim, const Contact& c, Vec2 centerA, Vec2 localCenterA,
+                    Vec2 centerB, Vec2 localCenterB) {
+  const Vec2 n = c.manifold.normal;
+  sim.normal = n;
+  sim.friction = c.friction;
+  sim.restitution = c.restitution;
+  sim.pointCount = c.manifold.pointCount;
+  for (int j = 0; j < c.manifold.pointCount; ++j) {
+    const ManifoldPoint& mp = c.manifold.points[j];
+    ContactSim::Point& p = sim.points[j];
+    if (c.recycled) {
+      // A recycled manifold (recycle, above): the arms from each centre of mass to the
+      // point as they were when the manifold was computed, not turned with the bodies
+      // since. Box2D v3 does the same (its anchors stay as computed while a contact is
+      // recycled; physics_world.c and contact_solver.c, read for understanding). Arms that
+      // turn with the bodies while the normal stays put let a column's tilt move its
+      // contact forces the way that tilts it further: columns of 15 boxes or more topple so
+      // (docs/world.md, "Contact recycling and point order").
+      p.rA = rotate(c.cachedA.q, c.localA[j] - localCenterA);
+      p.rB = rotate(c.cachedB.q, c.localB[j] - localCenterB);
+    } else {
+      p.rA = mp.point - centerA;
+      p.rB = mp.point - centerB;
+    }
+    p.baseSeparation = mp.separation - dot(p.rB - p.rA, n);
+    p.normalImpulse = c.normalImpulse[j];
+    p.tangentImpulse = c.tangentImpulse[j];
+  }
+}
+
+ContactSet::Outcome ContactSet::updateOne(Contact& c, ContactSim& sim, std::uint64_t stamp,
+                                          const WorldDef& def, const BroadPhase& broadPhase,
+                                          const BodyStore& store, const GhostEdges& edges) {
   const Shape& sa = store.shapes[c.shapeA];
   const Shape& sb = store.shapes[c.shapeB];
   if (!overlaps(broadPhase.fatBox(sa.proxy), broadPhase.fatBox(sb.proxy))) return Outcome::apart;
@@ -239,7 +277,12 @@ ContactSet::Outcome ContactSet::updateOne(Contact& c, const WorldDef& def,
   const Body& bb = store.bodies[sb.body];
   c.recycled = c.touching && c.recycleValid && !ba.fast && !bb.fast &&
                recycle(c, xa, xb, ba, bb, def.contactRecycleDistance);
-  if (c.recycled) return Outcome::kept;  // still touching; impulses, ids and events as they were
+  if (c.recycled) {
+    // Still touching; impulses, ids and events as they were.
+    fillContactSim(sim, c, ba.center, ba.localCenter, bb.center, bb.localCenter);
+    sim.stamp = stamp;
+    return Outcome::kept;
+  }
   Manifold old = c.manifold;
   float oldNormal[kMaxManifoldPoints], oldTangent[kMaxManifoldPoints];
   std::copy(c.normalImpulse, c.normalImpulse + kMaxManifoldPoints, oldNormal);
@@ -268,6 +311,10 @@ ContactSet::Outcome ContactSet::updateOne(Contact& c, const WorldDef& def,
   c.recycleValid = true;
   deriveRecycleReference(c);
   c.touching = c.manifold.pointCount > 0;
+  if (c.touching) {
+    fillContactSim(sim, c, ba.center, ba.localCenter, bb.center, bb.localCenter);
+    sim.stamp = stamp;
+  }
   if (c.touching && !wasTouching) return Outcome::began;
   if (!c.touching && wasTouching) return Outcome::ended;
   return Outcome::kept;

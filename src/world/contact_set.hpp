@@ -49,6 +49,32 @@ struct Contact {
   float baseSeparation[kMaxManifoldPoints] = {};
 };
 
+/// What preparing a touching contact's constraint reads, written by the narrow phase in
+/// contact order while it has the contact and both bodies at hand: the solver then reads
+/// this short record (two cache lines) for each lane instead of the contact record and both
+/// body records (nine lines, in no order: a fifth of a pyramid step went to waiting for
+/// them). Arms run from each centre of mass to the point (world axes); baseSeparation is
+/// the separation less the arms' offset along the normal. Valid in the step whose narrow
+/// phase wrote it (`stamp`, ContactSet::simStamp); a contact the narrow phase skipped
+/// (asleep until its island woke after the narrow phase, or restored from a snapshot) is
+/// prepared from its records through the same function, so the two paths give the same bits.
+struct ContactSim {
+  std::uint64_t stamp = 0;
+  Vec2 normal;
+  float friction = 0.0f, restitution = 0.0f;
+  int pointCount = 0;
+  struct Point {
+    Vec2 rA, rB;
+    float baseSeparation = 0.0f;
+    float normalImpulse = 0.0f, tangentImpulse = 0.0f;
+  };
+  Point points[kMaxManifoldPoints];
+};
+
+/// Fills `sim` from the contact and its bodies (centres of mass where the step begins).
+void fillContactSim(ContactSim& sim, const Contact& c, Vec2 centerA, Vec2 localCenterA,
+                    Vec2 centerB, Vec2 localCenterB);
+
 /// The recycling reference of a freshly computed manifold (localA, localB, baseSeparation)
 /// from the manifold and the poses it was computed at (cachedA, cachedB): the narrow phase
 /// sets it so, and a snapshot re-derives it so (snapshot.cpp), bit for bit.
@@ -57,6 +83,9 @@ void deriveRecycleReference(Contact& c);
 class ContactSet {
  public:
   std::vector<Contact> contacts;  // live where Contact::alive
+  std::vector<ContactSim> sims;   // by contact index (ContactSim)
+  /// The stamp of this step's narrow phase: a sim with it is current.
+  std::uint64_t simStamp() const noexcept { return simStamp_; }
 
   // For the island set (islands.hpp), which empties them: bodies whose contact began or
   // stopped touching (not sensors), and sleeping bodies a new contact found with nothing
@@ -135,8 +164,9 @@ class ContactSet {
   friend class SnapshotCodec;  // snapshot.cpp reads and rebuilds every field
   // What the narrow phase found for one contact, applied after the parallel part.
   enum class Outcome : std::uint8_t { kept, apart, sensorBegan, sensorEnded, began, ended };
-  static Outcome updateOne(Contact& c, const WorldDef& def, const BroadPhase& broadPhase,
-                           const BodyStore& store, const GhostEdges& edges);
+  static Outcome updateOne(Contact& c, ContactSim& sim, std::uint64_t stamp, const WorldDef& def,
+                           const BroadPhase& broadPhase, const BodyStore& store,
+                           const GhostEdges& edges);
   // Smallest share of the narrow phase handed to a worker.
   static constexpr int kMinContactsPerTask = 64;
   static constexpr int kMinWordsPerTask = 8;  // of 64 contacts, for the gathers
@@ -150,6 +180,7 @@ class ContactSet {
   std::unordered_map<std::uint64_t, std::uint32_t> byPair_;
   std::vector<ProxyPair> pairScratch_;
   std::size_t count_ = 0;
+  std::uint64_t simStamp_ = 0;  // bumped by each update; 0 marks no sim current
   std::vector<std::uint64_t> awake_;
   bool allAwake_ = true;
 };

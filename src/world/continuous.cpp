@@ -11,6 +11,7 @@
 #include "quack/geometry/bounds.hpp"
 
 #include "body_store.hpp"
+#include "contact_set.hpp"
 #include "event_dispatcher.hpp"
 #include "ghost_edges.hpp"
 #include "quack/world/world.hpp"
@@ -104,6 +105,16 @@ void ContinuousPhase::queryParticipants(Aabb box, Visit&& visit) const {
     if (overlaps(fast_[p].box, box)) visit(p);
 }
 
+bool ContinuousPhase::heldBySolver(const BodyStore& store, std::uint32_t shapeA,
+                                   std::uint32_t shapeB) const {
+  const Body& a = store.bodies[store.shapes[shapeA].body];
+  const Body& b = store.bodies[store.shapes[shapeB].body];
+  if (a.bullet || b.bullet || a.type != BodyType::dynamicBody || b.type != BodyType::dynamicBody)
+    return false;
+  const std::uint32_t* c = contacts_->find(shapeA, shapeB);
+  return c != nullptr && contacts_->contacts[*c].touching && !contacts_->contacts[*c].sensor;
+}
+
 bool ContinuousPhase::findImpactWith(SearchScratch& scratch, const BodyStore& store,
                                      const BroadPhase& broadPhase, const GhostEdges& edges,
                                      std::uint32_t fast, bool continuation, ToiCandidate& best,
@@ -156,7 +167,15 @@ bool ContinuousPhase::findImpactWith(SearchScratch& scratch, const BodyStore& st
     const Shape& shape = store.shapes[own];
     const Shape& otherShape = store.shapes[s];
     if (otherShape.def.sensor || !shouldCollide(shape.def.filter, otherShape.def.filter)) return;
+    // Two dynamic bodies that touch at the start of the step (a manifold with points) are
+    // the contact solver's, as two slow bodies are: its speculative contact already stops
+    // them closing further than their gap, so neither can pass through the other. Sweeping
+    // them too made the phase a second solver inside piles (world_suite's compounds, 3,000
+    // bodies raining into a pit: thousands of queued impacts a step). Bullets are always
+    // swept.
+    if (heldBySolver(store, own, s)) return;
     const ShapeProxy otherProxy = makeProxy(otherShape.geometry);
+    ++scratch.toiSearches;
     ToiOutput toi = computeToi(proxy, sweep, otherProxy, otherSweep);
     bool stop = false;
     if ((toi.status == ToiStatus::hit || toi.status == ToiStatus::failed) && toi.t == 0.0f) {
@@ -230,6 +249,16 @@ bool ContinuousPhase::findImpactWith(SearchScratch& scratch, const BodyStore& st
                            : x.sweep;
       };
       const Sweep mine = over(f), theirs = over(g);
+      const Body& otherBody = store.bodies[g.body];
+      // Moving together: when one body moves relative to the other by less than the
+      // fraction of the thinner one's thickness that makes a body fast (kCcdFastFraction),
+      // neither can pass through the other in this step, for the reason a slow body cannot
+      // pass through a wall: the discrete contacts hold them. Neighbours in a falling pile
+      // or a scattered crowd move much alike and end here, without a search.
+      const float relativeMotion = length((theirs.c2 - theirs.c1) - (mine.c2 - mine.c1)) +
+                                   absf(theirs.a2 - theirs.a1) * otherBody.maxExtent +
+                                   absf(mine.a2 - mine.a1) * body.maxExtent;
+      if (relativeMotion < kCcdFastFraction * minf(body.minExtent, otherBody.minExtent)) continue;
       // Bounding circles (each body within its maxExtent of its centre of mass): when the
       // centres, moving linearly, never come within the sum (plus the target and band), no
       // shape pair can meet. Most neighbours of a crowd end here without a search.
@@ -238,7 +267,7 @@ bool ContinuousPhase::findImpactWith(SearchScratch& scratch, const BodyStore& st
       const float rr = lengthSquared(rate);
       const float u = rr > 0.0f ? clampf(-dot(offset, rate) / rr, 0.0f, 1.0f) : 0.0f;
       const float reach =
-          body.maxExtent + store.bodies[g.body].maxExtent + kToiTargetSeparation + kToiTolerance;
+          body.maxExtent + otherBody.maxExtent + kToiTargetSeparation + kToiTolerance;
       if (lengthSquared(offset + u * rate) > reach * reach) continue;
       for (std::uint32_t s : store.bodies[g.body].shapes)
         test(own, proxy, mine, from, s, theirs, p, g.stamp);
@@ -249,9 +278,13 @@ bool ContinuousPhase::findImpactWith(SearchScratch& scratch, const BodyStore& st
 
 void ContinuousPhase::run(const WorldDef& def, BodyStore& store,
                           const std::vector<std::uint64_t>& awake, BroadPhase& broadPhase,
-                          const GhostEdges& edges, EventDispatcher& events, float dt,
-                          TaskRunner& tasks) {
+                          const GhostEdges& edges, const ContactSet& contacts,
+                          EventDispatcher& events, float dt, TaskRunner& tasks) {
+  contacts_ = &contacts;
   pushed.clear();
+  stats_ = {};
+  for (SearchScratch& scratch : scratch_)
+    scratch.toiSearches = 0;
   if (!def.enableContinuous) return;
   fast_.clear();
   sorted_.clear();
@@ -275,6 +308,7 @@ void ContinuousPhase::run(const WorldDef& def, BodyStore& store,
       if (store.bodies[i].fast) addParticipant(store, i, true);
     }
   }
+  stats_.fastBodies = fast_.size();
   if (fast_.empty()) return;
   // Few shapes outside the participants: list them (see listedShapes_). Every shape has a
   // broad-phase proxy; the list holds everything a query would find (its boxes are the fat
@@ -595,6 +629,8 @@ void ContinuousPhase::run(const WorldDef& def, BodyStore& store,
       }
     }
   }
+  for (const SearchScratch& scratch : scratch_)
+    stats_.toiSearches += scratch.toiSearches;
   for (const FastBody& f : fast_)
     participantOf_[f.body] = kNoParticipant;
   for (const WaitNode& node : waitNodes_)

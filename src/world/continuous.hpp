@@ -18,6 +18,7 @@ class BroadPhase;
 namespace quack::detail {
 
 class BodyStore;
+class ContactSet;
 class EventDispatcher;
 class GhostEdges;
 class TaskRunner;
@@ -63,9 +64,18 @@ class ContinuousPhase {
   /// `awake`: a bit per body index for the bodies that moved (IslandSet::awakeBits).
   /// The first search of every fast body runs on the workers (each reads the step's state
   /// and writes only its own result); the queue is filled in participant order.
+  /// `contacts`: the step's contacts, whose touching state (from the start of the step)
+  /// says which pairs of dynamic bodies the contact solver already holds.
   void run(const WorldDef& def, BodyStore& store, const std::vector<std::uint64_t>& awake,
-           BroadPhase& broadPhase, const GhostEdges& edges, EventDispatcher& events, float dt,
-           TaskRunner& tasks);
+           BroadPhase& broadPhase, const GhostEdges& edges, const ContactSet& contacts,
+           EventDispatcher& events, float dt, TaskRunner& tasks);
+
+  /// Figures of the last run (World::ContinuousStats).
+  struct Stats {
+    std::size_t fastBodies = 0;
+    std::size_t toiSearches = 0;
+  };
+  const Stats& stats() const noexcept { return stats_; }
 
   /// Dynamic bodies an impact set moving in the last run (some may be asleep: the world
   /// wakes them).
@@ -78,7 +88,9 @@ class ContinuousPhase {
   struct SearchScratch {
     std::vector<std::uint32_t> candidates;  // shapes near one sweep
     std::vector<std::uint32_t> near;        // participants near one sweep
+    std::size_t toiSearches = 0;            // computeToi calls, for stats_
   };
+  Stats stats_;
   bool findImpact(const BodyStore& store, const BroadPhase& broadPhase, const GhostEdges& edges,
                   std::uint32_t fast, bool continuation, ToiCandidate& best,
                   std::uint32_t onlyBody = 0xffffffffu) {
@@ -96,6 +108,10 @@ class ContinuousPhase {
   // short list that queries scan in full.
   void markMoved(std::uint32_t index);
 
+  // Two dynamic bodies, neither a bullet, that touch at the start of the step (a manifold
+  // with points, from the contact set): the contact solver holds them (see findImpactWith).
+  bool heldBySolver(const BodyStore& store, std::uint32_t shapeA, std::uint32_t shapeB) const;
+  const ContactSet* contacts_ = nullptr;  // during run
   std::vector<FastBody> fast_;
   std::vector<std::uint32_t> participantOf_;  // per body index: its FastBody, or kNoParticipant
   // The participants' swept boxes, indexed for overlap queries: sorted by lower x at the

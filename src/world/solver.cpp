@@ -3,6 +3,7 @@
 // understanding; Catto, "Iterative Dynamics with Temporal Coherence", GDC 2005, for
 // sequential impulses and warm starting). docs/world.md explains the choices.
 
+#include <atomic>
 #include <cmath>
 
 #include "solver.hpp"
@@ -13,11 +14,20 @@
 #include "contact_set.hpp"
 #include "event_dispatcher.hpp"
 #include "quack/math/trig.hpp"
+#include "quack/world/tasks.hpp"
 #include "quack/world/world.hpp"
 #include "simd.hpp"
 #include "task_runner.hpp"
 
 namespace quack::detail {
+
+namespace {
+std::atomic<bool> testReadsRecords{false};
+}  // namespace
+void setTestSolverReadsRecords(bool on) noexcept {
+  testReadsRecords.store(on, std::memory_order_relaxed);
+}
+
 namespace {
 
 Softness makeSoftness(float hertz, float zeta, float h) {
@@ -296,9 +306,19 @@ struct SolverScratch {
   std::vector<std::vector<Pair>> pairParts;  // pairs gathered per range of contacts
   std::vector<std::uint32_t> lane;           // per touching contact: block * width + lane
   std::vector<std::uint8_t> color;           // per touching contact: colour, or kOverflow
-  std::vector<std::int32_t> laneContact;     // per block lane: the touching contact, or -1
-  std::vector<std::uint32_t> slotColors;     // per slot: the colours its body is in
-  std::vector<int> stageBlocks;              // the step's job: blocks per stage
+  // What preparing a constraint reads of an awake body, by slot: filled in slot order with
+  // the slots, so that preparing reads this short array instead of the body records.
+  struct SlotBody {
+    float invMass, invInertia;
+    Vec2 center, localCenter;
+  };
+  std::vector<SlotBody> slotBodies;
+  // Per block lane, in lane order: its pair (contact kNoContact: an empty lane). Preparing
+  // walks this in order and fetches each lane's contact and bodies a few blocks ahead.
+  static constexpr std::uint32_t kNoContact = 0xffffffffu;
+  std::vector<Pair> lanePairs;
+  std::vector<std::uint32_t> slotColors;  // per slot: the colours its body is in
+  std::vector<int> stageBlocks;           // the step's job: blocks per stage
   struct Placed {
     Aabb box;     // of a one-shape body
     bool inside;  // the world holds it
@@ -387,9 +407,16 @@ template <class F>
 }
 
 // One constraint into its lane.
+// A body as preparing reads it: from its slot when awake, else from its record (static,
+// kinematic at rest, or asleep: no mass in the constraint, only its centre).
+struct PrepBody {
+  float invMass, invInertia;
+  Vec2 center, localCenter;
+};
+
 template <class F>
-void prepareLane(ContactBlock<F>& b, int lane, const Contact& c, const Body& bodyA,
-                 const Body& bodyB, const SolverScratch::Pair& pair, const BodyState& A,
+void prepareLane(ContactBlock<F>& b, int lane, const ContactSim& c, const PrepBody& bodyA,
+                 const PrepBody& bodyB, const SolverScratch::Pair& pair, const BodyState& A,
                  const BodyState& B, const StepParams& params) {
   b.slotA[lane] = pair.slotA;
   b.slotB[lane] = pair.slotB;
@@ -398,7 +425,7 @@ void prepareLane(ContactBlock<F>& b, int lane, const Contact& c, const Body& bod
   // here, so no lane ever writes slot 0.
   if (pair.dynamicA) b.writeA |= 1u << lane;
   if (pair.dynamicB) b.writeB |= 1u << lane;
-  const Vec2 n = c.manifold.normal;
+  const Vec2 n = c.normal;
   const Vec2 t = rightPerp(n);
   b.nx[lane] = n.x;
   b.ny[lane] = n.y;
@@ -418,31 +445,17 @@ void prepareLane(ContactBlock<F>& b, int lane, const Contact& c, const Body& bod
   b.massScale[lane] = soft.massScale;
   b.impulseScale[lane] = soft.impulseScale;
   const Vec2 vA{A.vx, A.vy}, vB{B.vx, B.vy};
-  for (int j = 0; j < c.manifold.pointCount; ++j) {
-    const ManifoldPoint& mp = c.manifold.points[j];
+  for (int j = 0; j < c.pointCount; ++j) {
+    const ContactSim::Point& cp = c.points[j];
     auto& p = b.points[j];
-    Vec2 rA, rB;
-    if (c.recycled) {
-      // A recycled manifold (contact_set.cpp, recycle): the arms from each centre of mass
-      // to the point as they were when the manifold was computed, not turned with the
-      // bodies since. Box2D v3 does the same (its anchors stay as computed while a
-      // contact is recycled; physics_world.c and contact_solver.c, read for
-      // understanding). Arms that turn with the bodies while the normal stays put let a
-      // column's tilt move its contact forces the way that tilts it further: columns of
-      // 15 boxes or more topple so (docs/world.md, "Contact recycling and point order").
-      rA = rotate(c.cachedA.q, c.localA[j] - bodyA.localCenter);
-      rB = rotate(c.cachedB.q, c.localB[j] - bodyB.localCenter);
-    } else {
-      rA = mp.point - bodyA.center;
-      rB = mp.point - bodyB.center;
-    }
+    const Vec2 rA = cp.rA, rB = cp.rB;
     p.rAx[lane] = rA.x;
     p.rAy[lane] = rA.y;
     p.rBx[lane] = rB.x;
     p.rBy[lane] = rB.y;
-    p.baseSeparation[lane] = mp.separation - dot(rB - rA, n);
-    p.normalImpulse[lane] = c.normalImpulse[j];
-    p.tangentImpulse[lane] = c.tangentImpulse[j];
+    p.baseSeparation[lane] = cp.baseSeparation;
+    p.normalImpulse[lane] = cp.normalImpulse;
+    p.tangentImpulse[lane] = cp.tangentImpulse;
     const float rnA = cross(rA, n), rnB = cross(rB, n);
     const float kn = mA + mB + iA * rnA * rnA + iB * rnB * rnB;
     p.normalMass[lane] = kn > 0.0f ? 1.0f / kn : 0.0f;
@@ -501,16 +514,62 @@ template <class F>
                                      std::size_t first, std::size_t last, const BodyStore& store,
                                      const ContactSet& contactSet, const StepParams& params) {
   constexpr int W = F::width;
-  const std::vector<Contact>& contacts = contactSet.contacts;
+  const Contact* contacts = contactSet.contacts.data();
+  const ContactSim* sims = contactSet.sims.data();
+  const std::size_t simCount = contactSet.sims.size();
+  // 0 matches no sim (simStamp starts at 1): every lane from the records (the tests' switch).
+  const std::uint64_t stamp =
+      testReadsRecords.load(std::memory_order_relaxed) ? 0 : contactSet.simStamp();
+  const SolverScratch::Pair* lanes = s.lanePairs.data();
+  // Each lane's contact, bodies and states lie anywhere in memory (contacts in index order,
+  // lanes in colour order): the time went to waiting for them (a fifth of a pyramid step
+  // for a tenth of its instructions). They are fetched a few blocks ahead.
+  constexpr std::size_t kAhead = 4;
+  auto fetch = [&](std::size_t bi) {
+    for (int lane = 0; lane < W; ++lane) {
+      const SolverScratch::Pair& pair = lanes[bi * W + static_cast<std::size_t>(lane)];
+      if (pair.contact == SolverScratch::kNoContact) continue;
+      if (pair.contact >= simCount) continue;
+      const char* c = reinterpret_cast<const char*>(sims + pair.contact);
+      for (std::size_t at = 0; at < sizeof(ContactSim); at += 64)
+        __builtin_prefetch(c + at);
+      __builtin_prefetch(c + sizeof(ContactSim) - 1);
+      __builtin_prefetch(&s.states[static_cast<std::size_t>(pair.slotA)]);
+      __builtin_prefetch(&s.states[static_cast<std::size_t>(pair.slotB)]);
+      __builtin_prefetch(&s.slotBodies[static_cast<std::size_t>(pair.slotA)]);
+      __builtin_prefetch(&s.slotBodies[static_cast<std::size_t>(pair.slotB)]);
+    }
+  };
+  for (std::size_t bi = first; bi < last && bi < first + kAhead; ++bi)
+    fetch(bi);
+  auto prepBody = [&](std::uint32_t body, std::int32_t slot, bool dynamic) {
+    if (slot > 0) {
+      const SolverScratch::SlotBody& sb = s.slotBodies[static_cast<std::size_t>(slot)];
+      return PrepBody{dynamic ? sb.invMass : 0.0f, dynamic ? sb.invInertia : 0.0f, sb.center,
+                      sb.localCenter};
+    }
+    const Body& b = store.bodies[body];
+    return PrepBody{0.0f, 0.0f, b.center, b.localCenter};
+  };
   for (std::size_t bi = first; bi < last; ++bi) {
+    if (bi + kAhead < last) fetch(bi + kAhead);
     blocks[bi] = ContactBlock<F>{};
     for (int lane = 0; lane < W; ++lane) {
-      const std::int32_t k = s.laneContact[bi * W + static_cast<std::size_t>(lane)];
-      if (k < 0) continue;
-      const Contact& c = contacts[s.touching[static_cast<std::size_t>(k)]];
-      const SolverScratch::Pair& pair = s.pairs[static_cast<std::size_t>(k)];
-      prepareLane(blocks[bi], lane, c, store.bodies[pair.bodyA], store.bodies[pair.bodyB], pair,
-                  s.states[pair.slotA], s.states[pair.slotB], params);
+      const SolverScratch::Pair& pair = lanes[bi * W + static_cast<std::size_t>(lane)];
+      if (pair.contact == SolverScratch::kNoContact) continue;
+      const PrepBody bodyA = prepBody(pair.bodyA, pair.slotA, pair.dynamicA);
+      const PrepBody bodyB = prepBody(pair.bodyB, pair.slotB, pair.dynamicB);
+      const ContactSim* sim = pair.contact < simCount ? sims + pair.contact : nullptr;
+      ContactSim local;
+      if (sim == nullptr || sim->stamp != stamp) {
+        // Not updated by this step's narrow phase (ContactSim): from the records.
+        fillContactSim(local, contacts[pair.contact], bodyA.center, bodyA.localCenter, bodyB.center,
+                       bodyB.localCenter);
+        sim = &local;
+      }
+      prepareLane(blocks[bi], lane, *sim, bodyA, bodyB, pair,
+                  s.states[static_cast<std::size_t>(pair.slotA)],
+                  s.states[static_cast<std::size_t>(pair.slotB)], params);
     }
   }
 }
@@ -566,9 +625,11 @@ void runStep(SolverScratch& s, std::vector<ContactBlock<F>>& blocks, const World
   const std::size_t blockCount = layoutBlocks<F>(s, blocks, colorStart, stats);
   // Which contact each lane holds, so that blocks can be prepared apart (a block's lanes
   // share its write masks).
-  s.laneContact.assign(blockCount * W, -1);
+  SolverScratch::Pair empty{};
+  empty.contact = SolverScratch::kNoContact;
+  s.lanePairs.assign(blockCount * W, empty);
   for (std::size_t k = 0; k < s.touching.size(); ++k)
-    s.laneContact[s.lane[k]] = static_cast<std::int32_t>(k);
+    s.lanePairs[s.lane[k]] = s.pairs[k];
   ContactBlock<F>* all = blocks.data();
   BodyState* states = s.states.data();
 
@@ -701,6 +762,7 @@ void Solver::solve(const WorldDef& def, BodyStore& store, ContactSet& contactSet
     slotCount += static_cast<std::size_t>(__builtin_popcountll(awake[word]));
   }
   s.states.resize(slotCount);
+  s.slotBodies.resize(slotCount);
   s.sims.resize(slotCount);
   s.slotBody.resize(slotCount);
   s.states[0] = BodyState{};
@@ -723,6 +785,7 @@ void Solver::solve(const WorldDef& def, BodyStore& store, ContactSet& contactSet
         // A dynamic body without rotational inertia (zero density, or segments only) does
         // not turn, whatever spin it was given.
         st.w = (b.type == BodyType::dynamicBody && b.invInertia == 0.0f) ? 0.0f : b.w;
+        s.slotBodies[slot] = {b.invMass, b.invInertia, b.center, b.localCenter};
         SlotSim& m = s.sims[slot];
         m = SlotSim{};
         m.dynamic = b.type == BodyType::dynamicBody;

@@ -387,8 +387,8 @@ void runPhases(detail::WorldState& w, float dt, int substeps) {
   w.contacts.markAwake(w.store, w.islands.awakeBits(), w.islands.awakeCount(), bodyCount);
   w.solver.solve(w.def, w.store, w.contacts, w.islands.awakeBits(), w.broadPhase, w.events, dt,
                  substeps, w.tasks);
-  w.continuous.run(w.def, w.store, w.islands.awakeBits(), w.broadPhase, w.edges, w.events, dt,
-                   w.tasks);
+  w.continuous.run(w.def, w.store, w.islands.awakeBits(), w.broadPhase, w.edges, w.contacts,
+                   w.events, dt, w.tasks);
   // A bullet may have hit a sleeping body: it moves now.
   for (std::uint32_t b : w.continuous.pushed)
     w.islands.wake(w.store, b);

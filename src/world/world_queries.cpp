@@ -159,6 +159,11 @@ World::SolverStats World::solverStats() const noexcept {
   return {st.colors, st.constraints, st.overflow};
 }
 
+World::ContinuousStats World::continuousStats() const noexcept {
+  const auto& st = state().continuous.stats();
+  return {st.fastBodies, st.toiSearches};
+}
+
 std::uint64_t World::stateHash() const noexcept {
   // FNV-1a over the bit patterns, so that any difference at all changes the hash.
   std::uint64_t h = 1469598103934665603ull;

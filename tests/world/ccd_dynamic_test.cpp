@@ -1,4 +1,4 @@
-// Continuous collision between moving bodies (issue 18): sweeps against sweeps, one queue in
+// Continuous collision between moving bodies: sweeps against sweeps, one queue in
 // time order, both bodies answered at the impact, impact callbacks. Each test fails without
 // the phase (two bullets, or two fast bodies, pass through each other at end-of-step poses).
 
@@ -116,6 +116,60 @@ TEST(CcdDynamic, BulletNeverPassesAThinPaddleSpinningAtAHundredRadiansPerSecond)
   // The control: at these speeds the discrete solver alone lets most through untouched.
   RecordProperty("passed_without_continuous", passedWithout);
   EXPECT_GT(passedWithout, 20);
+}
+
+// Bodies that move together are the contact solver's, not the continuous phase's. A train
+// of ten 0.2 m boxes at 60 m/s (1 m a step, 5x their thickness), the first five touching,
+// the others 5 cm apart, on frictionless ice: all ten are fast, yet no pair of them can
+// pass through the other (they move alike), so the first step, before the train reaches
+// the wall, runs no time-of-impact search at all. Then the wall stops them, none passes it.
+TEST(CcdDynamic, BodiesMovingTogetherAreLeftToTheContactSolver) {
+  World world = World::create({.gravity = {0, 0}}).value();
+  BodyId wall = world.createBody({.type = BodyType::staticBody, .position = {6, 0}}).value();
+  (void)world.createShape(wall, {}, makeBox(0.5f, 2.0f).value()).value();
+  std::vector<BodyId> train;
+  float x = 0.0f;
+  for (int i = 0; i < 10; ++i) {
+    BodyId b = world.createBody({.position = {x, 0}, .linearVelocity = {60, 0}}).value();
+    (void)world.createShape(b, {.friction = 0.0f}, makeBox(0.1f, 0.1f).value()).value();
+    train.push_back(b);
+    x -= i < 4 ? 0.2f : 0.25f;  // the first five touch, the rest 5 cm apart
+  }
+  ASSERT_TRUE(testing::stepAndValidate(world));
+  EXPECT_EQ(world.continuousStats().fastBodies, 10u);
+  EXPECT_EQ(world.continuousStats().toiSearches, 0u);
+  EXPECT_TRUE(world.events().toi.empty());
+  for (BodyId b : train)
+    EXPECT_NEAR(world.linearVelocity(b).x, 60.0f, 1e-3f);
+  for (int step = 0; step < 30; ++step)
+    ASSERT_TRUE(testing::stepAndValidate(world));
+  for (BodyId b : train)
+    EXPECT_LT(world.position(b).x, 5.5f);
+}
+
+// A box that touches a still box at the start of the step (a manifold with points) and
+// leaves it at 60 m/s: the contact solver has the pair, so the phase runs no search for it
+// though the box is fast and the other is within its swept box. A bullet in the same place
+// is still searched against it. Either way the box leaves and the other stays.
+TEST(CcdDynamic, ATouchingPairOfDynamicBodiesIsTheSolversUnlessABulletIsInIt) {
+  for (bool bullet : {false, true}) {
+    SCOPED_TRACE(bullet ? "bullet" : "not a bullet");
+    World world = World::create({.gravity = {0, 0}}).value();
+    BodyId a = world.createBody({.position = {0, 0}, .linearVelocity = {-60, 0}, .bullet = bullet})
+                   .value();
+    (void)world.createShape(a, {.friction = 0.0f}, makeBox(0.1f, 0.1f).value()).value();
+    BodyId b = world.createBody({.position = {0.2f, 0}}).value();
+    (void)world.createShape(b, {.friction = 0.0f}, makeBox(0.1f, 0.1f).value()).value();
+    ASSERT_TRUE(testing::stepAndValidate(world));
+    EXPECT_EQ(world.continuousStats().fastBodies, 1u);
+    if (bullet)
+      EXPECT_GT(world.continuousStats().toiSearches, 0u);
+    else
+      EXPECT_EQ(world.continuousStats().toiSearches, 0u);
+    EXPECT_NEAR(world.linearVelocity(a).x, -60.0f, 1e-3f);
+    EXPECT_NEAR(world.position(a).x, -1.0f, 1e-3f);
+    EXPECT_EQ(world.linearVelocity(b).x, 0.0f);
+  }
 }
 
 // Two fast boxes (not bullets) whose paths cross at right angles, both reaching the crossing

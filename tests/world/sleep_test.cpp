@@ -321,6 +321,36 @@ TEST(Sleep, ABulletWakesTheSleepingBodyItHits) {
 }
 
 // A static wall moved by hand into a sleeping box that it was near but not touching.
+// Dynamic bodies created asleep side by side (a wall of crates waiting to be knocked down)
+// stay asleep: their new contacts rest with them (static geometry created onto a sleeping
+// body still wakes it, below). A ball that hits one wakes it, and through the contact that
+// then begins touching, its neighbour.
+TEST(Sleep, BodiesCreatedAsleepSideBySideStayAsleepUntilHit) {
+  World world = World::create({.gravity = {0, 0}}).value();
+  std::vector<BodyId> crates;
+  for (int i = 0; i < 2; ++i) {
+    BodyId b =
+        world.createBody({.position = {0.5f * static_cast<float>(i), 0}, .isAwake = false}).value();
+    (void)world.createShape(b, {}, makeBox(0.25f, 0.25f).value()).value();
+    ASSERT_TRUE(world.setAwake(b, false).ok());
+    crates.push_back(b);
+  }
+  for (int step = 0; step < 10; ++step)
+    ASSERT_TRUE(testing::stepAndValidate(world));
+  EXPECT_EQ(world.awakeBodyCount(), 0u);
+  EXPECT_FALSE(world.isAwake(crates[0]));
+  EXPECT_FALSE(world.isAwake(crates[1]));
+  BodyId ball = world.createBody({.position = {-2, 0}, .linearVelocity = {5, 0}}).value();
+  (void)world.createShape(ball, {}, makeCircle({}, 0.2f).value()).value();
+  bool bothWoke = false;
+  for (int step = 0; step < 60 && !bothWoke; ++step) {
+    ASSERT_TRUE(testing::stepAndValidate(world));
+    bothWoke = world.isAwake(crates[0]) && world.isAwake(crates[1]);
+  }
+  EXPECT_TRUE(bothWoke);
+  EXPECT_GT(world.position(crates[1]).x, 0.5f);  // the far crate was pushed
+}
+
 TEST(Sleep, StaticGeometryMovedIntoASleepingBodyWakesIt) {
   World world = World::create().value();
   addStaticBox(world, {0, -0.5f}, {20, 0.5f});

@@ -32,6 +32,10 @@ namespace detail {
 /// that every world test can run on the pool, under ThreadSanitizer too. 0 or 1 turns it
 /// off. Not for games: set WorldDef::workerCount.
 void setTestWorkerCount(int workers) noexcept;
+/// For Quack's own tests: when true, the solver prepares every contact from the contact
+/// and body records, as it does for a contact the step's narrow phase did not update,
+/// instead of from the narrow phase's compact record; the two must give the same bits.
+void setTestSolverReadsRecords(bool on) noexcept;
 }  // namespace detail
 
 }  // namespace quack

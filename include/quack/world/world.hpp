@@ -449,6 +449,13 @@ class World {
     std::size_t overflow = 0;
   };
   SolverStats solverStats() const noexcept;
+  /// What the continuous phase did in the last step: the bodies it found fast, and the
+  /// time-of-impact searches it ran (docs/continuous.md, "In the world").
+  struct ContinuousStats {
+    std::size_t fastBodies = 0;
+    std::size_t toiSearches = 0;
+  };
+  ContinuousStats continuousStats() const noexcept;
   /// The workers the step's work is spread over: WorldDef::workerCount, or fewer when the
   /// system would not start the pool's threads (a WebAssembly build without threads). The
   /// result is the same to the bit for any number (docs/world.md, "Threads").
