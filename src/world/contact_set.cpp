@@ -73,8 +73,7 @@ void ContactSet::destroy(std::uint32_t index, BodyStore& store, EventDispatcher&
                          bool emitEnd, bool inStep) {
   Contact& c = contacts[index];
   if (emitEnd && c.touching) events.contactEnded(store, c, inStep);
-  if (c.touching && !c.sensor)
-    ended.push_back({store.shapes[c.shapeA].body, store.shapes[c.shapeB].body});
+  if (c.touching && !c.sensor) ended.push_back({c.bodyA, c.bodyB});
   for (std::uint32_t s : {c.shapeA, c.shapeB}) {
     auto& list = store.shapes[s].contacts;
     list.erase(std::find(list.begin(), list.end(), index));
@@ -126,6 +125,8 @@ void ContactSet::findNew(BroadPhase& broadPhase, BodyStore& store, TaskRunner& t
     if (shapeB.def.sensor) std::swap(sa, sb);
     c.shapeA = sa;
     c.shapeB = sb;
+    c.bodyA = store.shapes[sa].body;
+    c.bodyB = store.shapes[sb].body;
     c.sensor = store.shapes[sa].def.sensor;
     const ShapeGeometry& ga = store.shapes[sa].geometry;
     const ShapeGeometry& gb = store.shapes[sb].geometry;
@@ -165,20 +166,25 @@ void ContactSet::markAwake(const BodyStore& store, const std::vector<std::uint64
 }
 
 void ContactSet::update(const WorldDef& def, const BroadPhase& broadPhase, BodyStore& store,
-                        const GhostEdges& edges, EventDispatcher& events, TaskRunner& tasks) {
+                        const GhostEdges& edges, EventDispatcher& events, TaskRunner& tasks,
+                        const std::vector<std::uint64_t>& awakeBodies) {
+  auto isAwake = [&](std::uint32_t body) {
+    return body / 64 < awakeBodies.size() && ((awakeBodies[body / 64] >> (body % 64)) & 1u) != 0;
+  };
   // The contacts to look at, in index order.
   // Gathered on the workers (scattered reads of contacts, shapes and bodies), joined in order.
-  const BodyStore& readStore = store;
+  [[maybe_unused]] const BodyStore& readStore = store;
   tasks.gather(awakeWordCount(), kMinWordsPerTask, updateParts_, updateList_,
                [&](int first, int last, std::vector<std::uint32_t>& list) {
                  forEachAwakeIn(first, last, [&](std::uint32_t i) {
                    const Contact& c = contacts[i];
                    if (!c.alive) return;
                    // Nothing in it moves (both asleep, or asleep and static): kept as it is,
-                   // touching or not, with its impulses (docs/world.md, "Sleeping").
-                   const Shape& sa = readStore.shapes[c.shapeA];
-                   const Shape& sb = readStore.shapes[c.shapeB];
-                   if (!readStore.bodies[sa.body].awake && !readStore.bodies[sb.body].awake) return;
+                   // touching or not, with its impulses (docs/world.md, "Sleeping"). The
+                   // awake bits mirror Body::awake in a few cache lines.
+                   QUACK_ASSERT(isAwake(c.bodyA) == readStore.bodies[c.bodyA].awake &&
+                                isAwake(c.bodyB) == readStore.bodies[c.bodyB].awake);
+                   if (!isAwake(c.bodyA) && !isAwake(c.bodyB)) return;
                    list.push_back(i);
                  });
                });
@@ -218,11 +224,11 @@ void ContactSet::update(const WorldDef& def, const BroadPhase& broadPhase, BodyS
         break;
       case Outcome::began:
         events.events.begin.push_back({store.shapeId(c.shapeA), store.shapeId(c.shapeB)});
-        began.push_back({store.shapes[c.shapeA].body, store.shapes[c.shapeB].body});
+        began.push_back({c.bodyA, c.bodyB});
         break;
       case Outcome::ended:
         events.contactEnded(store, c, true);
-        ended.push_back({store.shapes[c.shapeA].body, store.shapes[c.shapeB].body});
+        ended.push_back({c.bodyA, c.bodyB});
         break;
     }
   }
@@ -351,6 +357,8 @@ Status ContactSet::validate(const BodyStore& store) const {
         return fail(name + ": not listed once by shape " + std::to_string(s));
     }
     if (c.shapeA == c.shapeB) return fail(name + ": a shape with itself");
+    if (c.bodyA != store.shapes[c.shapeA].body || c.bodyB != store.shapes[c.shapeB].body)
+      return fail(name + ": its bodies are not its shapes' bodies");
     const std::uint32_t* found = find(c.shapeA, c.shapeB);
     if (found == nullptr || *found != i) return fail(name + ": pair map disagrees");
     if (c.sensor != store.shapes[c.shapeA].def.sensor)

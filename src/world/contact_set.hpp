@@ -28,6 +28,7 @@ struct Contact {
   bool touching = false;
   bool sensor = false;  // shapeA is the sensor
   std::uint32_t shapeA = 0, shapeB = 0;
+  std::uint32_t bodyA = 0, bodyB = 0;  // the shapes' bodies, so the step's walks skip the shapes
   ManifoldFn fn = nullptr;
   float friction = 0.0f, restitution = 0.0f;
   Manifold manifold;
@@ -143,8 +144,10 @@ class ContactSet {
   /// The narrow phase: manifolds and touching state of every contact; contacts whose fat
   /// boxes parted are destroyed. Begin and end events go to `events`. The manifolds are
   /// computed on the workers; what follows from them is applied in contact order.
+  /// `awakeBodies`: a bit per body index for the awake bodies (IslandSet::awakeBits).
   void update(const WorldDef& def, const BroadPhase& broadPhase, BodyStore& store,
-              const GhostEdges& edges, EventDispatcher& events, TaskRunner& tasks);
+              const GhostEdges& edges, EventDispatcher& events, TaskRunner& tasks,
+              const std::vector<std::uint64_t>& awakeBodies);
   /// A body was moved by hand (setTransform): its contacts compute their manifolds anew.
   void forgetPoses(const BodyStore& store, std::uint32_t body);
   /// Every contact computes its manifold anew in the next update.

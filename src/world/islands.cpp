@@ -28,7 +28,7 @@ void forEachTouching(const BodyStore& store, const ContactSet& contacts, std::ui
     for (std::uint32_t ci : store.shapes[s].contacts) {
       const Contact& c = contacts.contacts[ci];
       if (!c.touching || c.sensor) continue;
-      const std::uint32_t a = store.shapes[c.shapeA].body, b = store.shapes[c.shapeB].body;
+      const std::uint32_t a = c.bodyA, b = c.bodyB;
       f(a == body ? b : a);
     }
   }
@@ -167,7 +167,7 @@ void IslandSet::wakeNear(BodyStore& store, const ContactSet& contacts, std::uint
     for (std::uint32_t ci : store.shapes[s].contacts) {
       const Contact& c = contacts.contacts[ci];
       if (c.sensor) continue;
-      const std::uint32_t a = store.shapes[c.shapeA].body, b = store.shapes[c.shapeB].body;
+      const std::uint32_t a = c.bodyA, b = c.bodyB;
       wake(store, a == body ? b : a);
     }
   }
@@ -406,7 +406,7 @@ Status IslandSet::validate(const BodyStore& store, const ContactSet& contacts) c
   }
   for (const Contact& c : contacts.contacts) {
     if (!c.alive || !c.touching || c.sensor) continue;
-    const std::uint32_t a = store.shapes[c.shapeA].body, b = store.shapes[c.shapeB].body;
+    const std::uint32_t a = c.bodyA, b = c.bodyB;
     if (isDynamic(store, a) && isDynamic(store, b) &&
         store.bodies[a].island != store.bodies[b].island)
       return fail("bodies " + std::to_string(a) + " and " + std::to_string(b) +

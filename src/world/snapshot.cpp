@@ -1029,6 +1029,8 @@ Status SnapshotCodec::readMotion(std::span<const std::uint8_t> motion, std::uint
     // What findNew derives from the shapes (contact_set.cpp), derived the same way.
     const Shape& sa = store.shapes[c.shapeA];
     const Shape& sb = store.shapes[c.shapeB];
+    c.bodyA = sa.body;
+    c.bodyB = sb.body;
     c.fn = findManifoldFn(shapeType(sa.geometry), shapeType(sb.geometry));
     c.friction = std::sqrt(sa.def.friction * sb.def.friction);
     c.restitution = maxf(sa.def.restitution, sb.def.restitution);

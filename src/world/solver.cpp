@@ -738,7 +738,6 @@ void Solver::solve(const WorldDef& def, BodyStore& store, ContactSet& contactSet
                    EventDispatcher& events, float dt, int substeps, TaskRunner& tasks) {
   SolverScratch& s = *scratch_;
   std::vector<Body>& bodies = store.bodies;
-  const std::vector<Shape>& shapes = store.shapes;
   const std::vector<Contact>& contacts = contactSet.contacts;
   StepParams params;
   params.h = dt / static_cast<float>(substeps);
@@ -808,7 +807,7 @@ void Solver::solve(const WorldDef& def, BodyStore& store, ContactSet& contactSet
                  contactSet.forEachAwakeIn(first, last, [&](std::uint32_t ci) {
                    const Contact& c = contacts[ci];
                    if (!c.alive || !c.touching || c.sensor) return;
-                   const std::uint32_t a = shapes[c.shapeA].body, b = shapes[c.shapeB].body;
+                   const std::uint32_t a = c.bodyA, b = c.bodyB;
                    const std::int32_t sa = s.bodySlot[a], sb = s.bodySlot[b];
                    // Solved when a dynamic body in it is awake (contacts of sleeping bodies
                    // rest).

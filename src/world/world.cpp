@@ -380,7 +380,8 @@ void runPhases(detail::WorldState& w, float dt, int substeps) {
     // recycled across the change.
     w.contacts.forgetAllPoses();
   }
-  w.contacts.update(w.def, w.broadPhase, w.store, w.edges, w.events, w.tasks);
+  w.contacts.update(w.def, w.broadPhase, w.store, w.edges, w.events, w.tasks,
+                    w.islands.awakeBits());
   // Contacts that began touching join islands, and wake the sleeping ones they reach
   // (whose contacts, unchanged while they slept, the solver now takes too).
   w.islands.applyContactChanges(w.store, w.contacts);
