@@ -80,6 +80,7 @@ void ContactSet::destroy(std::uint32_t index, BodyStore& store, EventDispatcher&
   }
   byPair_.erase(pairKey(c.shapeA, c.shapeB));
   c.alive = false;
+  heads_[index].alive = false;
   free_.push_back(index);
   --count_;
 }
@@ -117,6 +118,7 @@ void ContactSet::findNew(BroadPhase& broadPhase, BodyStore& store, TaskRunner& t
     } else {
       index = static_cast<std::uint32_t>(contacts.size());
       contacts.emplace_back();
+      heads_.emplace_back();
     }
     Contact& c = contacts[index];
     c = Contact{};
@@ -128,6 +130,7 @@ void ContactSet::findNew(BroadPhase& broadPhase, BodyStore& store, TaskRunner& t
     c.bodyA = store.shapes[sa].body;
     c.bodyB = store.shapes[sb].body;
     c.sensor = store.shapes[sa].def.sensor;
+    heads_[index] = {c.bodyA, c.bodyB, true, false, c.sensor};
     const ShapeGeometry& ga = store.shapes[sa].geometry;
     const ShapeGeometry& gb = store.shapes[sb].geometry;
     c.fn = findManifoldFn(shapeType(ga), shapeType(gb));
@@ -177,7 +180,7 @@ void ContactSet::update(const WorldDef& def, const BroadPhase& broadPhase, BodyS
   tasks.gather(awakeWordCount(), kMinWordsPerTask, updateParts_, updateList_,
                [&](int first, int last, std::vector<std::uint32_t>& list) {
                  forEachAwakeIn(first, last, [&](std::uint32_t i) {
-                   const Contact& c = contacts[i];
+                   const ContactHead& c = heads_[i];
                    if (!c.alive) return;
                    // Nothing in it moves (both asleep, or asleep and static): kept as it is,
                    // touching or not, with its impulses (docs/world.md, "Sleeping"). The
@@ -203,6 +206,7 @@ void ContactSet::update(const WorldDef& def, const BroadPhase& broadPhase, BodyS
           const std::uint32_t i = updateList_[at];
           updateOutcome_[at] =
               updateOne(contacts[i], sims[i], stamp, def, broadPhase, cstore, edges);
+          heads_[i].touching = contacts[i].touching;
         }
       },
       TaskRunner::kHeavyRangesPerWorker);
@@ -343,7 +347,23 @@ void ContactSet::forgetPoses(const BodyStore& store, std::uint32_t body) {
       contacts[c].recycleValid = false;
 }
 
+void ContactSet::rebuildHeads() {
+  heads_.resize(contacts.size());
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const Contact& c = contacts[i];
+    heads_[i] = {c.bodyA, c.bodyB, c.alive, c.touching, c.sensor};
+  }
+}
+
 Status ContactSet::validate(const BodyStore& store) const {
+  if (heads_.size() != contacts.size()) return fail("contact heads and contacts differ in count");
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const Contact& c = contacts[i];
+    const ContactHead& h = heads_[i];
+    if (h.alive != c.alive || (c.alive && (h.bodyA != c.bodyA || h.bodyB != c.bodyB ||
+                                           h.touching != c.touching || h.sensor != c.sensor)))
+      return fail("contact " + std::to_string(i) + ": its head disagrees with it");
+  }
   std::size_t live = 0;
   for (std::uint32_t i = 0; i < contacts.size(); ++i) {
     const Contact& c = contacts[i];

@@ -1038,6 +1038,7 @@ Status SnapshotCodec::readMotion(std::span<const std::uint8_t> motion, std::uint
                std::max(c.shapeA, c.shapeB)] = i;
     ++cs.count_;
   }
+  cs.rebuildHeads();
   cs.free_ = m.indexList("free contact slot", cs.contacts.size());
   if (m.ok() && !isFreeList(cs.free_, cs.contacts.size(),
                             [&](std::uint32_t i) { return !cs.contacts[i].alive; }))

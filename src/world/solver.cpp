@@ -738,7 +738,7 @@ void Solver::solve(const WorldDef& def, BodyStore& store, ContactSet& contactSet
                    EventDispatcher& events, float dt, int substeps, TaskRunner& tasks) {
   SolverScratch& s = *scratch_;
   std::vector<Body>& bodies = store.bodies;
-  const std::vector<Contact>& contacts = contactSet.contacts;
+  const std::vector<ContactHead>& heads = contactSet.heads();
   StepParams params;
   params.h = dt / static_cast<float>(substeps);
   params.invH = 1.0f / params.h;
@@ -805,7 +805,7 @@ void Solver::solve(const WorldDef& def, BodyStore& store, ContactSet& contactSet
   tasks.gather(contactSet.awakeWordCount(), kMinWords, s.pairParts, s.pairs,
                [&](int first, int last, std::vector<SolverScratch::Pair>& list) {
                  contactSet.forEachAwakeIn(first, last, [&](std::uint32_t ci) {
-                   const Contact& c = contacts[ci];
+                   const ContactHead& c = heads[ci];
                    if (!c.alive || !c.touching || c.sensor) return;
                    const std::uint32_t a = c.bodyA, b = c.bodyB;
                    const std::int32_t sa = s.bodySlot[a], sb = s.bodySlot[b];
