@@ -551,6 +551,7 @@ template <class F>
     const Body& b = store.bodies[body];
     return PrepBody{0.0f, 0.0f, b.center, b.localCenter};
   };
+  ContactSim local;  // a lane the narrow phase skipped
   for (std::size_t bi = first; bi < last; ++bi) {
     if (bi + kAhead < last) fetch(bi + kAhead);
     blocks[bi] = ContactBlock<F>{};
@@ -560,7 +561,6 @@ template <class F>
       const PrepBody bodyA = prepBody(pair.bodyA, pair.slotA, pair.dynamicA);
       const PrepBody bodyB = prepBody(pair.bodyB, pair.slotB, pair.dynamicB);
       const ContactSim* sim = pair.contact < simCount ? sims + pair.contact : nullptr;
-      ContactSim local;
       if (sim == nullptr || sim->stamp != stamp) {
         // Not updated by this step's narrow phase (ContactSim): from the records.
         fillContactSim(local, contacts[pair.contact], bodyA.center, bodyA.localCenter, bodyB.center,
