@@ -129,6 +129,8 @@ void ContactSet::findNew(BroadPhase& broadPhase, BodyStore& store, TaskRunner& t
     c.shapeB = sb;
     c.bodyA = store.shapes[sa].body;
     c.bodyB = store.shapes[sb].body;
+    c.proxyA = store.shapes[sa].proxy;
+    c.proxyB = store.shapes[sb].proxy;
     c.sensor = store.shapes[sa].def.sensor;
     heads_[index] = {c.bodyA, c.bodyB, true, false, c.sensor};
     const ShapeGeometry& ga = store.shapes[sa].geometry;
@@ -271,20 +273,20 @@ void fillContactSim(ContactSim& sim, const Contact& c, Vec2 centerA, Vec2 localC
 ContactSet::Outcome ContactSet::updateOne(Contact& c, ContactSim& sim, std::uint64_t stamp,
                                           const WorldDef& def, const BroadPhase& broadPhase,
                                           const BodyStore& store, const GhostEdges& edges) {
-  const Shape& sa = store.shapes[c.shapeA];
-  const Shape& sb = store.shapes[c.shapeB];
-  if (!overlaps(broadPhase.fatBox(sa.proxy), broadPhase.fatBox(sb.proxy))) return Outcome::apart;
-  const Transform xa = store.bodies[sa.body].xf;
-  const Transform xb = store.bodies[sb.body].xf;
+  if (!overlaps(broadPhase.fatBox(c.proxyA), broadPhase.fatBox(c.proxyB))) return Outcome::apart;
+  const Body& ba = store.bodies[c.bodyA];
+  const Body& bb = store.bodies[c.bodyB];
+  const Transform xa = ba.xf;
+  const Transform xb = bb.xf;
   const bool wasTouching = c.touching;
   if (c.sensor) {
+    const Shape& sa = store.shapes[c.shapeA];
+    const Shape& sb = store.shapes[c.shapeB];
     c.touching = testOverlap(sa.geometry, xa, sb.geometry, xb);
     if (c.touching && !wasTouching) return Outcome::sensorBegan;
     if (!c.touching && wasTouching) return Outcome::sensorEnded;
     return Outcome::kept;
   }
-  const Body& ba = store.bodies[sa.body];
-  const Body& bb = store.bodies[sb.body];
   c.recycled = c.touching && c.recycleValid && !ba.fast && !bb.fast &&
                recycle(c, xa, xb, ba, bb, def.contactRecycleDistance);
   if (c.recycled) {
@@ -293,6 +295,8 @@ ContactSet::Outcome ContactSet::updateOne(Contact& c, ContactSim& sim, std::uint
     sim.stamp = stamp;
     return Outcome::kept;
   }
+  const Shape& sa = store.shapes[c.shapeA];
+  const Shape& sb = store.shapes[c.shapeB];
   Manifold old = c.manifold;
   float oldNormal[kMaxManifoldPoints], oldTangent[kMaxManifoldPoints];
   std::copy(c.normalImpulse, c.normalImpulse + kMaxManifoldPoints, oldNormal);
@@ -379,6 +383,8 @@ Status ContactSet::validate(const BodyStore& store) const {
     if (c.shapeA == c.shapeB) return fail(name + ": a shape with itself");
     if (c.bodyA != store.shapes[c.shapeA].body || c.bodyB != store.shapes[c.shapeB].body)
       return fail(name + ": its bodies are not its shapes' bodies");
+    if (c.proxyA != store.shapes[c.shapeA].proxy || c.proxyB != store.shapes[c.shapeB].proxy)
+      return fail(name + ": its proxies are not its shapes' proxies");
     const std::uint32_t* found = find(c.shapeA, c.shapeB);
     if (found == nullptr || *found != i) return fail(name + ": pair map disagrees");
     if (c.sensor != store.shapes[c.shapeA].def.sensor)

@@ -29,6 +29,10 @@ struct Contact {
   bool sensor = false;  // shapeA is the sensor
   std::uint32_t shapeA = 0, shapeB = 0;
   std::uint32_t bodyA = 0, bodyB = 0;  // the shapes' bodies, so the step's walks skip the shapes
+  // The shapes' proxies (fixed for the contact's life: a shape's proxy is made again only
+  // after its contacts are destroyed), so that the narrow phase tests the fat boxes and
+  // keeps a recycled manifold without reading the shape records.
+  ProxyId proxyA, proxyB;
   ManifoldFn fn = nullptr;
   float friction = 0.0f, restitution = 0.0f;
   Manifold manifold;

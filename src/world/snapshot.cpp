@@ -1031,6 +1031,8 @@ Status SnapshotCodec::readMotion(std::span<const std::uint8_t> motion, std::uint
     const Shape& sb = store.shapes[c.shapeB];
     c.bodyA = sa.body;
     c.bodyB = sb.body;
+    c.proxyA = sa.proxy;
+    c.proxyB = sb.proxy;
     c.fn = findManifoldFn(shapeType(sa.geometry), shapeType(sb.geometry));
     c.friction = std::sqrt(sa.def.friction * sb.def.friction);
     c.restitution = maxf(sa.def.restitution, sb.def.restitution);
