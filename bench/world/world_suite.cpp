@@ -216,6 +216,12 @@ double median(std::vector<double> v) {
   return n == 0 ? 0.0 : (n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
 }
 
+std::string fixed(double x, int digits) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.*f", digits, x);
+  return text;
+}
+
 int usage(const char* why) {
   std::fprintf(stderr,
                "world_suite: %s\nusage: world_suite [--scene NAME[,NAME...]] [--workers 1,2] "
@@ -288,11 +294,25 @@ int main(int argc, char** argv) {
         }
       }
       const double qs = median(q[0]), vs = median(v[0]), qf = median(q[1]), vf = median(v[1]);
-      std::printf(
-          "%-14s %3d | %9.3f %9.3f %5.2fx | %9.2f %9.2f %5.2fx | %8.1f %8.1f | %8ld %8ld | "
-          "%ld/%ld\n",
-          name.c_str(), w, qs, vs, qs > 0 ? vs / qs : 0.0, qf, vf, qf > 0 ? vf / qf : 0.0,
-          median(q[2]), median(v[2]), lastQ.contacts, lastV.contacts, lastQ.awake, lastV.awake);
+      if (withQuack && withV3) {
+        std::printf(
+            "%-14s %3d | %9.3f %9.3f %5.2fx | %9.2f %9.2f %5.2fx | %8.1f %8.1f | %8ld %8ld | "
+            "%ld/%ld\n",
+            name.c_str(), w, qs, vs, vs / qs, qf, vf, vf / qf, median(q[2]), median(v[2]),
+            lastQ.contacts, lastV.contacts, lastQ.awake, lastV.awake);
+      } else {
+        // One library: its figures in its columns, the other's and the ratios left blank.
+        const bool q1 = withQuack;
+        const suite::Run& last = q1 ? lastQ : lastV;
+        const double ms = q1 ? qs : vs, first = q1 ? qf : vf, build = median(q1 ? q[2] : v[2]);
+        std::printf(
+            "%-14s %3d | %9s %9s %6s | %9s %9s %6s | %8s %8s | %8s %8s | %s\n", name.c_str(), w,
+            q1 ? fixed(ms, 3).c_str() : "-", q1 ? "-" : fixed(ms, 3).c_str(), "-",
+            q1 ? fixed(first, 2).c_str() : "-", q1 ? "-" : fixed(first, 2).c_str(), "-",
+            q1 ? fixed(build, 1).c_str() : "-", q1 ? "-" : fixed(build, 1).c_str(),
+            q1 ? std::to_string(last.contacts).c_str() : "-",
+            q1 ? "-" : std::to_string(last.contacts).c_str(), std::to_string(last.awake).c_str());
+      }
       std::fflush(stdout);
     }
   }
