@@ -9,7 +9,8 @@
 #include "ghost_edges.hpp"
 #include "quack/collision/gjk.hpp"
 #include "quack/world/world.hpp"
-#include "world_state.hpp"
+#include "step_context.hpp"
+#include "task_runner.hpp"
 
 namespace quack::detail {
 namespace {
@@ -73,7 +74,7 @@ void ContactSet::destroy(std::uint32_t index, BodyStore& store, EventDispatcher&
                          bool emitEnd, bool inStep) {
   Contact& c = contacts[index];
   if (emitEnd && c.touching) events.contactEnded(store, c, inStep);
-  if (c.touching && !c.sensor) ended.push_back({c.bodyA, c.bodyB});
+  if (c.touching && !c.sensor) changes_.ended.push_back({c.bodyA, c.bodyB});
   for (std::uint32_t s : {c.shapeA, c.shapeB}) {
     auto& list = store.shapes[s].contacts;
     list.erase(std::find(list.begin(), list.end(), index));
@@ -85,7 +86,10 @@ void ContactSet::destroy(std::uint32_t index, BodyStore& store, EventDispatcher&
   --count_;
 }
 
-void ContactSet::findNew(BroadPhase& broadPhase, BodyStore& store, TaskRunner& tasks) {
+void ContactSet::findNew(StepContext& step) {
+  BroadPhase& broadPhase = step.broadPhase;
+  BodyStore& store = step.store;
+  TaskRunner& tasks = step.tasks;
   // The moved proxies' queries on the workers, each into its own list.
   pairParts_.resize(static_cast<std::size_t>(tasks.workers()));
   broadPhase.updatePairs(pairScratch_, pairParts_, [&](std::size_t count, auto&& body) {
@@ -149,8 +153,8 @@ void ContactSet::findNew(BroadPhase& broadPhase, BodyStore& store, TaskRunner& t
     // brings it into the narrow phase, and a touch then joins their islands.
     if (!c.sensor && !bodyA.awake && !bodyB.awake &&
         (bodyA.type != BodyType::dynamicBody || bodyB.type != BodyType::dynamicBody)) {
-      if (bodyA.type == BodyType::dynamicBody) toWake.push_back(shapeA.body);
-      if (bodyB.type == BodyType::dynamicBody) toWake.push_back(shapeB.body);
+      if (bodyA.type == BodyType::dynamicBody) changes_.toWake.push_back(shapeA.body);
+      if (bodyB.type == BodyType::dynamicBody) changes_.toWake.push_back(shapeB.body);
     }
   }
 }
@@ -170,9 +174,13 @@ void ContactSet::markAwake(const BodyStore& store, const std::vector<std::uint64
   }
 }
 
-void ContactSet::update(const WorldDef& def, const BroadPhase& broadPhase, BodyStore& store,
-                        const GhostEdges& edges, EventDispatcher& events, TaskRunner& tasks,
+void ContactSet::update(StepContext& step, const GhostEdges& edges,
                         const std::vector<std::uint64_t>& awakeBodies) {
+  const WorldDef& def = step.def;
+  const BroadPhase& broadPhase = step.broadPhase;
+  BodyStore& store = step.store;
+  EventDispatcher& events = step.events;
+  TaskRunner& tasks = step.tasks;
   auto isAwake = [&](std::uint32_t body) {
     return body / 64 < awakeBodies.size() && ((awakeBodies[body / 64] >> (body % 64)) & 1u) != 0;
   };
@@ -230,11 +238,11 @@ void ContactSet::update(const WorldDef& def, const BroadPhase& broadPhase, BodyS
         break;
       case Outcome::began:
         events.events.begin.push_back({store.shapeId(c.shapeA), store.shapeId(c.shapeB)});
-        began.push_back({c.bodyA, c.bodyB});
+        changes_.began.push_back({c.bodyA, c.bodyB});
         break;
       case Outcome::ended:
         events.contactEnded(store, c, true);
-        ended.push_back({c.bodyA, c.bodyB});
+        changes_.ended.push_back({c.bodyA, c.bodyB});
         break;
     }
   }

@@ -22,6 +22,21 @@ class BodyStore;
 class EventDispatcher;
 class GhostEdges;
 class TaskRunner;
+struct StepContext;
+
+/// Two bodies, by index.
+struct BodyPair {
+  std::uint32_t a, b;
+};
+
+/// What the contact set's work changed for the islands (IslandSet::apply consumes it):
+/// bodies whose contact began or stopped touching (not sensors), and sleeping bodies a new
+/// contact found with nothing awake in it (static geometry created or moved onto them),
+/// to be woken.
+struct ContactChanges {
+  std::vector<BodyPair> began, ended;
+  std::vector<std::uint32_t> toWake;
+};
 
 struct Contact {
   bool alive = false;
@@ -104,14 +119,14 @@ class ContactSet {
   /// The stamp of this step's narrow phase: a sim with it is current.
   std::uint64_t simStamp() const noexcept { return simStamp_; }
 
-  // For the island set (islands.hpp), which empties them: bodies whose contact began or
-  // stopped touching (not sensors), and sleeping bodies a new contact found with nothing
-  // awake in it (static geometry created or moved onto them), to be woken.
-  struct BodyPair {
-    std::uint32_t a, b;
-  };
-  std::vector<BodyPair> began, ended;
-  std::vector<std::uint32_t> toWake;
+  /// What findNew, update and destroy changed since clearChanges (the world hands it to
+  /// the islands, then clears it; kept between steps, so a warm step allocates nothing).
+  const ContactChanges& changes() const noexcept { return changes_; }
+  void clearChanges() noexcept {
+    changes_.began.clear();
+    changes_.ended.clear();
+    changes_.toWake.clear();
+  }
 
   std::size_t count() const noexcept { return count_; }
 
@@ -156,13 +171,12 @@ class ContactSet {
 
   /// New contacts from the broad phase's new pairs, in an order that does not depend on
   /// the structure.
-  void findNew(BroadPhase& broadPhase, BodyStore& store, TaskRunner& tasks);
+  void findNew(StepContext& step);
   /// The narrow phase: manifolds and touching state of every contact; contacts whose fat
   /// boxes parted are destroyed. Begin and end events go to `events`. The manifolds are
   /// computed on the workers; what follows from them is applied in contact order.
   /// `awakeBodies`: a bit per body index for the awake bodies (IslandSet::awakeBits).
-  void update(const WorldDef& def, const BroadPhase& broadPhase, BodyStore& store,
-              const GhostEdges& edges, EventDispatcher& events, TaskRunner& tasks,
+  void update(StepContext& step, const GhostEdges& edges,
               const std::vector<std::uint64_t>& awakeBodies);
   /// A body was moved by hand (setTransform): its contacts compute their manifolds anew.
   void forgetPoses(const BodyStore& store, std::uint32_t body);
@@ -198,6 +212,7 @@ class ContactSet {
   std::vector<std::uint32_t> free_;
   std::unordered_map<std::uint64_t, std::uint32_t> byPair_;
   std::vector<ProxyPair> pairScratch_;
+  ContactChanges changes_;
   std::vector<ContactHead> heads_;
   std::size_t count_ = 0;
   std::uint64_t simStamp_ = 0;  // bumped by each update; 0 marks no sim current

@@ -15,8 +15,8 @@
 #include "event_dispatcher.hpp"
 #include "ghost_edges.hpp"
 #include "quack/world/world.hpp"
+#include "step_context.hpp"
 #include "task_runner.hpp"
-#include "world_state.hpp"
 
 namespace quack::detail {
 namespace {
@@ -276,16 +276,22 @@ bool ContinuousPhase::findImpactWith(SearchScratch& scratch, const BodyStore& st
   return found;
 }
 
-void ContinuousPhase::run(const WorldDef& def, BodyStore& store,
-                          const std::vector<std::uint64_t>& awake, BroadPhase& broadPhase,
-                          const GhostEdges& edges, const ContactSet& contacts,
-                          EventDispatcher& events, float dt, TaskRunner& tasks) {
+std::span<const std::uint32_t> ContinuousPhase::run(StepContext& step,
+                                                    const std::vector<std::uint64_t>& awake,
+                                                    const GhostEdges& edges,
+                                                    const ContactSet& contacts) {
+  const WorldDef& def = step.def;
+  BodyStore& store = step.store;
+  BroadPhase& broadPhase = step.broadPhase;
+  EventDispatcher& events = step.events;
+  TaskRunner& tasks = step.tasks;
+  const float dt = step.dt;
   contacts_ = &contacts;
-  pushed.clear();
+  pushed_.clear();
   stats_ = {};
   for (SearchScratch& scratch : scratch_)
     scratch.toiSearches = 0;
-  if (!def.enableContinuous) return;
+  if (!def.enableContinuous) return pushed_;
   fast_.clear();
   sorted_.clear();
   sortedLower_.clear();
@@ -309,7 +315,7 @@ void ContinuousPhase::run(const WorldDef& def, BodyStore& store,
     }
   }
   stats_.fastBodies = fast_.size();
-  if (fast_.empty()) return;
+  if (fast_.empty()) return pushed_;
   // Few shapes outside the participants: list them (see listedShapes_). Every shape has a
   // broad-phase proxy; the list holds everything a query would find (its boxes are the fat
   // ones, which hold the tight ones some broad phases test; an extra candidate is only an
@@ -546,7 +552,7 @@ void ContinuousPhase::run(const WorldDef& def, BodyStore& store,
         if (otherMoves) {
           ob.v = clampSpeed(ob.v);
           ob.w = clampf(ob.w, -kMaxAngularSpeed, kMaxAngularSpeed);
-          pushed.push_back(otherBody);
+          pushed_.push_back(otherBody);
         }
         impulseApplied = true;
       }
@@ -635,6 +641,7 @@ void ContinuousPhase::run(const WorldDef& def, BodyStore& store,
     participantOf_[f.body] = kNoParticipant;
   for (const WaitNode& node : waitNodes_)
     waitHead_[node.body] = kNoParticipant;
+  return pushed_;
 }
 
 }  // namespace quack::detail

@@ -5,6 +5,7 @@
 // docs/continuous.md, "In the world", explains the choices.
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "quack/math/aabb.hpp"
@@ -22,6 +23,7 @@ class ContactSet;
 class EventDispatcher;
 class GhostEdges;
 class TaskRunner;
+struct StepContext;
 
 inline constexpr std::uint32_t kNoParticipant = 0xffffffffu;
 
@@ -66,9 +68,10 @@ class ContinuousPhase {
   /// and writes only its own result); the queue is filled in participant order.
   /// `contacts`: the step's contacts, whose touching state (from the start of the step)
   /// says which pairs of dynamic bodies the contact solver already holds.
-  void run(const WorldDef& def, BodyStore& store, const std::vector<std::uint64_t>& awake,
-           BroadPhase& broadPhase, const GhostEdges& edges, const ContactSet& contacts,
-           EventDispatcher& events, float dt, TaskRunner& tasks);
+  /// Returns the dynamic bodies an impact set moving (some may be asleep: the world wakes
+  /// them), valid until the next run.
+  std::span<const std::uint32_t> run(StepContext& step, const std::vector<std::uint64_t>& awake,
+                                     const GhostEdges& edges, const ContactSet& contacts);
 
   /// Figures of the last run (World::ContinuousStats).
   struct Stats {
@@ -76,10 +79,6 @@ class ContinuousPhase {
     std::size_t toiSearches = 0;
   };
   const Stats& stats() const noexcept { return stats_; }
-
-  /// Dynamic bodies an impact set moving in the last run (some may be asleep: the world
-  /// wakes them).
-  std::vector<std::uint32_t> pushed;
 
  private:
   Aabb sweptBox(const BodyStore& store, const FastBody& f) const;
@@ -91,6 +90,7 @@ class ContinuousPhase {
     std::size_t toiSearches = 0;            // computeToi calls, for stats_
   };
   Stats stats_;
+  std::vector<std::uint32_t> pushed_;  // what run returns
   bool findImpact(const BodyStore& store, const BroadPhase& broadPhase, const GhostEdges& edges,
                   std::uint32_t fast, bool continuation, ToiCandidate& best,
                   std::uint32_t onlyBody = 0xffffffffu) {

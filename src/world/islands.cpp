@@ -210,8 +210,10 @@ void IslandSet::merge(BodyStore& store, std::uint32_t a, std::uint32_t b) {
   freeIsland(gone);
 }
 
-void IslandSet::applyContactChanges(BodyStore& store, ContactSet& contacts) {
-  for (const ContactSet::BodyPair& p : contacts.began) {
+void IslandSet::apply(BodyStore& store, const ContactChanges& changes) {
+  for (std::uint32_t b : changes.toWake)
+    wake(store, b);
+  for (const BodyPair& p : changes.began) {
     const bool dynA = isDynamic(store, p.a), dynB = isDynamic(store, p.b);
     if (dynA && dynB) {
       merge(store, store.bodies[p.a].island, store.bodies[p.b].island);
@@ -221,7 +223,7 @@ void IslandSet::applyContactChanges(BodyStore& store, ContactSet& contacts) {
       if (dynB) wake(store, p.b);
     }
   }
-  for (const ContactSet::BodyPair& p : contacts.ended) {
+  for (const BodyPair& p : changes.ended) {
     // Either body may have been destroyed since (its slot even reused): marking an island
     // that needs no split only costs that split.
     if (isDynamic(store, p.a) && isDynamic(store, p.b) &&
@@ -229,8 +231,6 @@ void IslandSet::applyContactChanges(BodyStore& store, ContactSet& contacts) {
         store.bodies[p.a].island != kNoIsland)
       islands_[store.bodies[p.a].island].dirty = true;
   }
-  contacts.began.clear();
-  contacts.ended.clear();
 }
 
 void IslandSet::split(BodyStore& store, const ContactSet& contacts, std::uint32_t id,

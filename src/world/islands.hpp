@@ -21,6 +21,7 @@ namespace quack::detail {
 
 class BodyStore;
 class ContactSet;
+struct ContactChanges;
 class TaskRunner;
 
 inline constexpr std::uint32_t kNoIsland = 0xffffffffu;
@@ -41,7 +42,10 @@ class IslandSet {
   void removeBody(BodyStore& store, std::uint32_t body);
   /// Contacts that began or stopped touching since the last call (ContactSet::began and
   /// ended, which it empties): islands merge, waking a sleeping one, or are marked.
-  void applyContactChanges(BodyStore& store, ContactSet& contacts);
+  /// The one place contact changes reach the islands: sleeping bodies a new contact found
+  /// wake, contacts that began touching merge islands (or wake one touching a static or
+  /// kinematic body), and those that ended mark their island for a split.
+  void apply(BodyStore& store, const ContactChanges& changes);
   /// Wakes the body: a dynamic body's whole island, a kinematic body itself.
   void wake(BodyStore& store, std::uint32_t body);
   /// Wakes every body touching `body`, and their islands.

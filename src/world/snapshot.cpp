@@ -668,14 +668,14 @@ void SnapshotCodec::writeMotion(Writer& w, const WorldState& s) {
     }
   }
   w.list(cs.free_);
-  for (const auto* pairs : {&cs.began, &cs.ended}) {
+  for (const auto* pairs : {&cs.changes_.began, &cs.changes_.ended}) {
     w.size(pairs->size());
-    for (const ContactSet::BodyPair& p : *pairs) {
+    for (const BodyPair& p : *pairs) {
       w.var(p.a);
       w.var(p.b);
     }
   }
-  w.list(cs.toWake);
+  w.list(cs.changes_.toWake);
 
   // Islands.
   const IslandSet& is = s.islands;
@@ -1045,14 +1045,14 @@ Status SnapshotCodec::readMotion(std::span<const std::uint8_t> motion, std::uint
   if (m.ok() && !isFreeList(cs.free_, cs.contacts.size(),
                             [&](std::uint32_t i) { return !cs.contacts[i].alive; }))
     m.fail("the free contact slots are not exactly the dead ones, once each");
-  for (auto* pairs : {&cs.began, &cs.ended}) {
+  for (auto* pairs : {&cs.changes_.began, &cs.changes_.ended}) {
     pairs->resize(m.count("island change", 2));
-    for (ContactSet::BodyPair& p : *pairs) {
+    for (BodyPair& p : *pairs) {
       p.a = m.index("island change body", store.bodies.size());
       p.b = m.index("island change body", store.bodies.size());
     }
   }
-  cs.toWake = m.indexList("body to wake", store.bodies.size());
+  cs.changes_.toWake = m.indexList("body to wake", store.bodies.size());
 
   IslandSet& is = s->islands;
   is.islands_.resize(m.count("island slots", 1));

@@ -17,6 +17,7 @@
 #include "quack/world/tasks.hpp"
 #include "quack/world/world.hpp"
 #include "simd.hpp"
+#include "step_context.hpp"
 #include "task_runner.hpp"
 
 namespace quack::detail {
@@ -733,9 +734,15 @@ const char* Solver::simdPath() noexcept {
   return kSimdPath;
 }
 
-void Solver::solve(const WorldDef& def, BodyStore& store, ContactSet& contactSet,
-                   const std::vector<std::uint64_t>& awake, BroadPhase& broadPhase,
-                   EventDispatcher& events, float dt, int substeps, TaskRunner& tasks) {
+void Solver::solve(StepContext& step, ContactSet& contactSet,
+                   const std::vector<std::uint64_t>& awake) {
+  const WorldDef& def = step.def;
+  BodyStore& store = step.store;
+  BroadPhase& broadPhase = step.broadPhase;
+  EventDispatcher& events = step.events;
+  TaskRunner& tasks = step.tasks;
+  const float dt = step.dt;
+  const int substeps = step.substeps;
   SolverScratch& s = *scratch_;
   std::vector<Body>& bodies = store.bodies;
   const std::vector<ContactHead>& heads = contactSet.heads();

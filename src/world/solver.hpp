@@ -23,6 +23,7 @@ class BodyStore;
 class ContactSet;
 class EventDispatcher;
 class TaskRunner;
+struct StepContext;
 
 // Soft-constraint coefficients for one sub-step (Catto, "Solver2D", 2024; the soft step of
 // Box2D v3): a spring of `hertz` with damping ratio zeta, implicit in the sub-step h.
@@ -36,12 +37,11 @@ struct SolverScratch;  // solver.cpp: the per-step arrays
 
 class Solver {
  public:
-  /// One step of dt seconds in `substeps` sub-steps. Bodies whose motion would leave the
-  /// world are held (StepEvents::outOfBounds).
+  /// One step of step.dt seconds in step.substeps sub-steps: the touching contacts of
+  /// `contacts` solved, their impulses stored back, the bodies moved and their proxies with
+  /// them. Bodies whose motion would leave the world are held (StepEvents::outOfBounds).
   /// `awake`: a bit per body index for the bodies that move (IslandSet::awakeBits).
-  void solve(const WorldDef& def, BodyStore& store, ContactSet& contacts,
-             const std::vector<std::uint64_t>& awake, BroadPhase& broadPhase,
-             EventDispatcher& events, float dt, int substeps, TaskRunner& tasks);
+  void solve(StepContext& step, ContactSet& contacts, const std::vector<std::uint64_t>& awake);
 
   Solver();
   ~Solver();

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "quack/geometry/bounds.hpp"
+#include "step_context.hpp"
 #include "world_state.hpp"
 
 namespace quack::detail {
@@ -49,6 +50,12 @@ Status checkFiniteNonNegative(float x, const char* name) {
 
 std::string describe(Vec2 v) {
   return "(" + std::to_string(v.x) + ", " + std::to_string(v.y) + ")";
+}
+
+// Hands what the contact set changed to the islands, its one consumer.
+void applyContactChanges(detail::WorldState& w) {
+  w.islands.apply(w.store, w.contacts.changes());
+  w.contacts.clearChanges();
 }
 
 }  // namespace
@@ -267,7 +274,7 @@ void World::destroyBodyNow(detail::WorldState& w, std::uint32_t index) {
   for (std::uint32_t s : shapes)
     destroyShapeNow(w, s);
   w.islands.removeBody(w.store, index);
-  w.islands.applyContactChanges(w.store, w.contacts);
+  applyContactChanges(w);
   w.store.releaseBody(index);
 }
 
@@ -353,7 +360,7 @@ void World::destroyShapeNow(detail::WorldState& w, std::uint32_t index) {
   (void)st;
   if (store.bodies[s.body].type == BodyType::staticBody) w.edges.markDirty();
   store.releaseShape(index);
-  w.islands.applyContactChanges(store, w.contacts);
+  applyContactChanges(w);
 }
 
 // ---- stepping -----------------------------------------------------------------------------
@@ -365,13 +372,14 @@ StepStatus World::step() {
 namespace {
 
 // The step's phases, in order: bodies -> broad phase -> contact set -> solver -> continuous
-// phase -> islands and sleep. Callbacks run after, in World::step.
+// phase -> islands and sleep. Each takes the step's context and what it needs, and hands on
+// what it produced. Callbacks run after, in World::step.
 void runPhases(detail::WorldState& w, float dt, int substeps) {
-  w.contacts.findNew(w.broadPhase, w.store, w.tasks);
-  for (std::uint32_t b : w.contacts.toWake)
-    w.islands.wake(w.store, b);
-  w.contacts.toWake.clear();
-  w.islands.applyContactChanges(w.store, w.contacts);
+  detail::StepContext step{w.def, w.store, w.broadPhase, w.events, w.tasks, dt, substeps};
+  // New contacts from the broad phase's pairs; sleeping bodies they find with static
+  // geometry wake.
+  w.contacts.findNew(step);
+  applyContactChanges(w);
   const std::size_t bodyCount = w.store.bodyIds.liveCount();
   w.contacts.markAwake(w.store, w.islands.awakeBits(), w.islands.awakeCount(), bodyCount);
   if (w.edges.dirty()) {
@@ -380,20 +388,15 @@ void runPhases(detail::WorldState& w, float dt, int substeps) {
     // recycled across the change.
     w.contacts.forgetAllPoses();
   }
-  w.contacts.update(w.def, w.broadPhase, w.store, w.edges, w.events, w.tasks,
-                    w.islands.awakeBits());
-  // Contacts that began touching join islands, and wake the sleeping ones they reach
-  // (whose contacts, unchanged while they slept, the solver now takes too).
-  w.islands.applyContactChanges(w.store, w.contacts);
+  // The narrow phase. Contacts that began touching join islands, and wake the sleeping
+  // ones they reach (whose contacts, unchanged while they slept, the solver now takes too).
+  w.contacts.update(step, w.edges, w.islands.awakeBits());
+  applyContactChanges(w);
   w.contacts.markAwake(w.store, w.islands.awakeBits(), w.islands.awakeCount(), bodyCount);
-  w.solver.solve(w.def, w.store, w.contacts, w.islands.awakeBits(), w.broadPhase, w.events, dt,
-                 substeps, w.tasks);
-  w.continuous.run(w.def, w.store, w.islands.awakeBits(), w.broadPhase, w.edges, w.contacts,
-                   w.events, dt, w.tasks);
+  w.solver.solve(step, w.contacts, w.islands.awakeBits());
   // A bullet may have hit a sleeping body: it moves now.
-  for (std::uint32_t b : w.continuous.pushed)
+  for (std::uint32_t b : w.continuous.run(step, w.islands.awakeBits(), w.edges, w.contacts))
     w.islands.wake(w.store, b);
-  w.islands.applyContactChanges(w.store, w.contacts);
   w.islands.updateSleep(w.def, w.store, w.contacts, dt, w.tasks);
   // The solver and the continuous phase may both have stopped a body at the edge.
   std::vector<BodyId>& held = w.events.events.outOfBounds;
@@ -761,7 +764,7 @@ Status World::setBodyType(BodyId id, BodyType type) {
   }
   store.updateMass(id.index);
   state().islands.removeBody(store, id.index);
-  state().islands.applyContactChanges(store, state().contacts);
+  applyContactChanges(*s_);
   state().islands.addBody(store, id.index, true);
   return {};
 }
