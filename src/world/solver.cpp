@@ -347,7 +347,8 @@ struct StepParams {
 // block. Returns the block count; `colorStart[c]` is colour c's first block.
 template <class F>
 [[gnu::noinline]] std::size_t layoutBlocks(SolverScratch& s, std::vector<ContactBlock<F>>& blocks,
-                                           std::size_t* colorStart, Solver::Stats& stats) {
+                                           std::size_t* colorStart, std::size_t* colorCount,
+                                           Solver::Stats& stats) {
   constexpr int W = F::width;
   // Per slot, the colours its body is already in (bit c); a constraint takes the lowest
   // colour free in both of its dynamic bodies, colour 0 only when both are dynamic.
@@ -393,6 +394,8 @@ template <class F>
     if (perColor[c] > 0) stats.colors = c + 1;
   }
   colorStart[kColors] = next;
+  for (int c = 0; c <= kColors; ++c)
+    colorCount[c] = perColor[c];
   blocks.resize(next);  // cleared as they are prepared, on the workers
   std::size_t fill[kColors + 1] = {};
   s.lane.resize(s.touching.size());
@@ -622,15 +625,24 @@ void runStep(SolverScratch& s, std::vector<ContactBlock<F>>& blocks, const World
              BodyStore& store, ContactSet& contactSet, EventDispatcher& events,
              const StepParams& params, int substeps, Solver::Stats& stats, TaskRunner& tasks) {
   constexpr int W = F::width;
-  std::size_t colorStart[kColors + 1];
-  const std::size_t blockCount = layoutBlocks<F>(s, blocks, colorStart, stats);
+  std::size_t colorStart[kColors + 1], colorCount[kColors + 1];
+  const std::size_t blockCount = layoutBlocks<F>(s, blocks, colorStart, colorCount, stats);
   // Which contact each lane holds, so that blocks can be prepared apart (a block's lanes
-  // share its write masks).
-  SolverScratch::Pair empty{};
-  empty.contact = SolverScratch::kNoContact;
-  s.lanePairs.assign(blockCount * W, empty);
-  for (std::size_t k = 0; k < s.touching.size(); ++k)
-    s.lanePairs[s.lane[k]] = s.pairs[k];
+  // share its write masks): every constraint's pair into its lane, on the workers (each
+  // lane is written once), then the empty lanes marked: lanes 1.. of the overflow blocks
+  // (one constraint each) and the end of each colour's last block. (Filling every lane
+  // first cost more than the scatter: a megabyte and a half on one thread.)
+  s.lanePairs.resize(blockCount * W);
+  tasks.parallelFor(static_cast<int>(s.touching.size()), kMinSlots, [&](int first, int last, int) {
+    for (auto k = static_cast<std::size_t>(first); k < static_cast<std::size_t>(last); ++k)
+      s.lanePairs[s.lane[k]] = s.pairs[k];
+  });
+  for (std::size_t b = 0; b < colorStart[0]; ++b)
+    for (std::size_t lane = 1; lane < W; ++lane)
+      s.lanePairs[b * W + lane].contact = SolverScratch::kNoContact;
+  for (int c = 0; c < kColors; ++c)
+    for (std::size_t at = colorStart[c] * W + colorCount[c]; at < colorStart[c + 1] * W; ++at)
+      s.lanePairs[at].contact = SolverScratch::kNoContact;
   ContactBlock<F>* all = blocks.data();
   BodyState* states = s.states.data();
 
