@@ -18,7 +18,8 @@
 // (Quack's kSpeculativeDistance, Bullet's contact breaking threshold).
 //
 // `narrowphase3d_bench --count KERNEL SET ROUNDS` runs one kernel (quack, bullet-sat,
-// bullet-gjk) over the 256 pairs of SET (random8, random16, random32, resting) ROUNDS
+// bullet-gjk; quack-hash also prints a hash of Quack's answers, to show that a change left
+// them alone) over the 256 pairs of SET (random8, random16, random32, resting) ROUNDS
 // times and nothing else, for instruction counts under callgrind (docs/3d.md).
 
 #include <benchmark/benchmark.h>
@@ -459,7 +460,7 @@ BENCHMARK(BM_BulletManifoldGjk)->ArgName("verts")->Arg(8)->Arg(16)->Arg(32)->Arg
 int countMode(int argc, char** argv) {
   if (argc != 5) {
     std::fprintf(stderr,
-                 "usage: %s --count quack|bullet-sat|bullet-gjk "
+                 "usage: %s --count quack|quack-hash|bullet-sat|bullet-gjk "
                  "random8|random16|random32|resting ROUNDS\n",
                  argv[0]);
     return 2;
@@ -475,14 +476,17 @@ int countMode(int argc, char** argv) {
     std::fprintf(stderr, "unknown set %s or negative rounds\n", set.c_str());
     return 2;
   }
-  if (kernel == "quack") {
+  if (kernel == "quack" || kernel == "quack-hash") {
+    // quack-hash also hashes every answer (not for instruction counts).
+    const bool hash = kernel == "quack-hash";
     const std::vector<Case>& cs = manifoldCases(n);
     for (int r = 0; r < rounds; ++r)
       for (const Case& c : cs)
-        quackManifold(c, r == 0);
-    std::printf("quack %s: %d rounds, %.3f points per query, answers' hash %016llx\n", set.c_str(),
-                rounds, rounds > 0 ? g_quackPoints / (256.0 * rounds) : 0.0,
-                static_cast<unsigned long long>(g_quackHash));
+        quackManifold(c, hash);
+    std::printf("%s %s: %d rounds, %.3f points per query", kernel.c_str(), set.c_str(), rounds,
+                rounds > 0 ? g_quackPoints / (256.0 * rounds) : 0.0);
+    if (hash) std::printf(", answers' hash %016llx", static_cast<unsigned long long>(g_quackHash));
+    std::printf("\n");
     return 0;
   }
 #if QUACK_HAVE_BULLET
