@@ -239,7 +239,7 @@ Manifold3 collideHullAndCapsule(const Hull3& a, Transform3 worldFromA, const Cap
 Manifold3 collideHulls(const Hull3& a, Transform3 worldFromA, const Hull3& b, Transform3 worldFromB,
                        float speculativeDistance) noexcept {
   Manifold3 m;
-  SatOutput3 sat = computeSat(a, worldFromA, b, worldFromB);
+  SatOutput3 sat = computeSat(a, worldFromA, b, worldFromB, speculativeDistance);
   if (sat.separation > speculativeDistance) return m;
 
   if (sat.feature == SatFeature3::edges && sat.separation > 0.0f) {

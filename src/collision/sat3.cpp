@@ -32,8 +32,8 @@ struct EdgeArc {
 
 }  // namespace
 
-SatOutput3 computeSat(const Hull3& a, Transform3 worldFromA, const Hull3& b,
-                      Transform3 worldFromB) noexcept {
+SatOutput3 computeSat(const Hull3& a, Transform3 worldFromA, const Hull3& b, Transform3 worldFromB,
+                      float stopAbove) noexcept {
   Transform3 aFromB = invMul(worldFromA, worldFromB);
   SatOutput3 out;
   float size = 0.0f;
@@ -54,11 +54,12 @@ SatOutput3 computeSat(const Hull3& a, Transform3 worldFromA, const Hull3& b,
       bestNormal = face.normal;
       out.feature = SatFeature3::faceA;
       out.faceIndex = f;
+      if (s > stopAbove) break;
     }
   }
   // Faces of B (in B's frame): A's least projection on the normal.
   Transform3 bFromA = inverse(aFromB);
-  for (int f = 0; f < b.faceCount; ++f) {
+  for (int f = 0; f < b.faceCount && !(bestFace > stopAbove); ++f) {
     const HullFace3& face = b.faces[f];
     Vec3 nA = rotate(aFromB.q, face.normal);
     float s = minProjection(a, invRotate(bFromA.q, face.normal)) + dot(face.normal, bFromA.p) -
@@ -68,7 +69,15 @@ SatOutput3 computeSat(const Hull3& a, Transform3 worldFromA, const Hull3& b,
       bestNormal = -nA;
       out.feature = SatFeature3::faceB;
       out.faceIndex = f;
+      if (s > stopAbove) break;
     }
+  }
+  // A face axis beyond stopAbove: the final separation (this face's, or an edge's larger
+  // by the bias) exceeds it whatever the edges say.
+  if (bestFace > stopAbove) {
+    out.separation = bestFace;
+    out.normal = transformVector(worldFromA, bestNormal);
+    return out;
   }
 
   // Edge pairs that are faces of the Minkowski difference: arcs ab (an edge of A: its two
@@ -87,7 +96,8 @@ SatOutput3 computeSat(const Hull3& a, Transform3 worldFromA, const Hull3& b,
   float bestEdge = -std::numeric_limits<float>::infinity();
   Vec3 bestEdgeNormal;
   int bestEdgeA = 0, bestEdgeB = 0;
-  for (int i = 0; i < a.edgeCount; ++i) {
+  bool stop = false;
+  for (int i = 0; i < a.edgeCount && !stop; ++i) {
     const HullEdge3& ea = a.edges[i];
     Vec3 pa = a.vertices[ea.v0], qa = a.vertices[ea.v1];
     Vec3 na1 = a.faces[ea.faceLeft].normal, na2 = a.faces[ea.faceRight].normal;
@@ -117,6 +127,12 @@ SatOutput3 computeSat(const Hull3& a, Transform3 worldFromA, const Hull3& b,
         bestEdgeNormal = axis;
         bestEdgeA = i;
         bestEdgeB = j;
+        // This edge axis wins over every face, and so does any larger one: the answer's
+        // separation exceeds stopAbove.
+        if (s > stopAbove && s > bestFace + kSat3FaceBiasRelative * size) {
+          stop = true;
+          break;
+        }
       }
     }
   }
