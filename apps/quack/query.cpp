@@ -10,13 +10,18 @@
 #include <nlohmann/json.hpp>
 
 #include "quack/collision/epa.hpp"
+#include "quack/collision/epa3.hpp"
 #include "quack/collision/gjk.hpp"
+#include "quack/collision/gjk3.hpp"
 #include "quack/collision/manifold.hpp"
+#include "quack/collision/manifold3.hpp"
 #include "quack/collision/pieces.hpp"
 #include "quack/collision/shape_cast.hpp"
 #include "quack/collision/toi.hpp"
+#include "quack/collision/toi3.hpp"
 #include "quack/geometry/bounds.hpp"
 #include "quack/geometry/raycast.hpp"
+#include "quack/geometry/raycast3.hpp"
 #include "quack/io/answer_json.hpp"
 #include "quack/io/shape_json.hpp"
 
@@ -219,27 +224,134 @@ QueryAnswer finished(const json& id, const json& out) {
   return {dumpLine(out), true};
 }
 
+// The ray {"origin", "translation"} of op raycast, checked for unknown and missing keys;
+// its vectors are left to the caller (2D or 3D).
+Status checkRay(const json& q) {
+  if (!q.contains("ray")) return fail("ray: missing");
+  const json& ray = q.at("ray");
+  if (!ray.is_object()) return fail("ray: must be an object {\"origin\", \"translation\"}");
+  for (const auto& item : ray.items()) {
+    if (item.key() != "origin" && item.key() != "translation")
+      return fail("ray." + item.key() + ": unknown key");
+  }
+  if (!ray.contains("origin")) return fail("ray.origin: missing");
+  if (!ray.contains("translation")) return fail("ray.translation: missing");
+  return {};
+}
+
 // op raycast: the ray {"origin", "translation"} (world frame) against shape `pieces` placed
 // by worldFromA. The answer is the geometry layer's rayCast in A's frame, carried to the
 // world frame; a concave shape gives its nearest piece's hit, and none when the ray starts
 // inside a piece (as a ray starting inside a convex shape is not entering it).
 QueryAnswer answerRayCast(const json& id, const std::vector<ShapeGeometry>& pieces,
                           Transform worldFromA, const json& q) {
-  if (!q.contains("ray")) return rejected(id, "ray: missing");
+  if (Status s = checkRay(q); !s) return rejected(id, s.message());
   const json& ray = q.at("ray");
-  if (!ray.is_object()) return rejected(id, "ray: must be an object {\"origin\", \"translation\"}");
-  for (const auto& item : ray.items()) {
-    if (item.key() != "origin" && item.key() != "translation")
-      return rejected(id, "ray." + item.key() + ": unknown key");
-  }
-  if (!ray.contains("origin")) return rejected(id, "ray.origin: missing");
-  if (!ray.contains("translation")) return rejected(id, "ray.translation: missing");
   Result<Vec2> origin = parsePosition(ray.at("origin"), "ray.origin");
   if (!origin) return rejected(id, origin.error().message);
   Result<Vec2> translation = parsePosition(ray.at("translation"), "ray.translation");
   if (!translation) return rejected(id, translation.error().message);
   json out = toJson(rayCastPieces(pieces, worldFromA, *origin, *translation));
   out["id"] = id;
+  return finished(id, out);
+}
+
+// op raycast in 3D: the ray (world frame) is carried into A's frame, cast against the
+// shape, and the hit carried back; a miss keeps every number 0, as in 2D.
+QueryAnswer answerRayCast3(const json& id, const ShapeGeometry3& shape, Transform3 worldFromA,
+                           const json& q) {
+  if (Status s = checkRay(q); !s) return rejected(id, s.message());
+  const json& ray = q.at("ray");
+  Result<Vec3> origin = parsePosition3(ray.at("origin"), "ray.origin");
+  if (!origin) return rejected(id, origin.error().message);
+  Result<Vec3> translation = parsePosition3(ray.at("translation"), "ray.translation");
+  if (!translation) return rejected(id, translation.error().message);
+  RayHit3 hit = rayCast(shape, {invTransformPoint(worldFromA, *origin),
+                                invTransformVector(worldFromA, *translation), 1.0f});
+  if (hit.hit) {
+    hit.point = transformPoint(worldFromA, hit.point);
+    hit.normal = transformVector(worldFromA, hit.normal);
+  }
+  json out = toJson(hit);
+  out["id"] = id;
+  return finished(id, out);
+}
+
+// A query whose shapes are 3D (answerParsed has checked the keys, the op and the
+// speculative distance, and that no shape is 2D): the same ops, fields and errors as in
+// 2D, with [x, y, z] vectors and {"pos", "quat"} poses.
+QueryAnswer answerParsed3(const json& id, const std::string& op, const json& q, float speculative) {
+  auto parsePoseOrIdentity = [&](const char* key) -> Result<Transform3> {
+    if (!q.contains(key)) return Transform3{};
+    return parsePose3(q.at(key), key);
+  };
+  Result<ShapeGeometry3> a = parseShape3(q.at("a"), "a");
+  if (!a) return rejected(id, a.error().message);
+  if (op == "raycast") {
+    Result<Transform3> pa = parsePoseOrIdentity("pa");
+    if (!pa) return rejected(id, pa.error().message);
+    return answerRayCast3(id, *a, *pa, q);
+  }
+  Result<ShapeGeometry3> b = parseShape3(q.at("b"), "b");
+  if (!b) return rejected(id, b.error().message);
+  Result<Transform3> pa = parsePoseOrIdentity("pa");
+  if (!pa) return rejected(id, pa.error().message);
+  Result<Transform3> pb = parsePoseOrIdentity("pb");
+  if (!pb) return rejected(id, pb.error().message);
+  // The proxies view the hulls held by *a and *b, which outlive them.
+  const ShapeProxy3 proxyA = makeProxy(*a);
+  const ShapeProxy3 proxyB = makeProxy(*b);
+  json out = {{"id", id}};
+  if (op == "shapecast") {
+    if (!q.contains("translation")) return rejected(id, "translation: missing");
+    Result<Vec3> translation = parsePosition3(q.at("translation"), "translation");
+    if (!translation) return rejected(id, translation.error().message);
+    out.update(toJson(castShape(proxyA, *pa, proxyB, *pb, *translation)));
+    return finished(id, out);
+  }
+  if (op == "toi") {
+    // A sweep is {"from": POSE, "to": POSE}; the shape turns about its proxy's centre (the
+    // centre of its core), the short way round, at a constant rate.
+    auto parseSweep = [&](const char* key, const ShapeProxy3& proxy) -> Result<Sweep3> {
+      if (!q.contains(key)) return fail(std::string(key) + ": missing");
+      const json& j = q.at(key);
+      if (!j.is_object()) return fail(std::string(key) + ": must be an object {\"from\", \"to\"}");
+      for (const auto& item : j.items()) {
+        if (item.key() != "from" && item.key() != "to")
+          return fail(std::string(key) + "." + item.key() + ": unknown key");
+      }
+      if (!j.contains("from")) return fail(std::string(key) + ".from: missing");
+      if (!j.contains("to")) return fail(std::string(key) + ".to: missing");
+      Result<Transform3> from = parsePose3(j.at("from"), std::string(key) + ".from");
+      if (!from) return from.error();
+      Result<Transform3> to = parsePose3(j.at("to"), std::string(key) + ".to");
+      if (!to) return to.error();
+      return makeSweep3(proxy.center(), *from, *to);
+    };
+    Result<Sweep3> sweepA = parseSweep("sweepA", proxyA);
+    if (!sweepA) return rejected(id, sweepA.error().message);
+    Result<Sweep3> sweepB = parseSweep("sweepB", proxyB);
+    if (!sweepB) return rejected(id, sweepB.error().message);
+    float target = kToiTargetSeparation;
+    if (q.contains("target")) {
+      const json& v = q.at("target");
+      if (!isLengthOption(v)) {
+        return rejected(id, "target: must be a number >= 0 within the coordinate limit 1e9 m");
+      }
+      target = v.get<float>();
+    }
+    out.update(toJson(computeToi(proxyA, *sweepA, proxyB, *sweepB, 1.0f, target)));
+    return finished(id, out);
+  }
+  if (op == "overlap") {
+    out["overlap"] = testOverlap(proxyA, *pa, proxyB, *pb);
+  } else if (op == "distance") {
+    out.update(toJson(computeDistance(proxyA, *pa, proxyB, *pb)));
+  } else if (op == "manifold") {
+    out.update(toJson(collide(*a, *pa, *b, *pb, speculative)));
+  } else {
+    out.update(toJson(computePenetration(proxyA, *pa, proxyB, *pb)));
+  }
   return finished(id, out);
 }
 
@@ -293,6 +405,20 @@ QueryAnswer answerParsed(const json& q) {
     speculative = v.get<float>();
   }
   if (!q.contains("a")) return rejected(id, "a: missing");
+  // A shape whose vectors have three components (or a 3D-only type) is 3D; both shapes of
+  // a line are in one dimension.
+  const int dimensionA = shapeDimension(q.at("a"));
+  const int dimensionB = op != "raycast" && q.contains("b") ? shapeDimension(q.at("b")) : 0;
+  if (dimensionA == 3 || dimensionB == 3) {
+    if (op != "raycast" && !q.contains("b")) return rejected(id, "b: missing");
+    if (dimensionA == 2 || dimensionB == 2) {
+      const char* flat = dimensionA == 2 ? "a" : "b";
+      const char* solid = dimensionA == 2 ? "b" : "a";
+      return rejected(id, std::string(flat) + ": a 2D shape in one query with the 3D shape " +
+                              solid + " (both shapes must be 2D, or both 3D)");
+    }
+    return answerParsed3(id, op, q, speculative);
+  }
   if (op == "raycast") {
     Result<std::vector<ShapeGeometry>> a = parseShapePieces(q.at("a"), "a");
     if (!a) return rejected(id, a.error().message);

@@ -5,18 +5,48 @@
 // pairs per size at random poses, each library given the same shapes and poses. Bullet's
 // hulls have their margin set to 0 so all three see the same polytopes. Cold queries (no
 // warm start), as a broad phase's new pairs are.
+//
+// Hull-hull contact manifolds: Quack's collideHulls (SAT, then the incident face clipped and
+// reduced to four points) against Bullet's btConvexConvexAlgorithm through its collision
+// dispatcher, on btConvexHullShapes with their polyhedral features (btConvexPolyhedron),
+// margin 0: with m_enableSatConvex (btPolyhedralContactClipping's SAT, then its clipping)
+// and with Bullet's default (GJK/EPA for the normal, then the same clipping). The pairs are
+// the half-overlapping random hulls above and boxes resting on boxes (a unit cube 0 to 0.01
+// m deep on a slab, tilted up to 0.02 rad, turned about the slab's normal). Bullet's
+// algorithm is made once per pair (not timed) and its persistent manifold cleared after
+// every query, so each query is cold; the speculative distance is 0.02 m for both
+// (Quack's kSpeculativeDistance, Bullet's contact breaking threshold).
+//
+// `narrowphase3d_bench --count KERNEL SET ROUNDS` runs one kernel (quack, bullet-sat,
+// bullet-gjk; quack-hash also prints a hash of Quack's answers, to show that a change left
+// them alone) over the 256 pairs of SET (random8, random16, random32, resting) ROUNDS
+// times and nothing else, for instruction counts under callgrind (docs/3d.md).
 
 #include <benchmark/benchmark.h>
 
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "quack/collision/epa3.hpp"
 #include "quack/collision/gjk3.hpp"
+#include "quack/collision/manifold3.hpp"
 
 #if QUACK_HAVE_BULLET
+#include <BulletCollision/BroadphaseCollision/btCollisionAlgorithm.h>
+#include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
+#include <BulletCollision/CollisionDispatch/btCollisionObject.h>
+#include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
+#include <BulletCollision/CollisionDispatch/btDefaultCollisionConfiguration.h>
+#include <BulletCollision/CollisionDispatch/btManifoldResult.h>
 #include <BulletCollision/CollisionShapes/btConvexHullShape.h>
 #include <BulletCollision/NarrowPhaseCollision/btGjkEpa2.h>
+#include <BulletCollision/NarrowPhaseCollision/btPersistentManifold.h>
 #endif
 #if QUACK_HAVE_CCD
 #include <ccd/ccd.h>
@@ -260,6 +290,227 @@ void BM_CcdPenetration(benchmark::State& state) {
 BENCHMARK(BM_CcdPenetration)->Arg(8)->Arg(16)->Arg(32);
 #endif
 
+// ---- hull-hull manifolds ----
+
+// A unit cube resting on a 4 x 1 x 4 slab: 256 pairs, the slab anywhere and turned, the cube
+// 0 to 0.01 m deep, tilted by up to 0.02 rad about a random horizontal axis, turned about
+// the slab's normal, anywhere on the slab's top.
+std::vector<Case> makeRestingCases() {
+  std::mt19937 rng(4242);
+  std::normal_distribution<float> g(0, 1);
+  std::uniform_real_distribution<float> u(-1, 1);
+  const Hull3 slab = makeBox3({2, 0.5f, 2}).value();
+  const Hull3 cube = makeBox3({0.5f, 0.5f, 0.5f}).value();
+  std::vector<Case> cases(256);
+  for (Case& c : cases) {
+    c.a = slab;
+    c.b = cube;
+    c.ta = {{10 * g(rng), 10 * g(rng), 10 * g(rng)},
+            normalize(Quat{g(rng), g(rng), g(rng), g(rng)})};
+    const float tilt = 0.02f * 0.5f * (u(rng) + 1);
+    const float heading = 3.14159265f * u(rng);
+    const Quat yaw = Quat::fromAxisAngle({0, 1, 0}, heading);
+    const Quat lean = Quat::fromAxisAngle(normalize(Vec3{u(rng), 0, u(rng) + 2.0f}), tilt);
+    const float depth = 0.005f * (u(rng) + 1);
+    const Transform3 slabFromCube{{1.2f * u(rng), 1.0f - depth, 1.2f * u(rng)}, lean * yaw};
+    c.tb = c.ta * slabFromCube;
+  }
+  return cases;
+}
+
+// The pairs of a manifold set: 8, 16 or 32 (random hulls, half overlapping) or 0 (resting).
+const std::vector<Case>& manifoldCases(int n) {
+  static std::vector<Case> resting;
+  if (n != 0) return cases(n, false);
+  if (resting.empty()) resting = makeRestingCases();
+  return resting;
+}
+
+int g_quackPoints = 0;
+// FNV-1a over the manifolds of a --count run: the same number before and after a change
+// that must not change any answer.
+std::uint64_t g_quackHash = 1469598103934665603ull;
+
+void hashBytes(const void* data, std::size_t n) {
+  const unsigned char* p = static_cast<const unsigned char*>(data);
+  for (std::size_t i = 0; i < n; ++i)
+    g_quackHash = (g_quackHash ^ p[i]) * 1099511628211ull;
+}
+
+void quackManifold(const Case& c, bool hash = false) {
+  Manifold3 m = collideHulls(c.a, c.ta, c.b, c.tb, kSpeculativeDistance);
+  g_quackPoints += m.pointCount;
+  if (hash) {
+    hashBytes(&m.pointCount, sizeof m.pointCount);
+    if (m.pointCount > 0) hashBytes(&m.normal, sizeof m.normal);
+    for (int k = 0; k < m.pointCount; ++k) {
+      hashBytes(&m.points[k].point, sizeof m.points[k].point);
+      hashBytes(&m.points[k].separation, sizeof m.points[k].separation);
+      hashBytes(&m.points[k].id, sizeof m.points[k].id);
+    }
+  }
+  benchmark::DoNotOptimize(m);
+}
+
+void BM_QuackManifold(benchmark::State& state) {
+  const std::vector<Case>& cs = manifoldCases(static_cast<int>(state.range(0)));
+  std::size_t i = 0;
+  g_quackPoints = 0;
+  for (auto _ : state)
+    quackManifold(cs[i++ & 255]);
+  state.counters["points"] = static_cast<double>(g_quackPoints) / static_cast<double>(i);
+}
+BENCHMARK(BM_QuackManifold)->ArgName("verts")->Arg(8)->Arg(16)->Arg(32)->Arg(0);
+
+#if QUACK_HAVE_BULLET
+// Bullet's dispatcher set up once; one algorithm per pair, found by the dispatcher.
+struct BulletWorld {
+  btDefaultCollisionConfiguration configuration;
+  btCollisionDispatcher dispatcher{&configuration};
+  btDispatcherInfo info;
+};
+
+struct BulletPair {
+  std::unique_ptr<btConvexHullShape> shapeA, shapeB;
+  btCollisionObject objectA, objectB;
+  btCollisionAlgorithm* algorithm = nullptr;
+};
+
+std::unique_ptr<btConvexHullShape> toBulletHull(const Hull3& h) {
+  auto shape = std::make_unique<btConvexHullShape>();
+  for (int i = 0; i < h.vertexCount; ++i)
+    shape->addPoint(btVector3(h.vertices[i].x, h.vertices[i].y, h.vertices[i].z), false);
+  shape->recalcLocalAabb();
+  shape->setMargin(0);
+  shape->initializePolyhedralFeatures();  // btConvexPolyhedron: Bullet's clipping needs it
+  return shape;
+}
+
+BulletWorld& bulletWorld() {
+  static BulletWorld w;
+  return w;
+}
+
+std::vector<BulletPair>& bulletPairs(int n) {
+  static std::vector<BulletPair> store[33];
+  std::vector<BulletPair>& out = store[n];
+  if (out.empty()) {
+    const std::vector<Case>& cs = manifoldCases(n);
+    out = std::vector<BulletPair>(cs.size());
+    for (std::size_t k = 0; k < cs.size(); ++k) {
+      BulletPair& p = out[k];
+      p.shapeA = toBulletHull(cs[k].a);
+      p.shapeB = toBulletHull(cs[k].b);
+      p.objectA.setCollisionShape(p.shapeA.get());
+      p.objectB.setCollisionShape(p.shapeB.get());
+      p.objectA.setWorldTransform(toBullet(cs[k].ta));
+      p.objectB.setWorldTransform(toBullet(cs[k].tb));
+      btCollisionObjectWrapper wa(nullptr, p.shapeA.get(), &p.objectA,
+                                  p.objectA.getWorldTransform(), -1, -1);
+      btCollisionObjectWrapper wb(nullptr, p.shapeB.get(), &p.objectB,
+                                  p.objectB.getWorldTransform(), -1, -1);
+      p.algorithm =
+          bulletWorld().dispatcher.findAlgorithm(&wa, &wb, nullptr, BT_CONTACT_POINT_ALGORITHMS);
+    }
+  }
+  return out;
+}
+
+int g_bulletPoints = 0;
+
+void bulletManifold(BulletPair& p, bool sat) {
+  BulletWorld& w = bulletWorld();
+  w.info.m_enableSatConvex = sat;
+  btCollisionObjectWrapper wa(nullptr, p.shapeA.get(), &p.objectA, p.objectA.getWorldTransform(),
+                              -1, -1);
+  btCollisionObjectWrapper wb(nullptr, p.shapeB.get(), &p.objectB, p.objectB.getWorldTransform(),
+                              -1, -1);
+  btManifoldResult result(&wa, &wb);
+  p.algorithm->processCollision(&wa, &wb, w.info, &result);
+  btPersistentManifold* m = result.getPersistentManifold();
+  if (m != nullptr) {
+    g_bulletPoints += m->getNumContacts();
+    benchmark::DoNotOptimize(m->getNumContacts());
+    m->clearManifold();  // cold: the next query of this pair starts from nothing
+  }
+}
+
+void bulletManifoldBenchmark(benchmark::State& state, bool sat) {
+  std::vector<BulletPair>& ps = bulletPairs(static_cast<int>(state.range(0)));
+  std::size_t i = 0;
+  g_bulletPoints = 0;
+  for (auto _ : state)
+    bulletManifold(ps[i++ & 255], sat);
+  state.counters["points"] = static_cast<double>(g_bulletPoints) / static_cast<double>(i);
+}
+
+void BM_BulletManifoldSat(benchmark::State& state) {
+  bulletManifoldBenchmark(state, true);
+}
+BENCHMARK(BM_BulletManifoldSat)->ArgName("verts")->Arg(8)->Arg(16)->Arg(32)->Arg(0);
+
+void BM_BulletManifoldGjk(benchmark::State& state) {
+  bulletManifoldBenchmark(state, false);
+}
+BENCHMARK(BM_BulletManifoldGjk)->ArgName("verts")->Arg(8)->Arg(16)->Arg(32)->Arg(0);
+#endif
+
+// --count KERNEL SET ROUNDS: the kernel over SET's 256 pairs, ROUNDS times; the setup is
+// the same for every ROUNDS, so the instruction counts of two runs differ by the queries.
+int countMode(int argc, char** argv) {
+  if (argc != 5) {
+    std::fprintf(stderr,
+                 "usage: %s --count quack|quack-hash|bullet-sat|bullet-gjk "
+                 "random8|random16|random32|resting ROUNDS\n",
+                 argv[0]);
+    return 2;
+  }
+  const std::string kernel = argv[2], set = argv[3];
+  const int rounds = std::atoi(argv[4]);
+  int n = -1;
+  if (set == "random8") n = 8;
+  if (set == "random16") n = 16;
+  if (set == "random32") n = 32;
+  if (set == "resting") n = 0;
+  if (n < 0 || rounds < 0) {
+    std::fprintf(stderr, "unknown set %s or negative rounds\n", set.c_str());
+    return 2;
+  }
+  if (kernel == "quack" || kernel == "quack-hash") {
+    // quack-hash also hashes every answer (not for instruction counts).
+    const bool hash = kernel == "quack-hash";
+    const std::vector<Case>& cs = manifoldCases(n);
+    for (int r = 0; r < rounds; ++r)
+      for (const Case& c : cs)
+        quackManifold(c, hash);
+    std::printf("%s %s: %d rounds, %.3f points per query", kernel.c_str(), set.c_str(), rounds,
+                rounds > 0 ? g_quackPoints / (256.0 * rounds) : 0.0);
+    if (hash) std::printf(", answers' hash %016llx", static_cast<unsigned long long>(g_quackHash));
+    std::printf("\n");
+    return 0;
+  }
+#if QUACK_HAVE_BULLET
+  if (kernel == "bullet-sat" || kernel == "bullet-gjk") {
+    std::vector<BulletPair>& ps = bulletPairs(n);
+    for (int r = 0; r < rounds; ++r)
+      for (BulletPair& p : ps)
+        bulletManifold(p, kernel == "bullet-sat");
+    std::printf("%s %s: %d rounds, %.3f points per query\n", kernel.c_str(), set.c_str(), rounds,
+                rounds > 0 ? g_bulletPoints / (256.0 * rounds) : 0.0);
+    return 0;
+  }
+#endif
+  std::fprintf(stderr, "unknown or unavailable kernel %s\n", kernel.c_str());
+  return 2;
+}
+
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  if (argc >= 2 && std::strcmp(argv[1], "--count") == 0) return countMode(argc, argv);
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

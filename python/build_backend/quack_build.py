@@ -3,7 +3,7 @@
 It needs nothing but the standard library, so pip's isolated build environment installs
 nothing and the build works offline: CMake builds the module (target quack_python) for the
 interpreter running pip, and this file packs it into a wheel with the type stubs
-(python/stubs/quack.pyi, installed as quack-stubs). docs/python.md, "Building and
+(python/stubs/quack/, installed as quack-stubs). docs/python.md, "Building and
 installing", says how to use it.
 
 config_settings (pip --config-settings KEY=VALUE):
@@ -147,9 +147,14 @@ def _write_wheel(wheel_directory, files):
 
 
 def _stub_files():
-    """python/stubs/quack.pyi as the stub-only package quack-stubs (PEP 561)."""
-    with open(os.path.join(SOURCE, "python", "stubs", "quack.pyi"), "rb") as f:
-        return [("quack-stubs/__init__.pyi", f.read())]
+    """python/stubs/quack/*.pyi as the stub-only package quack-stubs (PEP 561)."""
+    folder = os.path.join(SOURCE, "python", "stubs", "quack")
+    files = []
+    for name in sorted(os.listdir(folder)):
+        if name.endswith(".pyi"):
+            with open(os.path.join(folder, name), "rb") as f:
+                files.append(("quack-stubs/" + name, f.read()))
+    return files
 
 
 # ---- PEP 517 hooks -------------------------------------------------------------------------

@@ -105,5 +105,7 @@ void registerShapes(py::module_& m);
 void registerQueries(py::module_& m);
 void registerBatch(py::module_& m);
 void registerWorld(py::module_& m);
+/// The submodule quack.d3 (3D shapes and queries), with its own answer classes.
+void registerD3(py::module_& m);
 
 }  // namespace quack::python

@@ -319,6 +319,10 @@ py::tuple toTuple(Vec2 v) {
 
 const PyShape& toShape(py::handle value, const std::string& path) {
   if (!py::isinstance<PyShape>(value)) {
+    if (std::string(py::str(value.get_type().attr("__module__"))) == "quack.d3") {
+      raiseValue(path + ": a 3D quack.d3.Shape in a 2D query (3D shapes go to quack.d3.distance, " +
+                 "...)");
+    }
     raiseValue(path + ": must be a quack.Shape (made by quack.circle, ..., quack.shape), not " +
                std::string(py::str(value.get_type().attr("__name__"))));
   }

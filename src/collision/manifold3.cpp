@@ -2,6 +2,8 @@
 
 #include "quack/collision/manifold3.hpp"
 
+#include "manifold3_internal.hpp"
+
 #include <cmath>
 #include <limits>
 #include <variant>
@@ -237,7 +239,7 @@ Manifold3 collideHullAndCapsule(const Hull3& a, Transform3 worldFromA, const Cap
 Manifold3 collideHulls(const Hull3& a, Transform3 worldFromA, const Hull3& b, Transform3 worldFromB,
                        float speculativeDistance) noexcept {
   Manifold3 m;
-  SatOutput3 sat = computeSat(a, worldFromA, b, worldFromB);
+  SatOutput3 sat = computeSat(a, worldFromA, b, worldFromB, speculativeDistance);
   if (sat.separation > speculativeDistance) return m;
 
   if (sat.feature == SatFeature3::edges && sat.separation > 0.0f) {
@@ -394,6 +396,19 @@ bool collideOrdered(const ShapeGeometry3& a, Transform3 worldFromA, const ShapeG
 }
 
 }  // namespace
+
+namespace detail {
+
+ManifoldPoint3 makeManifoldPoint3(Vec3 point, float separation, std::uint32_t id,
+                                  Transform3 worldFromA, Transform3 worldFromB) noexcept {
+  return makePoint(point, separation, id, worldFromA, worldFromB);
+}
+
+int reduceManifoldPoints3(ManifoldPoint3* points, int count, Vec3 normal) noexcept {
+  return reduceToFour(points, count, normal);
+}
+
+}  // namespace detail
 
 Manifold3 collide(const ShapeGeometry3& a, Transform3 worldFromA, const ShapeGeometry3& b,
                   Transform3 worldFromB, float speculativeDistance) noexcept {

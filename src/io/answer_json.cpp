@@ -53,4 +53,52 @@ json toJson(const ToiOutput& t) {
   return {{"status", toString(t.status)}, {"t", t.t}};
 }
 
+// 3D: the same fields, three components.
+
+json toJson(Vec3 v) {
+  return json::array({v.x, v.y, v.z});
+}
+
+json toJson(const DistanceOutput3& d) {
+  return {{"distance", d.distance},     {"pointA", toJson(d.pointA)},
+          {"pointB", toJson(d.pointB)}, {"normal", toJson(d.normal)},
+          {"iterations", d.iterations}, {"status", toString(d.status)}};
+}
+
+json toJson(const PenetrationOutput3& p) {
+  return {{"overlap", p.overlap},        {"depth", p.depth},           {"normal", toJson(p.normal)},
+          {"pointA", toJson(p.pointA)},  {"pointB", toJson(p.pointB)}, {"iterations", p.iterations},
+          {"status", toString(p.status)}};
+}
+
+json toJson(const Manifold3& m) {
+  json points = json::array();
+  for (int i = 0; i < m.pointCount; ++i) {
+    points.push_back({{"point", toJson(m.points[i].point)},
+                      {"separation", m.points[i].separation},
+                      {"id", m.points[i].id}});
+  }
+  return {{"normal", toJson(m.pointCount > 0 ? m.normal : Vec3{})}, {"points", points}};
+}
+
+json toJson(const ShapeCastOutput3& c) {
+  return {{"hit", c.hit},
+          {"fraction", c.fraction},
+          {"point", toJson(c.point)},
+          {"normal", toJson(c.normal)},
+          {"depth", c.depth},
+          {"status", toString(c.status)}};
+}
+
+json toJson(const RayHit3& r) {
+  return {{"hit", r.hit},
+          {"fraction", r.fraction},
+          {"point", toJson(r.point)},
+          {"normal", toJson(r.normal)}};
+}
+
+json toJson(const ToiOutput3& t) {
+  return {{"status", toString(t.status)}, {"t", t.t}};
+}
+
 }  // namespace quack

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <initializer_list>
+#include <span>
 #include <vector>
 
 #include "quack/geometry/decompose.hpp"
@@ -119,6 +120,10 @@ Result<Vec2> parsePosition(const json& j, const std::string& path) {
 
 Result<Transform> parsePose(const json& j, const std::string& path) {
   if (!j.is_object()) return fail(path + ": must be an object {\"pos\", \"angle\"}");
+  if (j.contains("quat")) {
+    return fail(path + ".quat: a 2D pose turns by \"angle\" (radians); \"quat\" is for 3D " +
+                "shapes");
+  }
   if (Status s = checkKeys(j, path, {"pos", "angle"}); !s) return fail(s.message());
   Result<Vec2> pos = positionOr(j, "pos", path, {});
   if (!pos) return pos.error();
@@ -258,6 +263,213 @@ Result<std::vector<ShapeGeometry>> parseShapePieces(const json& j, const std::st
   Result<ShapeGeometry> convex = parseConvex(j, path, *type, extraKeys);
   if (!convex) return convex.error();
   return std::vector<ShapeGeometry>{std::move(*convex)};
+}
+
+// ---------------------------------------------------------------------------------------
+// 3D
+
+Result<Vec3> parseVec3(const json& j, const std::string& path) {
+  if (!j.is_array() || j.size() != 3) return fail(path + ": must be [x, y, z]");
+  float c[3];
+  for (std::size_t i = 0; i < 3; ++i) {
+    Result<float> f = parseNumber(j[i], path + "[" + std::to_string(i) + "]");
+    if (!f) return f.error();
+    c[i] = *f;
+  }
+  return Vec3{c[0], c[1], c[2]};
+}
+
+Result<Vec3> parsePosition3(const json& j, const std::string& path) {
+  Result<Vec3> v = parseVec3(j, path);
+  if (!v) return v;
+  const float c[3] = {v->x, v->y, v->z};
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (absf(c[i]) > kMaxCoordinate)
+      return fail(path + "[" + std::to_string(i) + "]: " + beyondLimit(j[i]));
+  }
+  return v;
+}
+
+Result<Quat> parseQuat(const json& j, const std::string& path) {
+  if (!j.is_array() || j.size() != 4) return fail(path + ": must be [x, y, z, w] (scalar last)");
+  double c[4];
+  for (std::size_t i = 0; i < 4; ++i) {
+    Result<float> f = parseNumber(j[i], path + "[" + std::to_string(i) + "]");
+    if (!f) return f.error();
+    c[i] = static_cast<double>(*f);
+  }
+  // In double, so any non-zero float quaternion (denormal components included) normalises.
+  const double norm = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2] + c[3] * c[3]);
+  if (!(norm > 0.0)) {
+    return fail(path + ": [0, 0, 0, 0] is not a rotation (the zero quaternion; the identity is " +
+                "[0, 0, 0, 1])");
+  }
+  return Quat{static_cast<float>(c[0] / norm), static_cast<float>(c[1] / norm),
+              static_cast<float>(c[2] / norm), static_cast<float>(c[3] / norm)};
+}
+
+Result<Transform3> parsePose3(const json& j, const std::string& path) {
+  if (!j.is_object()) return fail(path + ": must be an object {\"pos\", \"quat\"}");
+  if (j.contains("angle")) {
+    return fail(path + ".angle: a 3D pose turns by \"quat\": [x, y, z, w], not by an angle");
+  }
+  if (Status s = checkKeys(j, path, {"pos", "quat"}); !s) return fail(s.message());
+  Vec3 pos;
+  if (j.contains("pos")) {
+    Result<Vec3> p = parsePosition3(j.at("pos"), path + ".pos");
+    if (!p) return p.error();
+    pos = *p;
+  }
+  Quat q;
+  if (j.contains("quat")) {
+    Result<Quat> r = parseQuat(j.at("quat"), path + ".quat");
+    if (!r) return r.error();
+    q = *r;
+  }
+  return Transform3{pos, q};
+}
+
+namespace {
+
+bool isTriple(const json& j) {
+  return j.is_array() && j.size() == 3;
+}
+
+Result<Vec3> requiredPosition3(const json& j, const char* key, const std::string& path) {
+  if (!j.contains(key)) return fail(path + "." + key + ": missing");
+  return parsePosition3(j.at(key), path + "." + key);
+}
+
+// An array of `least` to `most` points [x, y, z].
+Result<std::vector<Vec3>> parsePoints3(const json& j, const char* key, const std::string& path,
+                                       std::size_t least, std::size_t most) {
+  const std::string at = path + "." + key;
+  if (!j.contains(key)) return fail(at + ": missing");
+  const json& pts = j.at(key);
+  if (!pts.is_array()) return fail(at + ": must be an array of [x, y, z]");
+  if (least == most && pts.size() != least)
+    return fail(at + ": needs exactly " + std::to_string(least) + " points");
+  if (pts.size() < least) return fail(at + ": needs at least " + std::to_string(least) + " points");
+  if (pts.size() > most)
+    return fail(at + ": too many points (at most " + std::to_string(most) + ")");
+  std::vector<Vec3> points;
+  points.reserve(pts.size());
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    Result<Vec3> p = parsePosition3(pts[i], at + "[" + std::to_string(i) + "]");
+    if (!p) return p.error();
+    points.push_back(*p);
+  }
+  return points;
+}
+
+// A "radius" key on a 3D shape that has no rounding: absent or 0 only.
+Status noRounding(const json& j, const std::string& path, const char* kind) {
+  if (!j.contains("radius")) return {};
+  Result<float> r = parseLength(j.at("radius"), path + ".radius");
+  if (!r) return fail(r.error().message);
+  if (*r != 0.0f) {
+    return fail(path + ".radius: a rounded " + kind +
+                " is not supported in 3D yet (radius must be 0 or absent)");
+  }
+  return {};
+}
+
+}  // namespace
+
+int shapeDimension(const json& j) {
+  if (!j.is_object() || !j.contains("type") || !j.at("type").is_string()) return 0;
+  const std::string type = j.at("type").get<std::string>();
+  if (type == "sphere" || type == "hull" || type == "triangle") return 3;
+  if (type == "circle" || type == "segment" || type == "polygon" || type == "concave") return 2;
+  if (type == "capsule") return j.contains("p1") && isTriple(j.at("p1")) ? 3 : 2;
+  if (type == "box") return j.contains("half") && isTriple(j.at("half")) ? 3 : 2;
+  return 0;
+}
+
+Result<ShapeGeometry3> parseShape3(const json& j, const std::string& path,
+                                   std::initializer_list<const char*> extraKeys) {
+  Result<std::string> type = typeOf(j, path);
+  if (!type) return type.error();
+  if (*type == "sphere") {
+    if (Status s = checkKeys(j, path, {"type", "center", "radius"}, extraKeys); !s)
+      return fail(s.message());
+    Vec3 c;
+    if (j.contains("center")) {
+      Result<Vec3> r = parsePosition3(j.at("center"), path + ".center");
+      if (!r) return r.error();
+      c = *r;
+    }
+    Result<float> r = requiredLength(j, "radius", path);
+    if (!r) return r.error();
+    if (*r <= 0.0f) return fail(path + ".radius: must be > 0");
+    Result<Sphere> s = makeSphere(c, *r);
+    if (!s) return located(path, s.error());
+    return ShapeGeometry3{*s};
+  }
+  if (*type == "capsule") {
+    if (Status s = checkKeys(j, path, {"type", "p1", "p2", "radius"}, extraKeys); !s)
+      return fail(s.message());
+    Result<Vec3> p1 = requiredPosition3(j, "p1", path);
+    if (!p1) return p1.error();
+    Result<Vec3> p2 = requiredPosition3(j, "p2", path);
+    if (!p2) return p2.error();
+    Result<float> r = requiredLength(j, "radius", path);
+    if (!r) return r.error();
+    if (*r <= 0.0f) return fail(path + ".radius: must be > 0");
+    Result<Capsule3> s = makeCapsule3(*p1, *p2, *r);
+    if (!s) return located(path, s.error());
+    return ShapeGeometry3{*s};
+  }
+  if (*type == "box") {
+    if (j.contains("angle")) {
+      return fail(path + ".angle: a 3D box turns by \"quat\": [x, y, z, w], not by an angle");
+    }
+    if (Status s = noRounding(j, path, "box"); !s) return fail(s.message());
+    if (Status s = checkKeys(j, path, {"type", "half", "center", "quat", "radius"}, extraKeys); !s)
+      return fail(s.message());
+    Result<Vec3> half = requiredPosition3(j, "half", path);
+    if (!half) return half.error();
+    if (!(half->x > 0.0f && half->y > 0.0f && half->z > 0.0f))
+      return fail(path + ".half: must be > 0");
+    Transform3 shapeFromBox;
+    if (j.contains("center")) {
+      Result<Vec3> c = parsePosition3(j.at("center"), path + ".center");
+      if (!c) return c.error();
+      shapeFromBox.p = *c;
+    }
+    if (j.contains("quat")) {
+      Result<Quat> q = parseQuat(j.at("quat"), path + ".quat");
+      if (!q) return q.error();
+      shapeFromBox.q = *q;
+    }
+    Result<Hull3> s = makeBox3(*half, shapeFromBox);
+    if (!s) return located(path, s.error());
+    return ShapeGeometry3{std::move(*s)};
+  }
+  if (*type == "hull") {
+    if (Status s = noRounding(j, path, "hull"); !s) return fail(s.message());
+    if (Status s = checkKeys(j, path, {"type", "points", "radius"}, extraKeys); !s)
+      return fail(s.message());
+    Result<std::vector<Vec3>> points = parsePoints3(j, "points", path, 4, 4096);
+    if (!points) return points.error();
+    Result<Hull3> s = makeHull3(std::span<const Vec3>(*points));
+    if (!s) return located(path, s.error());
+    return ShapeGeometry3{std::move(*s)};
+  }
+  if (*type == "triangle") {
+    if (Status s = checkKeys(j, path, {"type", "points"}, extraKeys); !s) return fail(s.message());
+    Result<std::vector<Vec3>> points = parsePoints3(j, "points", path, 3, 3);
+    if (!points) return points.error();
+    Result<Triangle3> s = makeTriangle3((*points)[0], (*points)[1], (*points)[2]);
+    if (!s) return located(path, s.error());
+    return ShapeGeometry3{*s};
+  }
+  if (*type == "circle" || *type == "segment" || *type == "polygon" || *type == "concave") {
+    return fail(path + ".type: \"" + *type + "\" is a 2D shape (in 3D: sphere, capsule, box, " +
+                "hull, triangle)");
+  }
+  return fail(path + ".type: unknown shape type \"" + *type +
+              "\" (expected sphere, capsule, box, hull, triangle in 3D)");
 }
 
 }  // namespace quack

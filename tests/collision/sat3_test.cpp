@@ -43,6 +43,46 @@ TEST(Sat3, CrossedEdges) {
   EXPECT_NEAR(s.separation, -0.25f, 1e-5f);
 }
 
+// stopAbove: an answer with the full answer's axis when that separation is at most the
+// threshold; otherwise some axis whose separation is above it too (and the normal's
+// projections say so), sooner.
+TEST(Sat3, StopAboveAnswersAsTheFullTestOrBeyondTheThreshold) {
+  std::mt19937 rng(77);
+  int stoppedEarly = 0, same = 0;
+  for (int i = 0; i < 2000; ++i) {
+    Shape3 a = randomShape3(rng, i % 2 ? Kind3::box : Kind3::hull, 1.0f, 20);
+    Shape3 b = randomShape3(rng, i % 3 ? Kind3::hull : Kind3::box, 1.0f, 20);
+    Transform3 ta{randomVec(rng, 1), randomQuat(rng)};
+    Transform3 tb{ta.p + randomVec(rng, 2.5f), randomQuat(rng)};
+    const float stop = static_cast<float>(i % 4) * 0.02f;
+    SatOutput3 full = computeSat(a.hull, ta, b.hull, tb);
+    SatOutput3 early = computeSat(a.hull, ta, b.hull, tb, stop);
+    if (full.separation <= stop) {
+      ++same;
+      EXPECT_EQ(early.separation, full.separation) << i;
+      EXPECT_EQ(early.normal, full.normal) << i;
+      EXPECT_EQ(early.feature, full.feature) << i;
+      EXPECT_EQ(early.faceIndex, full.faceIndex) << i;
+      EXPECT_EQ(early.edgeA, full.edgeA) << i;
+      EXPECT_EQ(early.edgeB, full.edgeB) << i;
+    } else {
+      ++stoppedEarly;
+      EXPECT_GT(early.separation, stop) << i;
+      EXPECT_LE(early.separation, full.separation) << i;
+      // The certificate: along the normal, B's least projection is `separation` beyond A's
+      // greatest.
+      float maxA = -1e30f, minB = 1e30f;
+      for (int k = 0; k < a.hull.vertexCount; ++k)
+        maxA = std::max(maxA, dot(early.normal, transformPoint(ta, a.hull.vertices[k])));
+      for (int k = 0; k < b.hull.vertexCount; ++k)
+        minB = std::min(minB, dot(early.normal, transformPoint(tb, b.hull.vertices[k])));
+      EXPECT_NEAR(minB - maxA, early.separation, 1e-4f) << i;
+    }
+  }
+  EXPECT_GT(stoppedEarly, 100);
+  EXPECT_GT(same, 100);
+}
+
 TEST(Sat3, RandomHullPairsAgreeWithTheOracles) {
   std::mt19937 rng(909);
   int mismatches = 0, overlapChecked = 0, apartChecked = 0;

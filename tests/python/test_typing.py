@@ -1,4 +1,4 @@
-"""Type stubs and docstrings: python/stubs/quack.pyi names what the built module has, and
+"""Type stubs and docstrings: python/stubs/quack/ names what the built module has, and
 `mypy --strict` accepts the examples and the README's Python block against it (skipped
 where mypy is not installed: Debian python3-mypy, scripts/packages/python.txt); every
 public name of the module has a docstring that help() shows."""
@@ -15,16 +15,20 @@ import pytest
 import quack
 
 
-def _stub_path(source_dir):
-    return os.path.join(source_dir, "python", "stubs", "quack.pyi")
+def _stub_path(source_dir, module="__init__"):
+    return os.path.join(source_dir, "python", "stubs", "quack", module + ".pyi")
 
 
-def _stub_names(source_dir):
+def _stub_names(source_dir, module="__init__"):
     """Top-level names of the stub, and each class's members: {name: set of members}."""
-    with open(_stub_path(source_dir)) as f:
+    with open(_stub_path(source_dir, module)) as f:
         tree = ast.parse(f.read())
     names = {}
     for node in tree.body:
+        if isinstance(node, ast.ImportFrom) and node.module is None:  # from . import d3 as d3
+            for alias in node.names:
+                names[alias.asname or alias.name] = set()
+            continue
         if isinstance(node, ast.ClassDef):
             members = set()
             for item in node.body:
@@ -44,12 +48,14 @@ def _public(obj):
     return [n for n in dir(obj) if not n.startswith("_")]
 
 
-def test_the_stub_names_what_the_module_has(source_dir):
-    stub = _stub_names(source_dir)
-    module = set(_public(quack)) | {"__version__"}
-    assert set(stub) == module
+@pytest.mark.parametrize("module", ["__init__", "d3"])
+def test_the_stub_names_what_the_module_has(source_dir, module):
+    mod = quack if module == "__init__" else getattr(quack, module)
+    stub = _stub_names(source_dir, module)
+    public = set(_public(mod)) | ({"__version__"} if module == "__init__" else set())
+    assert set(stub) == public
     for name, members in stub.items():
-        cls = getattr(quack, name)
+        cls = getattr(mod, name)
         if not isinstance(cls, type):
             continue
         have = set(_public(cls))
@@ -63,10 +69,12 @@ def test_the_stub_names_what_the_module_has(source_dir):
         assert not extra, (name, extra)
 
 
-def test_every_public_name_has_a_docstring():
+@pytest.mark.parametrize("module", ["__init__", "d3"])
+def test_every_public_name_has_a_docstring(module):
+    mod = quack if module == "__init__" else getattr(quack, module)
     undocumented = []
-    for name in _public(quack):
-        obj = getattr(quack, name)
+    for name in _public(mod):
+        obj = getattr(mod, name)
         if not callable(obj) and not isinstance(obj, type):
             continue  # constants (ALL_CATEGORIES, ...) are described in the module's docstring
         doc = inspect.getdoc(obj) or ""
@@ -83,6 +91,10 @@ def test_every_public_name_has_a_docstring():
                 if len(mtext.strip()) < 4:
                     undocumented.append(f"{name}.{member}")
     assert undocumented == []
+    if module == "d3":
+        assert "EPA_STATUSES" in mod.__doc__
+        return
+    assert quack.d3.__doc__ and "quack.d3" in quack.__doc__
     for constant in ("ALL_CATEGORIES", "BODY_STATE_COLUMNS", "GJK_STATUSES", "EPA_STATUSES"):
         assert constant in quack.__doc__
     assert "body_state" in quack.World.__doc__ or "body_state" in (quack.World.body_state.__doc__)
@@ -102,9 +114,10 @@ def test_mypy_strict_accepts_the_examples_and_the_readme(source_dir, tmp_path):
     examples = os.path.join(source_dir, "examples", "python")
     files = [str(readme)] + sorted(os.path.join(examples, f) for f in os.listdir(examples)
                                    if f.endswith(".py"))
-    env = dict(os.environ, MYPYPATH=os.path.dirname(_stub_path(source_dir)))
+    env = dict(os.environ, MYPYPATH=os.path.dirname(os.path.dirname(_stub_path(source_dir))))
     run = subprocess.run([sys.executable, "-m", "mypy", "--strict", "--no-incremental",
-                          "--cache-dir", str(tmp_path / "cache"), _stub_path(source_dir)] + files,
+                          "--cache-dir", str(tmp_path / "cache"), _stub_path(source_dir),
+                          _stub_path(source_dir, "d3")] + files,
                          capture_output=True, text=True, env=env, check=False)
     assert run.returncode == 0, run.stdout + run.stderr
     assert "Success: no issues found in" in run.stdout
@@ -116,7 +129,7 @@ def test_mypy_catches_a_wrong_call(source_dir, tmp_path):
     bad = tmp_path / "bad.py"
     bad.write_text("import quack\nw = quack.World()\nw.step(substeps='4')\n"
                    "x: str = w.body_count\n")
-    env = dict(os.environ, MYPYPATH=os.path.dirname(_stub_path(source_dir)))
+    env = dict(os.environ, MYPYPATH=os.path.dirname(os.path.dirname(_stub_path(source_dir))))
     run = subprocess.run([sys.executable, "-m", "mypy", "--strict", "--no-incremental",
                           "--cache-dir", str(tmp_path / "cache"), str(bad)],
                          capture_output=True, text=True, env=env, check=False)

@@ -45,7 +45,7 @@ def test_pip_builds_installs_and_imports_the_wheel_offline(source_dir, tmp_path)
         names = set(z.namelist())
         record = z.read([n for n in names if n.endswith(".dist-info/RECORD")][0]).decode()
         metadata = z.read([n for n in names if n.endswith(".dist-info/METADATA")][0]).decode()
-    assert "quack-stubs/__init__.pyi" in names
+    assert "quack-stubs/__init__.pyi" in names and "quack-stubs/d3.pyi" in names
     assert any(n.startswith("quack.cpython-") and n.endswith(".so") for n in names)
     assert {line.split(",")[0] for line in record.splitlines()} == names
     assert "Requires-Dist: numpy" in metadata

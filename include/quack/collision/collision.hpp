@@ -6,6 +6,7 @@
 #include "quack/collision/gjk3.hpp"
 #include "quack/collision/manifold.hpp"
 #include "quack/collision/manifold3.hpp"
+#include "quack/collision/mesh3.hpp"
 #include "quack/collision/minkowski.hpp"
 #include "quack/collision/pieces.hpp"
 #include "quack/collision/proxy.hpp"

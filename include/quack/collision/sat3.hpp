@@ -12,6 +12,7 @@
 /// code was consulted.
 
 #include <cstdint>
+#include <limits>
 
 #include "quack/geometry/shapes3.hpp"
 
@@ -45,7 +46,12 @@ struct SatOutput3 {
 /// SAT over the face normals of both hulls and their Minkowski-face edge pairs, computed in
 /// A's frame (B brought in by the relative pose). No allocation. Preconditions: valid hulls
 /// (validateHull3), finite transforms with unit quaternions.
-SatOutput3 computeSat(const Hull3& a, Transform3 worldFromA, const Hull3& b,
-                      Transform3 worldFromB) noexcept;
+///
+/// `stopAbove` (metres): once an axis shows that the answer's separation will exceed it,
+/// SAT stops and answers with that axis, whose separation exceeds `stopAbove` but need not
+/// be the largest (collideHulls passes its speculative distance: such hulls have no
+/// contact). The default, infinity, never stops early.
+SatOutput3 computeSat(const Hull3& a, Transform3 worldFromA, const Hull3& b, Transform3 worldFromB,
+                      float stopAbove = std::numeric_limits<float>::infinity()) noexcept;
 
 }  // namespace quack

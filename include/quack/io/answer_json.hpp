@@ -13,15 +13,22 @@
 ///   toJson(ShapeCastOutput)   {"hit", "fraction", "point", "normal", "depth", "status"}
 ///   toJson(RayHit)            {"hit", "fraction", "point", "normal"}
 ///   toJson(ToiOutput)         {"status", "t"}
+///
+/// The 3D answers have the same field names, with [x, y, z] vectors (`"status"` of a 3D
+/// penetration is an Epa3Status name, e.g. "converged", "cores_separated").
 
 #include <nlohmann/json.hpp>
 
 #include "quack/collision/epa.hpp"
+#include "quack/collision/epa3.hpp"
 #include "quack/collision/gjk.hpp"
 #include "quack/collision/manifold.hpp"
+#include "quack/collision/manifold3.hpp"
 #include "quack/collision/shape_cast.hpp"
 #include "quack/collision/toi.hpp"
+#include "quack/collision/toi3.hpp"
 #include "quack/geometry/raycast.hpp"
+#include "quack/geometry/raycast3.hpp"
 #include "quack/math/vec2.hpp"
 
 namespace quack {
@@ -33,5 +40,13 @@ nlohmann::json toJson(const Manifold& m);
 nlohmann::json toJson(const ShapeCastOutput& c);
 nlohmann::json toJson(const RayHit& r);
 nlohmann::json toJson(const ToiOutput& t);
+
+nlohmann::json toJson(Vec3 v);
+nlohmann::json toJson(const DistanceOutput3& d);
+nlohmann::json toJson(const PenetrationOutput3& p);
+nlohmann::json toJson(const Manifold3& m);
+nlohmann::json toJson(const ShapeCastOutput3& c);
+nlohmann::json toJson(const RayHit3& r);
+nlohmann::json toJson(const ToiOutput3& t);
 
 }  // namespace quack

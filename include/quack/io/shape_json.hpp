@@ -13,6 +13,15 @@
 ///         (rounded pieces would overlap and bulge at the seams).
 /// Pose:  {"pos": [x, y] (default [0, 0]), "angle": radians (default 0)}; a missing pose
 ///        is the identity.
+/// 3D (the same format with three-component vectors; `quack query` only):
+///        {"type": "sphere", "center": [x, y, z] (default [0, 0, 0]), "radius": r > 0}
+///        {"type": "capsule", "p1": [x, y, z], "p2": [x, y, z], "radius": r > 0}
+///        {"type": "box", "half": [hx, hy, hz], "center": [0, 0, 0], "quat": [0, 0, 0, 1]}
+///        {"type": "hull", "points": [[x, y, z], ...] (4 to 4,096; quickhull keeps at most
+///         64 vertices), "radius": 0 (rounded hulls are refused: not supported in 3D yet)}
+///        {"type": "triangle", "points": [[x, y, z], [x, y, z], [x, y, z]]}
+/// 3D pose: {"pos": [x, y, z] (default [0, 0, 0]), "quat": [x, y, z, w] (scalar last,
+///        default the identity; normalised here, the zero quaternion refused)}.
 /// Unknown keys are errors; every error names the field, e.g. "a.radius: must be > 0".
 /// Positions, points, half-extents and radii must lie within the coordinate limit
 /// (kMaxCoordinate, 1e9 m), e.g. "a.half[0]: 1e+19 m is beyond the coordinate limit 1e9 m".
@@ -24,7 +33,9 @@
 
 #include "quack/core/result.hpp"
 #include "quack/geometry/shapes.hpp"
+#include "quack/geometry/shapes3.hpp"
 #include "quack/math/transform.hpp"
+#include "quack/math/transform3.hpp"
 
 namespace quack {
 
@@ -46,5 +57,25 @@ Result<Vec2> parseVec2(const nlohmann::json& j, const std::string& path);
 /// [x, y] within +-kMaxCoordinate (1e9 m): a position, offset or translation. Beyond it:
 /// "path[0]: 2e+19 m is beyond the coordinate limit 1e9 m".
 Result<Vec2> parsePosition(const nlohmann::json& j, const std::string& path);
+
+/// The dimension of a shape object: 3 for "sphere", "hull" and "triangle", and for a
+/// "capsule" or "box" whose first vector ("p1", "half") has three components; 2 for the 2D
+/// types and for a capsule or box whose vector has any other form (parseShape then says
+/// what is wrong with it); 0 when `j` is not an object with a known string "type".
+int shapeDimension(const nlohmann::json& j);
+/// 3D shape from JSON (the 3D formats above), shape frame; errors and `extraKeys` as
+/// parseShape. A 2D type ("circle", "polygon", ...) is refused with a message saying so.
+Result<ShapeGeometry3> parseShape3(const nlohmann::json& j, const std::string& path,
+                                   std::initializer_list<const char*> extraKeys = {});
+/// 3D pose from JSON as worldFromShape; `path` prefixes error messages ("pa"). An "angle"
+/// key is refused with a message that points to "quat".
+Result<Transform3> parsePose3(const nlohmann::json& j, const std::string& path);
+/// [x, y, z] with finite numbers.
+Result<Vec3> parseVec3(const nlohmann::json& j, const std::string& path);
+/// [x, y, z] within +-kMaxCoordinate (1e9 m), as parsePosition.
+Result<Vec3> parsePosition3(const nlohmann::json& j, const std::string& path);
+/// [x, y, z, w] (scalar last) with finite numbers, normalised (in double); the zero
+/// quaternion is refused ("pa.quat: [0, 0, 0, 0] is not a rotation ...").
+Result<Quat> parseQuat(const nlohmann::json& j, const std::string& path);
 
 }  // namespace quack

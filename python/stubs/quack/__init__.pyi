@@ -1,13 +1,16 @@
-# Type stubs of the compiled module `quack` (python/src/*.cpp; docs/python.md). The wheel of
-# `pip install .` installs this file as the stub package quack-stubs/__init__.pyi (PEP 561);
-# in the tree, MYPYPATH=python/stubs finds it. tests/python/test_typing.py runs
-# `mypy --strict` with it on the examples and the README's Python block, and checks that the
-# public names here and in the built module are the same.
+# Type stubs of the compiled module `quack` (python/src/*.cpp; docs/python.md); its 3D
+# submodule's are in d3.pyi beside this file. The wheel of `pip install .` installs this
+# folder as the stub package quack-stubs (PEP 561); in the tree, MYPYPATH=python/stubs finds
+# it. tests/python/test_typing.py runs `mypy --strict` with it on the examples and the
+# README's Python block, and checks that the public names here and in the built module are
+# the same.
 
 from typing import Any, Callable, Dict, List, NamedTuple, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
+
+from . import d3 as d3
 
 __version__: str
 

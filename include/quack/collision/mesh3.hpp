@@ -1,0 +1,124 @@
+#pragma once
+/// Static triangle meshes in 3D: triangles with their own tree and edge adjacency, and the
+/// contact manifolds of a convex shape against them without ghost bumps on shared edges.
+///
+/// A mesh is one-sided: each triangle's front is where cross(v1 - v0, v2 - v0) points
+/// (counter-clockwise seen from the front), and contacts push the convex shape out of the
+/// front. Each edge knows the triangle across it and whether the two bend away from each
+/// other (convex), lie in one plane (flat) or fold towards each other (concave).
+///
+/// Ghost bumps: a box sliding across a flat floor made of two triangles overlaps the
+/// second triangle only by a sliver as it crosses their shared edge, and the general
+/// contact (GJK or EPA on that triangle alone) then pushes it sideways out of the sliver,
+/// a bump the floor does not have. Here a contact normal that is not the triangle's face
+/// normal is kept only when the triangle's feature at the contact is a convex or boundary
+/// edge, or a vertex whose two edges are; otherwise the contact is made along the face
+/// normal, with the convex shape's incident feature clipped to the triangle (the part over
+/// the neighbour is the neighbour's contact). This is the Voronoi-region rule of internal
+/// edge removal (as Jolt and Box3D describe it; no peer's code was consulted).
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "quack/broadphase/dynamic_tree3.hpp"
+#include "quack/collision/manifold3.hpp"
+
+namespace quack {
+
+/// Most triangles in a mesh (the tree's proxy ids and the manifold ids leave room).
+inline constexpr int kMaxMeshTriangles3 = 1 << 20;
+
+/// Two triangles across an edge are flat when their normals' dot product is at least this
+/// (about 0.25 degrees between them).
+inline constexpr float kMeshFlatCosine3 = 0.99999f;
+
+/// A contact normal within this cosine of the face normal is the face's.
+inline constexpr float kMeshFaceNormalCosine3 = 0.99999f;
+
+/// What the two triangles across an edge do there.
+enum class MeshEdgeKind3 : std::uint8_t {
+  boundary,  ///< no triangle across it
+  convex,    ///< the neighbour bends away from this triangle's front (a ridge)
+  flat,      ///< the neighbour lies in this triangle's plane (kMeshFlatCosine3)
+  concave,   ///< the neighbour folds towards this triangle's front (a valley)
+};
+
+/// Name of an edge kind ("boundary", "convex", "flat", "concave").
+const char* toString(MeshEdgeKind3 kind) noexcept;
+
+/// One triangle of a mesh. Mesh frame.
+struct MeshTriangle3 {
+  std::int32_t v[3] = {};          ///< vertex indices, counter-clockwise seen from the front
+  std::int32_t neighbour[3] = {};  ///< the triangle across edge k (v[k] to v[k + 1]), or -1
+  MeshEdgeKind3 edge[3] = {};      ///< what edge k is
+  Vec3 normal;                     ///< unit, cross(v1 - v0, v2 - v0) normalised: the front
+};
+
+/// A static triangle mesh: vertices, triangles with adjacency, and a DynamicTree3 over the
+/// triangles' boxes (proxy = triangle index), built once. Mesh frame. Made by makeMesh3.
+class Mesh3 {
+ public:
+  std::span<const Vec3> vertices() const noexcept { return vertices_; }
+  std::span<const MeshTriangle3> triangles() const noexcept { return triangles_; }
+  int triangleCount() const noexcept { return static_cast<int>(triangles_.size()); }
+  /// Triangle `i` as a shape (its three vertices), mesh frame.
+  Triangle3 triangle(int i) const noexcept;
+  /// The tree over the triangles' boxes.
+  const DynamicTree3& tree() const noexcept { return tree_; }
+  /// The box of every vertex.
+  Aabb3 bounds() const noexcept { return bounds_; }
+  /// Calls `visit(triangle)` for every triangle whose box overlaps `box` (mesh frame,
+  /// touching counts); `visit` returns false to stop.
+  template <class Visit>
+  void query(Aabb3 box, Visit&& visit) const {
+    tree_.query(box, [&](std::uint32_t proxy) { return visit(static_cast<int>(proxy)); });
+  }
+
+ private:
+  friend Result<Mesh3> makeMesh3(std::span<const Vec3>,
+                                 std::span<const std::array<std::int32_t, 3>>);
+  std::vector<Vec3> vertices_;
+  std::vector<MeshTriangle3> triangles_;
+  DynamicTree3 tree_;
+  Aabb3 bounds_;
+};
+
+/// A mesh of `triangles` (vertex indices, counter-clockwise seen from the front) over
+/// `vertices` (mesh frame). Allocates; builds the adjacency and the tree. Errors, naming
+/// the triangle or edge: no triangles or more than kMaxMeshTriangles3, a vertex that is not
+/// finite or beyond the coordinate limit, an index out of range or repeated in a triangle,
+/// a triangle with no area (makeTriangle3's test), an edge shared by more than two
+/// triangles, or two triangles that run along their shared edge the same way (their fronts
+/// disagree).
+Result<Mesh3> makeMesh3(std::span<const Vec3> vertices,
+                        std::span<const std::array<std::int32_t, 3>> triangles);
+
+/// The contact of a convex shape with one triangle of a mesh.
+struct MeshContact3 {
+  int triangle = 0;
+  Manifold3 manifold;  ///< A is the mesh: the normal points from the mesh to the convex
+};
+
+/// The manifold of triangle `triangle` of the mesh (placed by worldFromMesh) against a
+/// convex shape (placed by worldFromConvex), with the edge rule above: the general contact
+/// when its normal is the face's or the triangle's feature at the contact is a convex or
+/// boundary edge (or a vertex whose edges both are); otherwise up to four points along the
+/// face normal, the convex shape's incident feature (a hull's face most against the normal,
+/// a capsule's segment, a sphere's centre, a triangle) clipped to the triangle. Ids: the
+/// general contact's, or the clipped feature's vertex, with kManifold3IdClip for a point
+/// made by a side of the triangle. No allocation.
+Manifold3 collideMeshTriangle(const Mesh3& mesh, int triangle, Transform3 worldFromMesh,
+                              const ShapeGeometry3& convex, Transform3 worldFromConvex,
+                              float speculativeDistance = kSpeculativeDistance) noexcept;
+
+/// Every triangle's contact with a convex shape: the triangles the tree finds around the
+/// shape's box (grown by the speculative distance), each through collideMeshTriangle,
+/// appended to `contacts` in triangle order (those with at least one point). Returns how
+/// many were appended. Allocates only when `contacts` grows.
+int collideMesh(const Mesh3& mesh, Transform3 worldFromMesh, const ShapeGeometry3& convex,
+                Transform3 worldFromConvex, std::vector<MeshContact3>& contacts,
+                float speculativeDistance = kSpeculativeDistance);
+
+}  // namespace quack

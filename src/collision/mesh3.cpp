@@ -1,0 +1,324 @@
+// Static triangle meshes and their contacts without ghost bumps (see mesh3.hpp).
+
+#include "quack/collision/mesh3.hpp"
+
+#include <algorithm>
+#include <string>
+#include <unordered_map>
+
+#include "manifold3_internal.hpp"
+#include "quack/collision/proxy3.hpp"
+
+namespace quack {
+
+const char* toString(MeshEdgeKind3 kind) noexcept {
+  switch (kind) {
+    case MeshEdgeKind3::boundary:
+      return "boundary";
+    case MeshEdgeKind3::convex:
+      return "convex";
+    case MeshEdgeKind3::flat:
+      return "flat";
+    case MeshEdgeKind3::concave:
+      return "concave";
+  }
+  return "unknown";
+}
+
+Triangle3 Mesh3::triangle(int i) const noexcept {
+  const MeshTriangle3& t = triangles_[static_cast<std::size_t>(i)];
+  return {{vertices_[static_cast<std::size_t>(t.v[0])], vertices_[static_cast<std::size_t>(t.v[1])],
+           vertices_[static_cast<std::size_t>(t.v[2])]}};
+}
+
+namespace {
+
+Aabb3 triangleBox(const Triangle3& t) noexcept {
+  Aabb3 b{t.v[0], t.v[0]};
+  for (int k = 1; k < 3; ++k) {
+    b.lower = minv(b.lower, t.v[k]);
+    b.upper = maxv(b.upper, t.v[k]);
+  }
+  return b;
+}
+
+std::string edgeName(std::int32_t a, std::int32_t b) {
+  return "(" + std::to_string(a) + ", " + std::to_string(b) + ")";
+}
+
+}  // namespace
+
+Result<Mesh3> makeMesh3(std::span<const Vec3> vertices,
+                        std::span<const std::array<std::int32_t, 3>> triangles) {
+  if (triangles.empty()) return fail("makeMesh3: no triangles");
+  if (triangles.size() > static_cast<std::size_t>(kMaxMeshTriangles3)) {
+    return fail("makeMesh3: " + std::to_string(triangles.size()) + " triangles, more than " +
+                std::to_string(kMaxMeshTriangles3));
+  }
+  Mesh3 mesh;
+  mesh.vertices_.assign(vertices.begin(), vertices.end());
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    const Vec3 v = vertices[i];
+    if (!isFinite(v)) return fail("makeMesh3: vertex " + std::to_string(i) + " is not finite");
+    if (!(absf(v.x) <= kMaxCoordinate && absf(v.y) <= kMaxCoordinate &&
+          absf(v.z) <= kMaxCoordinate)) {
+      return fail("makeMesh3: vertex " + std::to_string(i) +
+                  " is beyond the coordinate limit 1e9 m");
+    }
+    mesh.bounds_ =
+        i == 0 ? Aabb3{v, v} : Aabb3{minv(mesh.bounds_.lower, v), maxv(mesh.bounds_.upper, v)};
+  }
+  const auto vertexCount = static_cast<std::int64_t>(vertices.size());
+  mesh.triangles_.resize(triangles.size());
+  // Each directed edge (a, b) of a triangle, keyed by its undirected pair.
+  struct Side {
+    std::int32_t triangle;
+    int k;
+    bool forward;  // runs from the smaller index to the larger
+  };
+  std::unordered_map<std::uint64_t, std::vector<Side>> sides;
+  sides.reserve(triangles.size() * 2);
+  for (std::size_t i = 0; i < triangles.size(); ++i) {
+    const std::string name = "makeMesh3: triangle " + std::to_string(i);
+    MeshTriangle3& t = mesh.triangles_[i];
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t v = triangles[i][static_cast<std::size_t>(k)];
+      if (v < 0 || v >= vertexCount) {
+        return fail(name + ": vertex index " + std::to_string(v) + " is out of range (0 to " +
+                    std::to_string(vertexCount - 1) + ")");
+      }
+      t.v[k] = v;
+      t.neighbour[k] = -1;
+      t.edge[k] = MeshEdgeKind3::boundary;
+    }
+    if (t.v[0] == t.v[1] || t.v[1] == t.v[2] || t.v[2] == t.v[0])
+      return fail(name + ": a vertex index is repeated");
+    const Triangle3 shape = mesh.triangle(static_cast<int>(i));
+    Result<Triangle3> checked = makeTriangle3(shape.v[0], shape.v[1], shape.v[2]);
+    if (!checked) return fail(name + ": " + checked.error().message);
+    t.normal = triangleNormal(shape);
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t a = t.v[k], b = t.v[(k + 1) % 3];
+      const std::uint64_t key = (static_cast<std::uint64_t>(std::min(a, b)) << 32) |
+                                static_cast<std::uint32_t>(std::max(a, b));
+      sides[key].push_back({static_cast<std::int32_t>(i), k, a < b});
+    }
+  }
+  for (const auto& [key, list] : sides) {
+    const auto a = static_cast<std::int32_t>(key >> 32);
+    const auto b = static_cast<std::int32_t>(key & 0xFFFFFFFFu);
+    if (list.size() > 2) {
+      return fail("makeMesh3: edge " + edgeName(a, b) + " is shared by " +
+                  std::to_string(list.size()) + " triangles (a mesh edge has one or two)");
+    }
+    if (list.size() < 2) continue;
+    const Side& s = list[0];
+    const Side& u = list[1];
+    if (s.forward == u.forward) {
+      return fail("makeMesh3: triangles " + std::to_string(std::min(s.triangle, u.triangle)) +
+                  " and " + std::to_string(std::max(s.triangle, u.triangle)) +
+                  " run along their edge " + edgeName(a, b) +
+                  " the same way (their fronts disagree)");
+    }
+    // The kind of the edge, the same seen from either side: the neighbour's far vertex
+    // below this triangle's plane is a ridge, above it a valley.
+    MeshTriangle3& ts = mesh.triangles_[static_cast<std::size_t>(s.triangle)];
+    MeshTriangle3& tu = mesh.triangles_[static_cast<std::size_t>(u.triangle)];
+    MeshEdgeKind3 kind = MeshEdgeKind3::flat;
+    if (dot(ts.normal, tu.normal) < kMeshFlatCosine3) {
+      const Vec3 far = mesh.vertices_[static_cast<std::size_t>(tu.v[(u.k + 2) % 3])];
+      const Vec3 onEdge = mesh.vertices_[static_cast<std::size_t>(ts.v[s.k])];
+      kind = dot(ts.normal, far - onEdge) < 0.0f ? MeshEdgeKind3::convex : MeshEdgeKind3::concave;
+    }
+    ts.neighbour[s.k] = u.triangle;
+    tu.neighbour[u.k] = s.triangle;
+    ts.edge[s.k] = kind;
+    tu.edge[u.k] = kind;
+  }
+  for (std::size_t i = 0; i < mesh.triangles_.size(); ++i)
+    mesh.tree_.insert(static_cast<std::uint32_t>(i),
+                      triangleBox(mesh.triangle(static_cast<int>(i))));
+  mesh.tree_.rebuild();
+  return mesh;
+}
+
+namespace {
+
+// The convex shape's feature that meets a face of normal `n` (mesh frame): a hull's face
+// most against n, a capsule's segment, a sphere's centre, a triangle's corners; with the
+// rounding radius. Vertex ids are the shape's own vertex indices.
+struct Incident {
+  Vec3 points[kMaxHullVertices3];
+  std::uint32_t ids[kMaxHullVertices3] = {};
+  int count = 0;
+  float radius = 0.0f;
+};
+
+Incident incidentFeature(const ShapeGeometry3& convex, Transform3 meshFromConvex, Vec3 n) noexcept {
+  Incident f;
+  if (const Hull3* h = std::get_if<Hull3>(&convex)) {
+    const Vec3 nLocal = invRotate(meshFromConvex.q, n);
+    int best = 0;
+    for (int i = 1; i < h->faceCount; ++i)
+      if (dot(h->faces[i].normal, nLocal) < dot(h->faces[best].normal, nLocal)) best = i;
+    const HullFace3& face = h->faces[best];
+    for (int k = 0; k < face.count; ++k) {
+      const int v = h->faceVertices[face.first + k];
+      f.points[f.count] = transformPoint(meshFromConvex, h->vertices[v]);
+      f.ids[f.count++] = static_cast<std::uint32_t>(v);
+    }
+    return f;
+  }
+  const ShapeProxy3 proxy = makeProxy(convex);
+  f.radius = proxy.radius();
+  for (int i = 0; i < proxy.count(); ++i) {
+    f.points[f.count] = transformPoint(meshFromConvex, proxy.points()[i]);
+    f.ids[f.count++] = static_cast<std::uint32_t>(i);
+  }
+  return f;
+}
+
+struct ClipPoint {
+  Vec3 p;
+  std::uint32_t id = 0;
+};
+
+constexpr int kMeshClipCapacity = kMaxHullVertices3 + 8;
+
+// The contact along the face normal: the incident feature clipped to the triangle's prism.
+Manifold3 faceContact(const Mesh3& mesh, int triangle, Transform3 worldFromMesh,
+                      const ShapeGeometry3& convex, Transform3 worldFromConvex,
+                      float speculativeDistance) noexcept {
+  Manifold3 m;
+  const MeshTriangle3& t = mesh.triangles()[static_cast<std::size_t>(triangle)];
+  const Triangle3 tri = mesh.triangle(triangle);
+  const Vec3 n = t.normal;
+  const Transform3 meshFromConvex = invMul(worldFromMesh, worldFromConvex);
+  const Incident f = incidentFeature(convex, meshFromConvex, n);
+
+  ClipPoint bufA[kMeshClipCapacity], bufB[kMeshClipCapacity];
+  ClipPoint* poly = bufA;
+  ClipPoint* next = bufB;
+  int count = f.count;
+  for (int i = 0; i < f.count; ++i)
+    poly[i] = {f.points[i], f.ids[i]};
+  // Sutherland-Hodgman against the three side planes (outward normal cross(edge, n)). A
+  // segment (two points) and a point clip the same way: a closed polygon of 2 or 1.
+  for (int k = 0; k < 3 && count > 0; ++k) {
+    const Vec3 v0 = tri.v[k];
+    const Vec3 side = cross(tri.v[(k + 1) % 3] - v0, n);
+    int out = 0;
+    if (count == 1) {
+      if (dot(side, poly[0].p - v0) <= 0.0f) next[out++] = poly[0];
+    } else {
+      const int edges = count == 2 ? 1 : count;
+      for (int i = 0; i < count && out + 2 <= kMeshClipCapacity; ++i) {
+        const ClipPoint& p = poly[i];
+        const ClipPoint& q = poly[(i + 1) % count];
+        const float dp = dot(side, p.p - v0), dq = dot(side, q.p - v0);
+        if (dp <= 0.0f) next[out++] = p;
+        if (i < edges && (dp <= 0.0f) != (dq <= 0.0f)) {
+          ClipPoint c;
+          c.p = p.p + (dp / (dp - dq)) * (q.p - p.p);
+          c.id = kManifold3IdClip | (static_cast<std::uint32_t>(k) << 8) | (p.id & 0xFFu);
+          next[out++] = c;
+        }
+      }
+    }
+    std::swap(poly, next);
+    count = out;
+  }
+
+  ManifoldPoint3 pts[kMeshClipCapacity];
+  int kept = 0;
+  for (int i = 0; i < count; ++i) {
+    const float height = dot(n, poly[i].p - tri.v[0]);
+    const float separation = height - f.radius;
+    if (separation > speculativeDistance) continue;
+    // Midway between the convex surface (the core point less the radius along n) and the
+    // triangle's plane.
+    const Vec3 mid = poly[i].p - (f.radius + 0.5f * separation) * n;
+    pts[kept++] = detail::makeManifoldPoint3(transformPoint(worldFromMesh, mid), separation,
+                                             poly[i].id, worldFromMesh, worldFromConvex);
+  }
+  if (kept == 0) return m;
+  m.normal = transformVector(worldFromMesh, n);
+  m.pointCount = detail::reduceManifoldPoints3(pts, kept, m.normal);
+  for (int i = 0; i < m.pointCount; ++i)
+    m.points[i] = pts[i];
+  return m;
+}
+
+// Whether the triangle's feature at `pointOnTriangle` (mesh frame) may carry a normal that is
+// not the face's: a convex or boundary edge, or a vertex whose two edges both are.
+bool featureAllowsEdgeNormal(const MeshTriangle3& t, const Triangle3& tri,
+                             Vec3 pointOnTriangle) noexcept {
+  // Barycentric weights of the point's projection on the plane.
+  const Vec3 e0 = tri.v[1] - tri.v[0], e1 = tri.v[2] - tri.v[0], p = pointOnTriangle - tri.v[0];
+  const float d00 = dot(e0, e0), d01 = dot(e0, e1), d11 = dot(e1, e1);
+  const float d20 = dot(p, e0), d21 = dot(p, e1);
+  const float denom = d00 * d11 - d01 * d01;
+  const float wb = (d11 * d20 - d01 * d21) / denom;
+  const float wc = (d00 * d21 - d01 * d20) / denom;
+  const float w[3] = {1.0f - wb - wc, wb, wc};
+  // Edge k (v[k] to v[k + 1]) is where the weight of v[k + 2] vanishes.
+  constexpr float kOnFeature = 1e-4f;
+  bool any = false;
+  for (int k = 0; k < 3; ++k) {
+    if (w[(k + 2) % 3] > kOnFeature) continue;
+    any = true;
+    if (t.edge[k] != MeshEdgeKind3::boundary && t.edge[k] != MeshEdgeKind3::convex) return false;
+  }
+  return any;  // inside the face: only the face normal
+}
+
+}  // namespace
+
+Manifold3 collideMeshTriangle(const Mesh3& mesh, int triangle, Transform3 worldFromMesh,
+                              const ShapeGeometry3& convex, Transform3 worldFromConvex,
+                              float speculativeDistance) noexcept {
+  const MeshTriangle3& t = mesh.triangles()[static_cast<std::size_t>(triangle)];
+  const Triangle3 tri = mesh.triangle(triangle);
+  Manifold3 g = collideGeneral(makeProxy(tri), worldFromMesh, makeProxy(convex), worldFromConvex,
+                               speculativeDistance);
+  if (g.pointCount == 0) return g;
+  const Vec3 n = invTransformVector(worldFromMesh, g.normal);
+  const float along = dot(n, t.normal);
+  if (along < kMeshFaceNormalCosine3) {
+    // Not the face's normal: kept only at a convex or boundary feature, and only from the
+    // front (the mesh is one-sided).
+    const ManifoldPoint3& p = g.points[0];
+    const Vec3 onTriangle = invTransformPoint(worldFromMesh, p.point) - (0.5f * p.separation) * n;
+    if (along > 0.0f && featureAllowsEdgeNormal(t, tri, onTriangle)) return g;
+  }
+  return faceContact(mesh, triangle, worldFromMesh, convex, worldFromConvex, speculativeDistance);
+}
+
+int collideMesh(const Mesh3& mesh, Transform3 worldFromMesh, const ShapeGeometry3& convex,
+                Transform3 worldFromConvex, std::vector<MeshContact3>& contacts,
+                float speculativeDistance) {
+  // The convex shape's box in the mesh frame, grown by its radius and the speculative
+  // distance.
+  const Transform3 meshFromConvex = invMul(worldFromMesh, worldFromConvex);
+  const ShapeProxy3 proxy = makeProxy(convex);
+  Aabb3 box;
+  for (int i = 0; i < proxy.count(); ++i) {
+    const Vec3 p = transformPoint(meshFromConvex, proxy.points()[i]);
+    box = i == 0 ? Aabb3{p, p} : Aabb3{minv(box.lower, p), maxv(box.upper, p)};
+  }
+  const float grow = proxy.radius() + speculativeDistance;
+  box.lower = box.lower - Vec3{grow, grow, grow};
+  box.upper = box.upper + Vec3{grow, grow, grow};
+  const std::size_t first = contacts.size();
+  mesh.query(box, [&](int triangle) {
+    Manifold3 m = collideMeshTriangle(mesh, triangle, worldFromMesh, convex, worldFromConvex,
+                                      speculativeDistance);
+    if (m.pointCount > 0) contacts.push_back({triangle, m});
+    return true;
+  });
+  std::sort(contacts.begin() + static_cast<std::ptrdiff_t>(first), contacts.end(),
+            [](const MeshContact3& a, const MeshContact3& b) { return a.triangle < b.triangle; });
+  return static_cast<int>(contacts.size() - first);
+}
+
+}  // namespace quack
