@@ -96,13 +96,33 @@ Vec3 centreDirection(const ShapeProxy3& a, const ShapeProxy3& b, Transform3 aFro
   return lengthSquared(d) > 0.0f ? d : Vec3{0, 1, 0};
 }
 
-}  // namespace
+// Records one pass of EPA: the polytope's vertices and live faces, the nearest face and the
+// support point along its normal.
+void recordPass(Epa3Trace& trace, const Polytope& poly, int best,
+                const SupportPoint3& support) noexcept {
+  Epa3IterationRecord* record = detail::claimTraceRecord3(trace);
+  record->vertexCount = poly.vertexCount;
+  for (int i = 0; i < poly.vertexCount; ++i)
+    record->vertices[i] = poly.vertices[i];
+  record->faceCount = 0;
+  for (int f = 0; f < poly.slotCount; ++f) {
+    if (!poly.faces[f].live) continue;
+    if (f == best) record->nearest = record->faceCount;
+    for (int k = 0; k < 3; ++k)
+      record->faces[record->faceCount][k] = poly.faces[f].v[k];
+    ++record->faceCount;
+  }
+  record->faceNormal = poly.faces[best].normal;
+  record->faceDistance = poly.faces[best].distance;
+  record->hasSupport = true;
+  record->support = support;
+}
 
-PenetrationOutput3 computePenetration(const ShapeProxy3& a, Transform3 worldFromA,
-                                      const ShapeProxy3& b, Transform3 worldFromB,
-                                      GjkCache3* cache) noexcept {
+PenetrationOutput3 penetration3(const ShapeProxy3& a, Transform3 worldFromA, const ShapeProxy3& b,
+                                Transform3 worldFromB, GjkCache3* cache, Gjk3Trace* gjkTrace,
+                                Epa3Trace* epaTrace) noexcept {
   Transform3 aFromB = invMul(worldFromA, worldFromB);
-  detail::GjkCore3 gjk = detail::runGjk3(a, b, aFromB, cache, -1.0f);
+  detail::GjkCore3 gjk = detail::runGjk3(a, b, aFromB, cache, -1.0f, gjkTrace);
   PenetrationOutput3 out;
   out.iterations = gjk.iterations;
   const float ra = a.radius(), rb = b.radius();
@@ -269,6 +289,7 @@ PenetrationOutput3 computePenetration(const ShapeProxy3& a, Transform3 worldFrom
       const Face nearest = poly.faces[best];
       SupportPoint3 s = detail::support3(a, b, aFromB, nearest.normal);
       ++out.iterations;
+      if (epaTrace != nullptr && epaTrace->capacity > 0) recordPass(*epaTrace, poly, best, s);
       bool repeated = false;
       for (int k = 0; k < 3; ++k) {
         const SupportPoint3& v = poly.vertices[nearest.v[k]];
@@ -400,6 +421,22 @@ PenetrationOutput3 computePenetration(const ShapeProxy3& a, Transform3 worldFrom
   float coreDepth = maxf(face.distance, 0.0f);
   finish(pA, pB, -face.normal, coreDepth + ra + rb);
   return out;
+}
+
+}  // namespace
+
+PenetrationOutput3 computePenetration(const ShapeProxy3& a, Transform3 worldFromA,
+                                      const ShapeProxy3& b, Transform3 worldFromB,
+                                      GjkCache3* cache) noexcept {
+  return penetration3(a, worldFromA, b, worldFromB, cache, nullptr, nullptr);
+}
+
+PenetrationOutput3 computePenetration(const ShapeProxy3& a, Transform3 worldFromA,
+                                      const ShapeProxy3& b, Transform3 worldFromB, GjkCache3* cache,
+                                      Gjk3Trace* gjkTrace, Epa3Trace* epaTrace) noexcept {
+  if (gjkTrace != nullptr) detail::resetTrace3(*gjkTrace);
+  if (epaTrace != nullptr) detail::resetTrace3(*epaTrace);
+  return penetration3(a, worldFromA, b, worldFromB, cache, gjkTrace, epaTrace);
 }
 
 }  // namespace quack

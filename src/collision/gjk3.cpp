@@ -193,8 +193,11 @@ bool solveSimplex3(Simplex3& s, Vec3& closest, double* distanceSquared) noexcept
 }
 
 GjkCore3 runGjk3(const ShapeProxy3& a, const ShapeProxy3& b, Transform3 aFromB, GjkCache3* cache,
-                 float separationRadius) noexcept {
+                 float separationRadius, Gjk3Trace* trace) noexcept {
   GjkCore3 out;
+  // The pass's record (null when not tracing): the simplex and v after the solve, then the
+  // support point if one is taken.
+  Gjk3IterationRecord* record = nullptr;
   Simplex3& s = out.simplex;
   bool warm = false;
   if (cache != nullptr && cache->count >= 1 && cache->count <= 4) {
@@ -223,6 +226,12 @@ GjkCore3 runGjk3(const ShapeProxy3& a, const ShapeProxy3& b, Transform3 aFromB, 
   for (int iter = 0; iter < kGjk3MaxIterations; ++iter) {
     double vvD = 0.0;
     bool inside = solveSimplex3(s, v, &vvD);
+    if (trace != nullptr && trace->capacity > 0) {
+      record = claimTraceRecord3(*trace);
+      *record = {};
+      record->simplex = s;
+      record->closest = v;
+    }
     float vv = lengthSquared(v);
     float scale = 0.0f;
     for (int i = 0; i < s.count; ++i)
@@ -231,6 +240,7 @@ GjkCore3 runGjk3(const ShapeProxy3& a, const ShapeProxy3& b, Transform3 aFromB, 
     if (inside || vv <= contact) {
       status = GjkStatus::overlap;
       v = {};
+      if (record != nullptr) record->closest = v;
       break;
     }
     // Progress is judged on |v|^2 in double: the last steps turn v by angles whose effect
@@ -240,6 +250,10 @@ GjkCore3 runGjk3(const ShapeProxy3& a, const ShapeProxy3& b, Transform3 aFromB, 
       if (vvD > previous) {
         s = saved;
         solveSimplex3(s, v, nullptr);
+        if (record != nullptr) {
+          record->simplex = s;
+          record->closest = v;
+        }
       }
       status = GjkStatus::stalled;
       break;
@@ -248,6 +262,11 @@ GjkCore3 runGjk3(const ShapeProxy3& a, const ShapeProxy3& b, Transform3 aFromB, 
     saved = s;
     SupportPoint3 w = support3(a, b, aFromB, -v);
     ++out.iterations;
+    if (record != nullptr) {
+      record->hasSupport = true;
+      record->direction = normalize(v);
+      record->support = w;
+    }
     bool repeated = false;
     for (int i = 0; i < s.count; ++i) {
       if (s.v[i].indexA == w.indexA && s.v[i].indexB == w.indexB) repeated = true;
@@ -294,10 +313,12 @@ void closestPoints3(const Simplex3& s, Vec3& pointA, Vec3& pointB) noexcept {
 
 }  // namespace detail
 
-DistanceOutput3 computeDistance(const ShapeProxy3& a, Transform3 worldFromA, const ShapeProxy3& b,
-                                Transform3 worldFromB, GjkCache3* cache) noexcept {
+namespace {
+
+DistanceOutput3 distance3(const ShapeProxy3& a, Transform3 worldFromA, const ShapeProxy3& b,
+                          Transform3 worldFromB, GjkCache3* cache, Gjk3Trace* trace) noexcept {
   Transform3 aFromB = invMul(worldFromA, worldFromB);
-  detail::GjkCore3 core = detail::runGjk3(a, b, aFromB, cache, -1.0f);
+  detail::GjkCore3 core = detail::runGjk3(a, b, aFromB, cache, -1.0f, trace);
   DistanceOutput3 out;
   out.iterations = core.iterations;
   out.status = core.status;
@@ -327,6 +348,20 @@ DistanceOutput3 computeDistance(const ShapeProxy3& a, Transform3 worldFromA, con
     out.pointA = out.pointB = transformPoint(worldFromA, p);
   }
   return out;
+}
+
+}  // namespace
+
+DistanceOutput3 computeDistance(const ShapeProxy3& a, Transform3 worldFromA, const ShapeProxy3& b,
+                                Transform3 worldFromB, GjkCache3* cache) noexcept {
+  return distance3(a, worldFromA, b, worldFromB, cache, nullptr);
+}
+
+DistanceOutput3 computeDistance(const ShapeProxy3& a, Transform3 worldFromA, const ShapeProxy3& b,
+                                Transform3 worldFromB, GjkCache3* cache,
+                                Gjk3Trace& trace) noexcept {
+  detail::resetTrace3(trace);
+  return distance3(a, worldFromA, b, worldFromB, cache, &trace);
 }
 
 bool testOverlap(const ShapeProxy3& a, Transform3 worldFromA, const ShapeProxy3& b,

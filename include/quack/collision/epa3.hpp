@@ -62,12 +62,48 @@ struct PenetrationOutput3 {
   Epa3Status status = Epa3Status::separated;
 };
 
+/// One pass of EPA's 3D loop, as an observer sees it: the polytope (its vertices and its
+/// faces, each counter-clockwise seen from outside), its face nearest the origin, and the
+/// support point along that face's normal.
+struct Epa3IterationRecord {
+  SupportPoint3 vertices[kEpa3MaxVertices];  ///< A frame
+  int vertexCount = 0;
+  int faces[kEpa3MaxFaces][3] = {};  ///< vertex indices of the live faces
+  int faceCount = 0;
+  int nearest = 0;            ///< index into `faces` of the face nearest the origin
+  Vec3 faceNormal;            ///< its outward unit normal, A frame
+  float faceDistance = 0.0f;  ///< its plane's signed distance from the origin (the core depth)
+  bool hasSupport = false;    ///< a support point was taken in this pass
+  SupportPoint3 support;      ///< the support point of B - A along faceNormal when hasSupport
+};
+
+/// Enough 3D EPA records for any run: every pass but the last adds a vertex to a polytope
+/// that starts with 4 and holds at most kEpa3MaxVertices.
+inline constexpr int kEpa3MaxTraceRecords = kEpa3MaxVertices - 3;
+
+/// A caller-owned buffer that the traced computePenetration fills with one record per pass
+/// of EPA's loop; the contract of Gjk3Trace. `count` is 0 when EPA did not run (separated,
+/// coresSeparated, degenerate, or no usable start tetrahedron). A record is about 9 kB.
+struct Epa3Trace {
+  Epa3IterationRecord* records = nullptr;  ///< caller-owned array of `capacity` records
+  int capacity = 0;
+  int count = 0;           ///< records written: min(passes, capacity)
+  int passes = 0;          ///< passes the run made
+  bool truncated = false;  ///< passes > capacity: middle passes were dropped
+};
+
 /// Penetration of proxy B (placed by `worldFromB`) into proxy A (placed by `worldFromA`):
 /// GJK first; when the cores overlap, EPA on the cores plus both radii. `cache` as for
 /// computeDistance. No allocation. Preconditions: valid proxies, finite transforms.
 PenetrationOutput3 computePenetration(const ShapeProxy3& a, Transform3 worldFromA,
                                       const ShapeProxy3& b, Transform3 worldFromB,
                                       GjkCache3* cache = nullptr) noexcept;
+/// computePenetration that also records every pass of GJK into `gjkTrace` and of EPA into
+/// `epaTrace` (either may be null; see Gjk3Trace, Epa3Trace). The answer is the same, bit
+/// for bit.
+PenetrationOutput3 computePenetration(const ShapeProxy3& a, Transform3 worldFromA,
+                                      const ShapeProxy3& b, Transform3 worldFromB, GjkCache3* cache,
+                                      Gjk3Trace* gjkTrace, Epa3Trace* epaTrace) noexcept;
 /// The same for 3D shapes of any kind, through their proxies.
 inline PenetrationOutput3 computePenetration(const ShapeGeometry3& a, Transform3 worldFromA,
                                              const ShapeGeometry3& b, Transform3 worldFromB,

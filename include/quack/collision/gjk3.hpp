@@ -65,11 +65,46 @@ struct DistanceOutput3 {
   Simplex3 simplex;  ///< the final simplex, A frame (EPA starts from it)
 };
 
+/// One pass of GJK's 3D loop, as an observer sees it (the 3D GjkIterationRecord, gjk.hpp):
+/// the simplex solve, then (unless the loop stops first) the support point along the new
+/// search direction. A run has as many records with `hasSupport` as support points taken
+/// in the loop, and one more, without one, when it stopped before taking one.
+struct Gjk3IterationRecord {
+  /// The simplex after the solve (reduced, weights set), A frame; on a stall, the previous
+  /// simplex, which GJK keeps.
+  Simplex3 simplex;
+  Vec3 closest;             ///< the simplex point nearest the origin (v), A frame; zero on overlap
+  bool hasSupport = false;  ///< a support point was taken in this pass
+  Vec3 direction;           ///< unit, A frame: v's direction; the support is taken along -direction
+  SupportPoint3 support;    ///< the new support point of B - A (A frame) when hasSupport
+};
+
+/// Enough 3D GJK records for any run.
+inline constexpr int kGjk3MaxTraceRecords = kGjk3MaxIterations + 1;
+
+/// A caller-owned buffer that the traced computeDistance and computePenetration fill with
+/// one record per pass of GJK's loop; the contract of GjkTrace (gjk.hpp): set `records` and
+/// `capacity`, the call resets the rest; when the run has more passes than `capacity`, the
+/// first `capacity - 1` are kept and the last slot holds the final pass. Observing never
+/// changes the answer.
+struct Gjk3Trace {
+  Gjk3IterationRecord* records = nullptr;  ///< caller-owned array of `capacity` records
+  int capacity = 0;
+  int count = 0;           ///< records written: min(passes, capacity)
+  int passes = 0;          ///< passes the run made
+  bool truncated = false;  ///< passes > capacity: middle passes were dropped
+};
+
 /// Distance and closest points between proxy A placed by `worldFromA` and proxy B placed
 /// by `worldFromB`. `cache` (may be null) warm-starts the search and is updated. No
 /// allocation. Preconditions: valid proxies and finite transforms with unit quaternions.
 DistanceOutput3 computeDistance(const ShapeProxy3& a, Transform3 worldFromA, const ShapeProxy3& b,
                                 Transform3 worldFromB, GjkCache3* cache = nullptr) noexcept;
+
+/// computeDistance that also records every pass of GJK into `trace` (see Gjk3Trace). The
+/// answer is the same, bit for bit.
+DistanceOutput3 computeDistance(const ShapeProxy3& a, Transform3 worldFromA, const ShapeProxy3& b,
+                                Transform3 worldFromB, GjkCache3* cache, Gjk3Trace& trace) noexcept;
 
 /// True when the closed rounded shapes share a point (touching counts, to the tolerance
 /// above). `cache` as for computeDistance.
