@@ -41,17 +41,31 @@ if [ ! -f build/wasm/CMakeCache.txt ]; then
 fi
 cmake --build build/wasm -j"$jobs"
 
+# The npm packages, pinned by web/package-lock.json: three (the 3D page draws with it; the
+# site serves its own copy, nothing is loaded from the network) and playwright-core (the
+# tests; no browser is downloaded).
+say "npm ci (three, playwright-core; no browser is downloaded)"
+(cd web && PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --no-audit --no-fund --loglevel=error)
+
 say "staging build/web-site"
 site=build/web-site
 rm -rf "$site"
-mkdir -p "$site/js"
+mkdir -p "$site/js/vendor/three/addons/controls" "$site/js/vendor/three/addons/geometries" \
+  "$site/js/vendor/three/addons/math"
 cp web/*.html web/style.css "$site/"
 cp web/js/*.js "$site/js/"
 cp build/wasm/quack_web.js build/wasm/quack_web.wasm "$site/"
+# three.js as ES modules (the pages' import map names "three" and "three/addons/").
+three=web/node_modules/three
+cp "$three/build/three.module.js" "$three/build/three.core.js" "$three/LICENSE" \
+  "$site/js/vendor/three/"
+for addon in controls/OrbitControls.js geometries/ConvexGeometry.js math/ConvexHull.js; do
+  cp "$three/examples/jsm/$addon" "$site/js/vendor/three/addons/$addon"
+done
 
 case "$mode" in
   serve)
-    say "serving http://localhost:$port/ (index.html: GJK and EPA; sandbox.html: world); Ctrl-C stops"
+    say "serving http://localhost:$port/ (index.html: GJK and EPA; gjk3d.html: the same in 3D; sandbox.html: world); Ctrl-C stops"
     exec python3 -m http.server "$port" --bind 127.0.0.1 --directory "$site"
     ;;
   test)
@@ -61,8 +75,6 @@ case "$mode" in
         -DQUACK_BUILD_BENCHMARKS=OFF -DQUACK_BUILD_APPS=ON >/dev/null
     fi
     cmake --build build/web-native --target quack -j"$jobs"
-    say "npm ci (playwright-core only; no browser is downloaded)"
-    (cd web && PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --no-audit --no-fund --loglevel=error)
     say "browser tests (headless chromium)"
     export QUACK_WEB_SITE="$root/$site"
     export QUACK_BIN="$root/build/web-native/apps/quack/quack"

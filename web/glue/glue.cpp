@@ -20,7 +20,9 @@
 #include <vector>
 
 #include "quack/collision/epa.hpp"
+#include "quack/collision/epa3.hpp"
 #include "quack/collision/gjk.hpp"
+#include "quack/collision/gjk3.hpp"
 #include "quack/collision/manifold.hpp"
 #include "quack/collision/minkowski.hpp"
 #include "quack/collision/pieces.hpp"
@@ -157,6 +159,97 @@ const char* errorAnswer(const std::string& message) {
   return answer({{"error", message}});
 }
 
+// ---- the 3D GJK and EPA page ----------------------------------------------------------
+
+// The 3D page's two shapes (shape frame), set by qk3_set_shape.
+ShapeGeometry3 gShapes3[2] = {Sphere{{}, 0.5f}, Sphere{{}, 0.5f}};
+std::vector<Gjk3IterationRecord> gGjk3Records(kGjk3MaxTraceRecords);
+std::vector<Epa3IterationRecord> gEpa3Records(kEpa3MaxTraceRecords);
+
+// A 3D shape for drawing, shape frame: its core points and radius (sphere: the centre;
+// capsule: the two ends; triangle, hull: the vertices) and, for a hull, its faces as
+// vertex-index polygons.
+json outline3Of(const ShapeGeometry3& geometry) {
+  ShapeProxy3 proxy = makeProxy(geometry);
+  json points = json::array();
+  for (int i = 0; i < proxy.count(); ++i)
+    points.push_back(toJson(proxy.points()[i]));
+  json out = {
+      {"type", toString(shapeType(geometry))}, {"points", points}, {"radius", proxy.radius()}};
+  if (const Hull3* hull = std::get_if<Hull3>(&geometry)) {
+    json faces = json::array();
+    for (int f = 0; f < hull->faceCount; ++f) {
+      json face = json::array();
+      const HullFace3& hf = hull->faces[f];
+      for (int k = 0; k < hf.count; ++k)
+        face.push_back(hull->faceVertices[hf.first + k]);
+      faces.push_back(face);
+    }
+    out["faces"] = faces;
+  }
+  return out;
+}
+
+json support3Json(const SupportPoint3& s, Transform3 worldFromA) {
+  // w = pointB - pointA in A's frame; in world axes it is the rotated vector.
+  return {{"w", toJson(rotate(worldFromA.q, s.w))},
+          {"a", toJson(transformPoint(worldFromA, s.pointA))},
+          {"b", toJson(transformPoint(worldFromA, s.pointB))},
+          {"ia", s.indexA},
+          {"ib", s.indexB}};
+}
+
+json gjk3Json(const Gjk3Trace& trace, const DistanceOutput3& d, Transform3 worldFromA) {
+  json steps = json::array();
+  for (int k = 0; k < trace.count; ++k) {
+    const Gjk3IterationRecord& step = trace.records[k];
+    json simplex = json::array();
+    for (int i = 0; i < step.simplex.count; ++i) {
+      json v = support3Json(step.simplex.v[i], worldFromA);
+      v["weight"] = step.simplex.weights[i];
+      simplex.push_back(v);
+    }
+    json s = {{"simplex", simplex}, {"closest", toJson(rotate(worldFromA.q, step.closest))}};
+    if (step.hasSupport) {
+      s["direction"] = toJson(rotate(worldFromA.q, step.direction));
+      s["support"] = support3Json(step.support, worldFromA);
+    }
+    steps.push_back(s);
+  }
+  return {{"steps", steps},
+          {"iterations", d.iterations},
+          {"status", toString(d.status)},
+          {"truncated", trace.truncated}};
+}
+
+json epa3Json(const Epa3Trace& trace, const PenetrationOutput3& p, Transform3 worldFromA) {
+  json steps = json::array();
+  for (int k = 0; k < trace.count; ++k) {
+    const Epa3IterationRecord& step = trace.records[k];
+    json vertices = json::array();
+    for (int i = 0; i < step.vertexCount; ++i)
+      vertices.push_back(toJson(rotate(worldFromA.q, step.vertices[i].w)));
+    json faces = json::array();
+    for (int f = 0; f < step.faceCount; ++f)
+      faces.push_back({step.faces[f][0], step.faces[f][1], step.faces[f][2]});
+    json s = {{"vertices", vertices},
+              {"faces", faces},
+              {"nearest", step.nearest},
+              {"normal", toJson(rotate(worldFromA.q, step.faceNormal))},
+              {"distance", step.faceDistance}};
+    if (step.hasSupport) s["support"] = support3Json(step.support, worldFromA);
+    steps.push_back(s);
+  }
+  return {{"ran", trace.count > 0},
+          {"steps", steps},
+          {"status", toString(p.status)},
+          {"truncated", trace.truncated}};
+}
+
+bool sameBits(Vec3 x, Vec3 y) {
+  return sameBits(x.x, y.x) && sameBits(x.y, y.y) && sameBits(x.z, y.z);
+}
+
 // ---- the sandbox world ----------------------------------------------------------------
 
 struct Sandbox {
@@ -262,6 +355,57 @@ EMSCRIPTEN_KEEPALIVE const char* qk_analyze(double ax, double ay, double aAngle,
   out["gjk"] = gjkJson(gjkTrace, tracedD, worldFromA);
   out["epa"] = epaJson(epaTrace, tracedP, worldFromA);
   out["traceAgrees"] = {{"gjk", traceMatches(gjkTrace, d)}, {"epa", traceMatches(epaTrace, p)}};
+  return answer(out);
+}
+
+/// Sets shape `slot` (0 = A, 1 = B) of the 3D page from the 3D shape JSON (docs/3d.md, the
+/// format of `quack query`). Returns {"ok": true, "shape": outline} or {"error": "..."} (the
+/// old shape is kept on error).
+EMSCRIPTEN_KEEPALIVE const char* qk3_set_shape(int slot, const char* shapeJson) {
+  if (slot < 0 || slot > 1) return errorAnswer("slot: must be 0 or 1");
+  json j = json::parse(shapeJson, nullptr, false);
+  if (j.is_discarded()) return errorAnswer("shape: not valid JSON");
+  Result<ShapeGeometry3> g = parseShape3(j, "shape");
+  if (!g) return errorAnswer(g.error().message);
+  gShapes3[slot] = std::move(g.value());
+  return answer({{"ok", true}, {"shape", outline3Of(gShapes3[slot])}});
+}
+
+/// Everything the 3D page draws for the poses {"pa": POSE, "pb": POSE} (3D poses as
+/// `quack query` reads them, through the same parser): the library's distance and
+/// penetration answers (the calls `quack query` makes), and every pass of GJK and EPA from
+/// the traced overloads, with a flag per trace saying whether the traced call returned the
+/// same answer, bit for bit.
+EMSCRIPTEN_KEEPALIVE const char* qk3_analyze(const char* posesJson) {
+  json j = json::parse(posesJson, nullptr, false);
+  if (j.is_discarded() || !j.is_object()) return errorAnswer("poses: not a JSON object");
+  Result<Transform3> pa = parsePose3(j.value("pa", json::object()), "pa");
+  if (!pa) return errorAnswer(pa.error().message);
+  Result<Transform3> pb = parsePose3(j.value("pb", json::object()), "pb");
+  if (!pb) return errorAnswer(pb.error().message);
+  const ShapeProxy3 a = makeProxy(gShapes3[0]);
+  const ShapeProxy3 b = makeProxy(gShapes3[1]);
+  const DistanceOutput3 d = computeDistance(a, *pa, b, *pb);
+  const PenetrationOutput3 p = computePenetration(a, *pa, b, *pb);
+  Gjk3Trace gjkTrace{gGjk3Records.data(), kGjk3MaxTraceRecords};
+  Epa3Trace epaTrace{gEpa3Records.data(), kEpa3MaxTraceRecords};
+  const DistanceOutput3 tracedD = computeDistance(a, *pa, b, *pb, nullptr, gjkTrace);
+  const PenetrationOutput3 tracedP =
+      computePenetration(a, *pa, b, *pb, nullptr, nullptr, &epaTrace);
+  const bool gjkAgrees = !gjkTrace.truncated && sameBits(tracedD.distance, d.distance) &&
+                         sameBits(tracedD.pointA, d.pointA) && sameBits(tracedD.pointB, d.pointB) &&
+                         sameBits(tracedD.normal, d.normal) && tracedD.iterations == d.iterations;
+  const bool epaAgrees = !epaTrace.truncated && sameBits(tracedP.depth, p.depth) &&
+                         sameBits(tracedP.normal, p.normal) && sameBits(tracedP.pointA, p.pointA) &&
+                         sameBits(tracedP.pointB, p.pointB) && tracedP.iterations == p.iterations;
+  json out;
+  out["shapes"] = {outline3Of(gShapes3[0]), outline3Of(gShapes3[1])};
+  out["distance"] = toJson(d);
+  out["distance"]["coreDistance"] = d.coreDistance;
+  out["penetration"] = toJson(p);
+  out["gjk"] = gjk3Json(gjkTrace, tracedD, *pa);
+  out["epa"] = epa3Json(epaTrace, tracedP, *pa);
+  out["traceAgrees"] = {{"gjk", gjkAgrees}, {"epa", epaAgrees}};
   return answer(out);
 }
 

@@ -14,6 +14,9 @@ export async function loadQuack() {
     analyze: (pa, pb) =>
       call('qk_analyze', [pa.pos[0], pa.pos[1], pa.angle, pb.pos[0], pb.pos[1], pb.angle],
         ['number', 'number', 'number', 'number', 'number', 'number']),
+    // The 3D page: shapes in the 3D shape JSON, poses {pos: [x, y, z], quat: [x, y, z, w]}.
+    setShape3: (slot, shape) => call('qk3_set_shape', [slot, JSON.stringify(shape)], ['number', 'string']),
+    analyze3: (pa, pb) => call('qk3_analyze', [JSON.stringify({ pa, pb })], ['string']),
     worldReset: (kind) => call('qk_world_reset', [kind], ['string']),
     worldAdd: (shape, type, pos, angle, vel, restitution) =>
       call('qk_world_add', [JSON.stringify(shape), type, pos[0], pos[1], angle, vel[0], vel[1], restitution],
@@ -203,4 +206,8 @@ export function fmt(x, digits = 6) {
 
 export function fmtVec(v, digits = 4) {
   return `(${fmt(v[0], digits)}, ${fmt(v[1], digits)})`;
+}
+
+export function fmtVec3(v, digits = 4) {
+  return `(${fmt(v[0], digits)}, ${fmt(v[1], digits)}, ${fmt(v[2], digits)})`;
 }

@@ -43,10 +43,13 @@ export async function launch() {
   };
 }
 
-/** Opens `url` and records console errors, page errors and failed requests in `errors`. */
+/** Opens `url` and records console errors, page errors and failed requests in `errors`,
+ * and the address of every request the page makes in `requests`. */
 export async function open(browser, url) {
   const page = await browser.newPage();
   const errors = [];
+  const requests = [];
+  page.on('request', (r) => requests.push(r.url()));
   page.on('console', (m) => { if (m.type() === 'error') errors.push(`console: ${m.text()}`); });
   page.on('pageerror', (e) => errors.push(`page error: ${e.message}`));
   page.on('requestfailed', (r) => errors.push(`request failed: ${r.url()}`));
@@ -54,7 +57,7 @@ export async function open(browser, url) {
   await page.goto(url);
   await page.waitForFunction(() => document.getElementById('status')?.textContent === 'ready',
     null, { timeout: 30000 });
-  return { page, errors };
+  return { page, errors, requests };
 }
 
 /** A picture of a canvas, for comparing frames. */
@@ -74,3 +77,20 @@ export function colourCount(page, id) {
 }
 
 export const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
+
+/** How many distinct colours a WebGL canvas holds (1 for a blank one): copied onto a 2D
+ * canvas first (the page renders with preserveDrawingBuffer, so the picture is kept). */
+export function webglColourCount(page, id) {
+  return page.evaluate((i) => {
+    const src = document.getElementById(i);
+    const c = document.createElement('canvas');
+    c.width = src.width;
+    c.height = src.height;
+    const ctx = c.getContext('2d');
+    ctx.drawImage(src, 0, 0);
+    const d = ctx.getImageData(0, 0, c.width, c.height).data;
+    const seen = new Set();
+    for (let k = 0; k < d.length; k += 4 * 7) seen.add((d[k] << 16) | (d[k + 1] << 8) | d[k + 2]);
+    return seen.size;
+  }, id);
+}
