@@ -330,7 +330,7 @@ struct SolverScratch {
     std::int8_t point;  // the manifold point of the strongest hit, or -1: none
     float speed;
   };
-  std::vector<Hit> hits;  // per touching contact
+  std::vector<Hit> hits;  // per block lane
   std::vector<ContactBlock<FloatW>> wide;
   std::vector<ContactBlock<FloatS>> narrow;
 };
@@ -585,24 +585,41 @@ template <class F>
                                      const WorldDef& def, std::vector<Contact>& contacts,
                                      std::size_t first, std::size_t last) {
   constexpr int W = F::width;
-  for (std::size_t k = first; k < last; ++k) {
-    Contact& c = contacts[s.touching[k]];
-    const ContactBlock<F>& b = blocks[s.lane[k] / W];
-    const std::size_t lane = s.lane[k] % W;
-    float strongest = 0.0f;
-    int at = -1;
-    for (int j = 0; j < c.manifold.pointCount; ++j) {
-      const auto& p = b.points[j];
-      c.normalImpulse[j] = p.normalImpulse[lane];
-      c.tangentImpulse[j] = p.tangentImpulse[lane];
-      const float approach = -p.relativeVelocity[lane];
-      if (p.maxNormalImpulse[lane] > 0.0f && approach > def.hitEventThreshold &&
-          approach > strongest) {
-        strongest = approach;
-        at = j;
-      }
+  // Block by block (the blocks read in order, each lane's contact written where it lies,
+  // fetched a few blocks ahead): in contact order, each contact read its block's lanes
+  // from all over the block array.
+  constexpr std::size_t kAhead = 4;
+  auto fetch = [&](std::size_t bi) {
+    for (int lane = 0; lane < W; ++lane) {
+      const std::uint32_t ci = s.lanePairs[bi * W + static_cast<std::size_t>(lane)].contact;
+      if (ci != SolverScratch::kNoContact) __builtin_prefetch(&contacts[ci].normalImpulse[0], 1);
     }
-    s.hits[k] = {static_cast<std::int8_t>(at), strongest};
+  };
+  for (std::size_t bi = first; bi < last && bi < first + kAhead; ++bi)
+    fetch(bi);
+  for (std::size_t bi = first; bi < last; ++bi) {
+    if (bi + kAhead < last) fetch(bi + kAhead);
+    const ContactBlock<F>& b = blocks[bi];
+    for (int lane = 0; lane < W; ++lane) {
+      const std::size_t at = bi * W + static_cast<std::size_t>(lane);
+      const std::uint32_t ci = s.lanePairs[at].contact;
+      if (ci == SolverScratch::kNoContact) continue;
+      Contact& c = contacts[ci];
+      float strongest = 0.0f;
+      int point = -1;
+      for (int j = 0; j < c.manifold.pointCount; ++j) {
+        const auto& p = b.points[j];
+        c.normalImpulse[j] = p.normalImpulse[lane];
+        c.tangentImpulse[j] = p.tangentImpulse[lane];
+        const float approach = -p.relativeVelocity[lane];
+        if (p.maxNormalImpulse[lane] > 0.0f && approach > def.hitEventThreshold &&
+            approach > strongest) {
+          strongest = approach;
+          point = j;
+        }
+      }
+      s.hits[at] = {static_cast<std::int8_t>(point), strongest};
+    }
   }
 }
 
@@ -610,7 +627,7 @@ template <class F>
 void reportHits(const SolverScratch& s, const BodyStore& store, const ContactSet& contactSet,
                 EventDispatcher& events) {
   for (std::size_t k = 0; k < s.touching.size(); ++k) {
-    const SolverScratch::Hit hit = s.hits[k];
+    const SolverScratch::Hit hit = s.hits[s.lane[k]];
     if (hit.point < 0) continue;
     const Contact& c = contactSet.contacts[s.touching[k]];
     events.events.hit.push_back({store.shapeId(c.shapeA), store.shapeId(c.shapeB),
@@ -700,8 +717,8 @@ void runStep(SolverScratch& s, std::vector<ContactBlock<F>>& blocks, const World
     addPass(Kind::relax, !odd);
   }
   addPass(Kind::bounce, false);
-  s.hits.resize(s.touching.size());
-  add(Kind::impulses, false, 0, s.touching.size(), kMinSlots);
+  s.hits.resize(blockCount * W);
+  add(Kind::impulses, false, 0, blockCount, kMinBlocks);
 
   tasks.runStages(stageBlocks, [&](int stage, int block, int) {
     const Stage& st = stages[static_cast<std::size_t>(stage)];
