@@ -185,7 +185,7 @@ void ContactSet::update(StepContext& step, const GhostEdges& edges,
     return body / 64 < awakeBodies.size() && ((awakeBodies[body / 64] >> (body % 64)) & 1u) != 0;
   };
   // The contacts to look at, in index order.
-  // Gathered on the workers (scattered reads of contacts, shapes and bodies), joined in order.
+  // Gathered on the workers (the contact heads and the awake bits), joined in order.
   [[maybe_unused]] const BodyStore& readStore = store;
   tasks.gather(awakeWordCount(), kMinWordsPerTask, updateParts_, updateList_,
                [&](int first, int last, std::vector<std::uint32_t>& list) {

@@ -837,7 +837,7 @@ void Solver::solve(StepContext& step, ContactSet& contactSet,
   s.turned.assign(s.states.size(), 0.0f);
 
   // Touching contacts (a dynamic body in every one), in contact order.
-  // Gathered on the workers (scattered reads of contacts and shapes), joined in order.
+  // Gathered on the workers (the contact heads, in order), joined in order.
   tasks.gather(contactSet.awakeWordCount(), kMinWords, s.pairParts, s.pairs,
                [&](int first, int last, std::vector<SolverScratch::Pair>& list) {
                  contactSet.forEachAwakeIn(first, last, [&](std::uint32_t ci) {
