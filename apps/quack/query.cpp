@@ -226,6 +226,20 @@ QueryAnswer finished(const json& id, const json& out) {
 
 // The ray {"origin", "translation"} of op raycast, checked for unknown and missing keys;
 // its vectors are left to the caller (2D or 3D).
+// A sweep, 2D or 3D, is {"from": POSE, "to": POSE} under `key`: the object and its keys.
+Status checkSweep(const json& q, const char* key) {
+  if (!q.contains(key)) return fail(std::string(key) + ": missing");
+  const json& j = q.at(key);
+  if (!j.is_object()) return fail(std::string(key) + ": must be an object {\"from\", \"to\"}");
+  for (const auto& item : j.items()) {
+    if (item.key() != "from" && item.key() != "to")
+      return fail(std::string(key) + "." + item.key() + ": unknown key");
+  }
+  if (!j.contains("from")) return fail(std::string(key) + ".from: missing");
+  if (!j.contains("to")) return fail(std::string(key) + ".to: missing");
+  return {};
+}
+
 Status checkRay(const json& q) {
   if (!q.contains("ray")) return fail("ray: missing");
   const json& ray = q.at("ray");
@@ -313,15 +327,8 @@ QueryAnswer answerParsed3(const json& id, const std::string& op, const json& q, 
     // A sweep is {"from": POSE, "to": POSE}; the shape turns about its proxy's centre (the
     // centre of its core), the short way round, at a constant rate.
     auto parseSweep = [&](const char* key, const ShapeProxy3& proxy) -> Result<Sweep3> {
-      if (!q.contains(key)) return fail(std::string(key) + ": missing");
+      if (Status s = checkSweep(q, key); !s) return fail(s.message());
       const json& j = q.at(key);
-      if (!j.is_object()) return fail(std::string(key) + ": must be an object {\"from\", \"to\"}");
-      for (const auto& item : j.items()) {
-        if (item.key() != "from" && item.key() != "to")
-          return fail(std::string(key) + "." + item.key() + ": unknown key");
-      }
-      if (!j.contains("from")) return fail(std::string(key) + ".from: missing");
-      if (!j.contains("to")) return fail(std::string(key) + ".to: missing");
       Result<Transform3> from = parsePose3(j.at("from"), std::string(key) + ".from");
       if (!from) return from.error();
       Result<Transform3> to = parsePose3(j.at("to"), std::string(key) + ".to");
@@ -476,15 +483,8 @@ QueryAnswer answerParsed(const json& q) {
     // A sweep is {"from": POSE, "to": POSE}; the shape turns about its centre (the centre
     // of mass of a one-shape body), the short way round.
     auto parseSweep = [&](const char* key, const ShapeGeometry& shape) -> Result<Sweep> {
-      if (!q.contains(key)) return fail(std::string(key) + ": missing");
+      if (Status s = checkSweep(q, key); !s) return fail(s.message());
       const json& j = q.at(key);
-      if (!j.is_object()) return fail(std::string(key) + ": must be an object {\"from\", \"to\"}");
-      for (const auto& item : j.items()) {
-        if (item.key() != "from" && item.key() != "to")
-          return fail(std::string(key) + "." + item.key() + ": unknown key");
-      }
-      if (!j.contains("from")) return fail(std::string(key) + ".from: missing");
-      if (!j.contains("to")) return fail(std::string(key) + ".to: missing");
       Result<Transform> from = parsePose(j.at("from"), std::string(key) + ".from");
       if (!from) return fail(from.error().message);
       Result<Transform> to = parsePose(j.at("to"), std::string(key) + ".to");
