@@ -7,6 +7,7 @@
 #include "body_store.hpp"
 #include "event_dispatcher.hpp"
 #include "ghost_edges.hpp"
+#include "joint_set.hpp"
 #include "quack/collision/gjk.hpp"
 #include "quack/world/world.hpp"
 #include "step_context.hpp"
@@ -114,6 +115,8 @@ void ContactSet::findNew(StepContext& step) {
     const Body& bodyB = store.bodies[shapeB.body];
     if (bodyA.type != BodyType::dynamicBody && bodyB.type != BodyType::dynamicBody) continue;
     if (shapeA.def.sensor && shapeB.def.sensor) continue;  // sensors do not sense sensors
+    // Jointed bodies do not collide unless the joint says so (JointDef::collideConnected).
+    if (step.joints.blocksCollision(shapeA.body, shapeB.body)) continue;
     if (byPair_.count(pairKey(sa, sb)) != 0) continue;
     std::uint32_t index;
     if (!free_.empty()) {

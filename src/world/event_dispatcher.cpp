@@ -33,6 +33,7 @@ void EventDispatcher::beginStep() {
   events.toi.clear();
   events.outOfBounds.clear();
   events.toiCapped.clear();
+  events.jointEnd.clear();
 }
 
 void EventDispatcher::contactEnded(const BodyStore& store, const Contact& c, bool inStep) {
@@ -56,6 +57,11 @@ void EventDispatcher::add(Kind kind, std::uint64_t a, std::uint64_t b,
                           World::ImpactCallback impact) {
   (fromCallback ? pending_ : callbacks_)
       .push_back({kind, a, b, std::move(contact), std::move(hit), std::move(impact)});
+}
+
+void EventDispatcher::addJointEnd(World::JointEndCallback f, bool fromCallback) {
+  Callback cb{Kind::jointEnd, 0, 0, {}, {}, {}, std::move(f)};
+  (fromCallback ? pending_ : callbacks_).push_back(std::move(cb));
 }
 
 void EventDispatcher::dispatch(World& world, const BodyStore& store) {
@@ -116,6 +122,11 @@ void EventDispatcher::dispatch(World& world, const BodyStore& store) {
         cb.impact(world, e, true);
       }
     }
+  }
+  for (const Callback& cb : callbacks_) {
+    if (cb.kind != Kind::jointEnd) continue;
+    for (const JointEndEvent& e : events.jointEnd)
+      cb.jointEnd(world, e);
   }
   for (Callback& cb : pending_)
     callbacks_.push_back(std::move(cb));

@@ -16,13 +16,14 @@ struct Contact;
 
 class EventDispatcher {
  public:
-  enum class Kind { begin, end, hit, sensorBegin, sensorEnd, impact };
+  enum class Kind { begin, end, hit, sensorBegin, sensorEnd, impact, jointEnd };
   struct Callback {
     Kind kind;
     std::uint64_t categoriesA, categoriesB;
     World::ContactCallback contact;
     World::HitCallback hit;
     World::ImpactCallback impact;
+    World::JointEndCallback jointEnd;
   };
 
   StepEvents events;
@@ -34,8 +35,9 @@ class EventDispatcher {
   void contactEnded(const BodyStore& store, const Contact& c, bool inStep);
   void add(Kind kind, std::uint64_t a, std::uint64_t b, World::ContactCallback contact,
            World::HitCallback hit, bool fromCallback, World::ImpactCallback impact = {});
+  void addJointEnd(World::JointEndCallback f, bool fromCallback);
   /// Calls the callbacks, in event order, kind by kind (begin, end, sensor begin, sensor
-  /// end, hit, impact); then takes in callbacks registered meanwhile.
+  /// end, hit, impact, joint end); then takes in callbacks registered meanwhile.
   void dispatch(World& world, const BodyStore& store);
 
  private:

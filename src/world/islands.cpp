@@ -7,6 +7,7 @@
 
 #include "body_store.hpp"
 #include "contact_set.hpp"
+#include "joint_set.hpp"
 #include "quack/world/world.hpp"
 #include "task_runner.hpp"
 
@@ -21,9 +22,11 @@ bool isDynamic(const BodyStore& store, std::uint32_t body) {
   return store.bodyAlive(body) && store.bodies[body].type == BodyType::dynamicBody;
 }
 
-// Calls f(other body) for every body touching `body` through a non-sensor contact.
+// Calls f(other body) for every body touching `body` through a non-sensor contact, then
+// for every body jointed to it (joints hold islands together as touching contacts do).
 template <class F>
-void forEachTouching(const BodyStore& store, const ContactSet& contacts, std::uint32_t body, F f) {
+void forEachTouching(const BodyStore& store, const ContactSet& contacts, const JointSet& joints,
+                     std::uint32_t body, F f) {
   for (std::uint32_t s : store.bodies[body].shapes) {
     for (std::uint32_t ci : store.shapes[s].contacts) {
       const Contact& c = contacts.contacts[ci];
@@ -32,6 +35,10 @@ void forEachTouching(const BodyStore& store, const ContactSet& contacts, std::ui
       f(a == body ? b : a);
     }
   }
+  joints.forEachOf(body, [&](std::uint32_t j) {
+    const std::uint32_t other = joints.other(j, body);
+    if (other != kNoBody) f(other);
+  });
 }
 
 }  // namespace
@@ -158,8 +165,30 @@ void IslandSet::wake(BodyStore& store, std::uint32_t body) {
   }
 }
 
-void IslandSet::wakeTouching(BodyStore& store, const ContactSet& contacts, std::uint32_t body) {
-  forEachTouching(store, contacts, body, [&](std::uint32_t other) { wake(store, other); });
+void IslandSet::wakeTouching(BodyStore& store, const ContactSet& contacts, const JointSet& joints,
+                             std::uint32_t body) {
+  forEachTouching(store, contacts, joints, body, [&](std::uint32_t other) { wake(store, other); });
+}
+
+void IslandSet::link(BodyStore& store, std::uint32_t a, std::uint32_t b) {
+  const bool dynA = a != kNoBody && isDynamic(store, a);
+  const bool dynB = b != kNoBody && isDynamic(store, b);
+  if (dynA && dynB) {
+    wake(store, a);
+    wake(store, b);
+    merge(store, store.bodies[a].island, store.bodies[b].island);
+    return;
+  }
+  if (a != kNoBody) wake(store, a);
+  if (b != kNoBody) wake(store, b);
+}
+
+void IslandSet::unlink(BodyStore& store, std::uint32_t a, std::uint32_t b) {
+  if (a != kNoBody) wake(store, a);
+  if (b != kNoBody) wake(store, b);
+  if (a != kNoBody && b != kNoBody && isDynamic(store, a) && isDynamic(store, b) &&
+      store.bodies[a].island == store.bodies[b].island && store.bodies[a].island != kNoIsland)
+    islands_[store.bodies[a].island].dirty = true;
 }
 
 void IslandSet::wakeNear(BodyStore& store, const ContactSet& contacts, std::uint32_t body) {
@@ -173,7 +202,8 @@ void IslandSet::wakeNear(BodyStore& store, const ContactSet& contacts, std::uint
   }
 }
 
-void IslandSet::sleepNow(BodyStore& store, const ContactSet& contacts, std::uint32_t body) {
+void IslandSet::sleepNow(BodyStore& store, const ContactSet& contacts, const JointSet& joints,
+                         std::uint32_t body) {
   Body& b = store.bodies[body];
   if (b.type == BodyType::staticBody) return;
   if (b.island == kNoIsland) {
@@ -184,7 +214,7 @@ void IslandSet::sleepNow(BodyStore& store, const ContactSet& contacts, std::uint
     return;
   }
   // Only the bodies connected to this one sleep: split a marked island first.
-  if (islands_[b.island].dirty) split(store, contacts, b.island, parts_);
+  if (islands_[b.island].dirty) split(store, contacts, joints, b.island, parts_);
   sleepIsland(store, b.island);
 }
 
@@ -233,8 +263,8 @@ void IslandSet::apply(BodyStore& store, const ContactChanges& changes) {
   }
 }
 
-void IslandSet::split(BodyStore& store, const ContactSet& contacts, std::uint32_t id,
-                      std::vector<std::uint32_t>& parts) {
+void IslandSet::split(BodyStore& store, const ContactSet& contacts, const JointSet& joints,
+                      std::uint32_t id, std::vector<std::uint32_t>& parts) {
   parts.clear();
   // The bodies to sort out, in island order; each is reached once by a depth-first walk
   // over touching contacts between dynamic bodies.
@@ -261,7 +291,7 @@ void IslandSet::split(BodyStore& store, const ContactSet& contacts, std::uint32_
       const std::uint32_t body = stack_.back();
       stack_.pop_back();
       islands_[part].bodies.push_back(body);
-      forEachTouching(store, contacts, body, [&](std::uint32_t other) {
+      forEachTouching(store, contacts, joints, body, [&](std::uint32_t other) {
         Body& o = store.bodies[other];
         if (o.type != BodyType::dynamicBody || o.island != kNoIsland) return;
         o.island = part;
@@ -273,7 +303,7 @@ void IslandSet::split(BodyStore& store, const ContactSet& contacts, std::uint32_
 }
 
 void IslandSet::updateSleep(const WorldDef& def, BodyStore& store, const ContactSet& contacts,
-                            float dt, TaskRunner& tasks) {
+                            const JointSet& joints, float dt, TaskRunner& tasks) {
   if (!def.enableSleep) return;
   ++step_;
   auto forEachAwake = [&](auto f) {
@@ -309,7 +339,7 @@ void IslandSet::updateSleep(const WorldDef& def, BodyStore& store, const Contact
   forEachAwake([&](std::uint32_t body) {
     const Body& b = store.bodies[body];
     if (b.type != BodyType::kinematicBody || b.sleepTime > 0.0f) return;
-    forEachTouching(store, contacts, body, [&](std::uint32_t other) {
+    forEachTouching(store, contacts, joints, body, [&](std::uint32_t other) {
       if (store.bodies[other].type != BodyType::dynamicBody) return;
       wake(store, other);
       store.bodies[other].sleepTime = 0.0f;
@@ -348,7 +378,7 @@ void IslandSet::updateSleep(const WorldDef& def, BodyStore& store, const Contact
   }
   for (std::uint32_t id : candidates_) {
     if (id == toSplit) {
-      split(store, contacts, id, parts_);
+      split(store, contacts, joints, id, parts_);
       for (std::uint32_t part : parts_) {
         bool rested = true;
         for (std::uint32_t body : islands_[part].bodies)
@@ -369,7 +399,8 @@ void IslandSet::updateSleep(const WorldDef& def, BodyStore& store, const Contact
   });
 }
 
-Status IslandSet::validate(const BodyStore& store, const ContactSet& contacts) const {
+Status IslandSet::validate(const BodyStore& store, const ContactSet& contacts,
+                           const JointSet& joints) const {
   std::vector<std::uint32_t> seen(store.bodies.size(), 0);
   for (std::uint32_t id = 0; id < islands_.size(); ++id) {
     const Island& island = islands_[id];
@@ -411,6 +442,13 @@ Status IslandSet::validate(const BodyStore& store, const ContactSet& contacts) c
         store.bodies[a].island != store.bodies[b].island)
       return fail("bodies " + std::to_string(a) + " and " + std::to_string(b) +
                   " touch but are in different islands");
+  }
+  for (std::uint32_t j = 0; j < joints.joints.size(); ++j) {
+    const Joint& joint = joints.joints[j];
+    if (!joint.alive || joint.bodyA == kNoBody) continue;
+    if (isDynamic(store, joint.bodyA) && isDynamic(store, joint.bodyB) &&
+        store.bodies[joint.bodyA].island != store.bodies[joint.bodyB].island)
+      return fail("joint " + std::to_string(j) + ": its bodies are in different islands");
   }
   return {};
 }

@@ -1,7 +1,7 @@
 #pragma once
 // Islands and sleep: one part of the world (docs/world.md, "Sleeping"). Dynamic bodies
-// joined by touching contacts (not sensors; static and kinematic bodies join nothing) form
-// islands. Islands merge as contacts begin; a contact that stops touching only marks its
+// joined by touching contacts or joints (not sensors; static and kinematic bodies join nothing)
+// form islands. Islands merge as contacts begin; a contact that stops touching only marks its
 // island, which is split (its connected parts found again) when it wants to sleep, at most
 // one island a step. An island whose every body has rested for kTimeToSleep sleeps as a
 // whole: its bodies leave the awake set (the solver, the continuous phase and the narrow
@@ -21,6 +21,7 @@ namespace quack::detail {
 
 class BodyStore;
 class ContactSet;
+class JointSet;
 struct ContactChanges;
 class TaskRunner;
 
@@ -49,17 +50,24 @@ class IslandSet {
   /// Wakes the body: a dynamic body's whole island, a kinematic body itself.
   void wake(BodyStore& store, std::uint32_t body);
   /// Wakes every body touching `body`, and their islands.
-  void wakeTouching(BodyStore& store, const ContactSet& contacts, std::uint32_t body);
+  void wakeTouching(BodyStore& store, const ContactSet& contacts, const JointSet& joints,
+                    std::uint32_t body);
+  /// A joint between bodies a and b (kNoBody: none) was created: both wake, and two dynamic
+  /// bodies' islands merge (jointed bodies sleep and wake together).
+  void link(BodyStore& store, std::uint32_t a, std::uint32_t b);
+  /// A joint between them was destroyed: both wake and their island is marked for a split.
+  void unlink(BodyStore& store, std::uint32_t a, std::uint32_t b);
   /// Wakes every body sharing a contact with `body`, touching or not (fat boxes overlap):
   /// for a body moved by hand, which may now be inside them.
   void wakeNear(BodyStore& store, const ContactSet& contacts, std::uint32_t body);
   /// Puts the body's island (a kinematic body: the body) to sleep now (World::setAwake).
-  void sleepNow(BodyStore& store, const ContactSet& contacts, std::uint32_t body);
+  void sleepNow(BodyStore& store, const ContactSet& contacts, const JointSet& joints,
+                std::uint32_t body);
   /// The end of a step: each awake body's rest time, then islands that rested long enough
   /// go to sleep (splitting one marked island first, if one wants to).
   /// The bodies' rest times are updated on the workers (each writes its own body).
-  void updateSleep(const WorldDef& def, BodyStore& store, const ContactSet& contacts, float dt,
-                   TaskRunner& tasks);
+  void updateSleep(const WorldDef& def, BodyStore& store, const ContactSet& contacts,
+                   const JointSet& joints, float dt, TaskRunner& tasks);
 
   /// The bodies that move this step (live, not static, awake), a bit per body index.
   const std::vector<std::uint64_t>& awakeBits() const noexcept { return awakeBits_; }
@@ -71,7 +79,7 @@ class IslandSet {
 
   /// Every dynamic body in the island it names, once; island and body agree on sleep; the
   /// awake bits agree with the bodies; bodies touching through a contact share an island.
-  Status validate(const BodyStore& store, const ContactSet& contacts) const;
+  Status validate(const BodyStore& store, const ContactSet& contacts, const JointSet& joints) const;
 
  private:
   friend class SnapshotCodec;  // snapshot.cpp reads and rebuilds every field
@@ -82,7 +90,7 @@ class IslandSet {
   void sleepIsland(BodyStore& store, std::uint32_t id);
   void merge(BodyStore& store, std::uint32_t a, std::uint32_t b);
   /// Finds the island's connected parts again; returns their ids (the first keeps `id`).
-  void split(BodyStore& store, const ContactSet& contacts, std::uint32_t id,
+  void split(BodyStore& store, const ContactSet& contacts, const JointSet& joints, std::uint32_t id,
              std::vector<std::uint32_t>& parts);
 
   std::vector<Island> islands_;

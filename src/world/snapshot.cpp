@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <map>
@@ -463,6 +464,75 @@ IdPool readPool(Reader& r, const char* what) {
   return std::move(pool).value();
 }
 
+// A float that may be infinite (a joint's break thresholds): a flag, then the value.
+void writeLimit(Writer& w, float v) {
+  w.flag(std::isinf(v));
+  if (!std::isinf(v)) w.f32(v);
+}
+float readLimit(Reader& r, const char* what) {
+  if (r.flag(what)) return std::numeric_limits<float>::infinity();
+  return r.f32(what);
+}
+
+void writeJoint(Writer& w, const Joint& j) {
+  const JointDef& d = j.def;
+  w.u8(static_cast<std::uint8_t>(d.type));
+  w.u32(j.bodyA);
+  w.u32(j.bodyB);
+  w.u8(static_cast<std::uint8_t>((d.enableLimit ? 1 : 0) | (d.enableMotor ? 2 : 0) |
+                                 (d.enableSpring ? 4 : 0) | (d.collideConnected ? 8 : 0)));
+  for (Vec2 v : {d.anchorA, d.anchorB, d.axis, d.linearOffset, d.target})
+    w.vec(v);
+  for (float f :
+       {d.lower, d.upper, d.motorSpeed, d.maxMotorTorque, d.maxMotorForce, d.hertz, d.dampingRatio,
+        d.length, d.minLength, d.maxLength, d.linearHertz, d.angularHertz, d.linearDampingRatio,
+        d.angularDampingRatio, d.angularOffset, d.maxForce, d.maxTorque, d.correctionFactor})
+    w.f32(f);
+  writeLimit(w, d.breakForce);
+  writeLimit(w, d.breakTorque);
+  w.u64(d.userData);
+  for (Vec2 v : {j.localAnchorA, j.localAnchorB, j.localAxisA, j.linearImpulse, j.force})
+    w.vec(v);
+  for (float f : {j.referenceAngle, j.length, j.angularImpulse, j.perpImpulse, j.axialImpulse,
+                  j.springImpulse, j.motorImpulse, j.lowerImpulse, j.upperImpulse, j.torque})
+    w.f32(f);
+}
+
+void readJoint(Reader& r, Joint& j, std::size_t bodySlots) {
+  JointDef& d = j.def;
+  const std::uint8_t type = r.u8("joint type");
+  if (type > static_cast<std::uint8_t>(JointType::mouse))
+    r.fail("joint type " + std::to_string(type) + " is not a joint type");
+  d.type = static_cast<JointType>(type);
+  j.bodyA = r.u32("joint body A");
+  j.bodyB = r.index("joint body B", bodySlots);
+  if (j.bodyA != kNoBody && j.bodyA >= bodySlots) r.fail("joint body A is out of range");
+  if ((j.bodyA == kNoBody) != (d.type == JointType::mouse))
+    r.fail("joint body A: only a mouse joint has none");
+  const std::uint8_t flags = r.u8("joint flags");
+  if (flags > 15) r.fail("joint flags has unknown bits");
+  d.enableLimit = (flags & 1) != 0;
+  d.enableMotor = (flags & 2) != 0;
+  d.enableSpring = (flags & 4) != 0;
+  d.collideConnected = (flags & 8) != 0;
+  for (Vec2* v : {&d.anchorA, &d.anchorB, &d.axis, &d.linearOffset, &d.target})
+    *v = r.vec("joint setting");
+  for (float* f : {&d.lower, &d.upper, &d.motorSpeed, &d.maxMotorTorque, &d.maxMotorForce, &d.hertz,
+                   &d.dampingRatio, &d.length, &d.minLength, &d.maxLength, &d.linearHertz,
+                   &d.angularHertz, &d.linearDampingRatio, &d.angularDampingRatio, &d.angularOffset,
+                   &d.maxForce, &d.maxTorque, &d.correctionFactor})
+    *f = r.f32("joint setting");
+  d.breakForce = readLimit(r, "joint break force");
+  d.breakTorque = readLimit(r, "joint break torque");
+  d.userData = r.u64("joint user data");
+  for (Vec2* v : {&j.localAnchorA, &j.localAnchorB, &j.localAxisA, &j.linearImpulse, &j.force})
+    *v = r.vec("joint state");
+  for (float* f : {&j.referenceAngle, &j.length, &j.angularImpulse, &j.perpImpulse, &j.axialImpulse,
+                   &j.springImpulse, &j.motorImpulse, &j.lowerImpulse, &j.upperImpulse, &j.torque})
+    *f = r.f32("joint state");
+  j.alive = true;
+}
+
 }  // namespace
 
 // A world state being read: what the structure section gives the motion section.
@@ -498,9 +568,10 @@ void SnapshotCodec::writeStructure(Writer& w, const WorldState& s) {
   w.f32(d.timeStep);
   w.i32(d.substeps);
   w.u8(static_cast<std::uint8_t>(d.broadPhase));
-  for (float f : {d.contactHertz, d.contactDampingRatio, d.contactPushMaxSpeed,
-                  d.restitutionThreshold, d.hitEventThreshold, d.speculativeDistance,
-                  d.maxRotationPerSubstep, d.contactRecycleDistance})
+  for (float f :
+       {d.contactHertz, d.contactDampingRatio, d.contactPushMaxSpeed, d.restitutionThreshold,
+        d.hitEventThreshold, d.speculativeDistance, d.maxRotationPerSubstep,
+        d.contactRecycleDistance, d.jointHertz, d.jointDampingRatio})
     w.f32(f);
   w.u8(static_cast<std::uint8_t>((d.enableContinuous ? 1 : 0) | (d.removeGhostCollisions ? 2 : 0) |
                                  (d.scalarSolver ? 4 : 0) | (d.enableSleep ? 8 : 0)));
@@ -719,6 +790,27 @@ void SnapshotCodec::writeMotion(Writer& w, const WorldState& s) {
     w.u64(e.categoryB);
     w.flag(e.sensor);
   }
+
+  // Joints: settings and warm-start impulses alike (a rollback brings back a joint that
+  // broke since). The bodies' lists of joints are rebuilt from them.
+  const JointSet& js = s.joints;
+  writePool(w, js.ids);
+  for (std::uint32_t j = 0; j < js.joints.size(); ++j) {
+    if (js.ids.isAlive(j)) writeJoint(w, js.joints[j]);
+  }
+  w.size(js.endsSinceStep.size());
+  for (const JointEndEvent& e : js.endsSinceStep) {
+    w.u32(e.joint.index);
+    w.u32(e.joint.generation);
+    w.u32(e.bodyA.index);
+    w.u32(e.bodyA.generation);
+    w.u32(e.bodyB.index);
+    w.u32(e.bodyB.generation);
+    w.u8(static_cast<std::uint8_t>(e.reason));
+    w.vec(e.force);
+    w.f32(e.torque);
+    w.u64(e.userData);
+  }
 }
 
 Result<std::unique_ptr<WorldState>> SnapshotCodec::read(std::span<const std::uint8_t> structure,
@@ -744,9 +836,10 @@ Status SnapshotCodec::readStructure(std::span<const std::uint8_t> structure, std
   if (kind > static_cast<std::uint8_t>(BroadPhaseKind::brute))
     r.fail("WorldDef.broadPhase " + std::to_string(kind) + " is not a broad-phase kind");
   d.broadPhase = static_cast<BroadPhaseKind>(kind);
-  for (float* f : {&d.contactHertz, &d.contactDampingRatio, &d.contactPushMaxSpeed,
-                   &d.restitutionThreshold, &d.hitEventThreshold, &d.speculativeDistance,
-                   &d.maxRotationPerSubstep, &d.contactRecycleDistance})
+  for (float* f :
+       {&d.contactHertz, &d.contactDampingRatio, &d.contactPushMaxSpeed, &d.restitutionThreshold,
+        &d.hitEventThreshold, &d.speculativeDistance, &d.maxRotationPerSubstep,
+        &d.contactRecycleDistance, &d.jointHertz, &d.jointDampingRatio})
     *f = r.f32("WorldDef setting");
   const std::uint8_t defFlags = r.u8("WorldDef flags");
   if (defFlags > 15) r.fail("WorldDef flags has unknown bits");
@@ -1109,6 +1202,37 @@ Status SnapshotCodec::readMotion(std::span<const std::uint8_t> motion, std::uint
     e.categoryB = m.u64("pending end category");
     e.sensor = m.flag("pending end sensor flag");
   }
+
+  JointSet& js = s->joints;
+  js.ids = readPool(m, "joint slots");
+  js.joints.assign(js.ids.capacity(), Joint{});
+  for (std::uint32_t j = 0; j < js.joints.size() && m.ok(); ++j) {
+    if (!js.ids.isAlive(j)) continue;
+    Joint& joint = js.joints[j];
+    readJoint(m, joint, store.bodies.size());
+    joint.def.bodyA = joint.bodyA == kNoBody ? BodyId{} : store.bodyId(joint.bodyA);
+    joint.def.bodyB = store.bodyId(joint.bodyB);
+  }
+  js.endsSinceStep.resize(m.count("pending joint end events", 45));
+  for (JointEndEvent& e : js.endsSinceStep) {
+    e.joint.index = m.u32("pending joint end");
+    e.joint.generation = m.u32("pending joint end");
+    e.bodyA.index = m.u32("pending joint end body");
+    e.bodyA.generation = m.u32("pending joint end body");
+    e.bodyB.index = m.u32("pending joint end body");
+    e.bodyB.generation = m.u32("pending joint end body");
+    e.joint.world = worldId;
+    e.bodyA.world = e.bodyA.index == kNoBody ? 0 : worldId;
+    e.bodyB.world = worldId;
+    const std::uint8_t reason = m.u8("pending joint end reason");
+    if (reason > static_cast<std::uint8_t>(JointEndReason::bodyDestroyed))
+      m.fail("pending joint end reason " + std::to_string(reason) + " is not a reason");
+    e.reason = static_cast<JointEndReason>(reason);
+    e.force = m.vec("pending joint end force");
+    e.torque = m.f32("pending joint end torque");
+    e.userData = m.u64("pending joint end user data");
+  }
+  if (m.ok()) js.rebuildLists(store.bodies.size());
   if (m.ok() && !m.atEnd()) m.fail(std::to_string(m.left()) + " bytes left over");
   if (!m.ok()) return fail(m.error());
   return {};

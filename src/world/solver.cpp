@@ -3,6 +3,7 @@
 // understanding; Catto, "Iterative Dynamics with Temporal Coherence", GDC 2005, for
 // sequential impulses and warm starting). docs/world.md explains the choices.
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 
@@ -13,6 +14,8 @@
 #include "body_store.hpp"
 #include "contact_set.hpp"
 #include "event_dispatcher.hpp"
+#include "joint_set.hpp"
+#include "joint_solver.hpp"
 #include "quack/math/trig.hpp"
 #include "quack/world/tasks.hpp"
 #include "quack/world/world.hpp"
@@ -30,15 +33,6 @@ void setTestSolverReadsRecords(bool on) noexcept {
 }
 
 namespace {
-
-Softness makeSoftness(float hertz, float zeta, float h) {
-  if (hertz == 0.0f) return {0.0f, 1.0f, 0.0f};
-  float omega = 2.0f * kPi * hertz;
-  float a1 = 2.0f * zeta + h * omega;
-  float a2 = h * omega * a1;
-  float a3 = 1.0f / (1.0f + a2);
-  return {omega / a1, a2 * a3, a3};
-}
 
 Rot integrateRotation(Rot q, float deltaAngle) {
   // First-order update then renormalise: exact to second order per sub-step, and cheaper
@@ -333,6 +327,13 @@ struct SolverScratch {
   std::vector<Hit> hits;  // per block lane
   std::vector<ContactBlock<FloatW>> wide;
   std::vector<ContactBlock<FloatS>> narrow;
+  // Joints with an awake dynamic body: gathered in joint order, then laid out by colour
+  // (the overflow set first), as the contacts' blocks are.
+  std::vector<JointSim> jointsFound;
+  std::vector<JointSim> joints;
+  std::vector<std::uint8_t> jointColor;      // per found joint
+  std::size_t jointStart[kColors + 2] = {};  // overflow [0, [0]), colour c [c], [c + 1])
+  std::vector<std::uint32_t> broken;         // joints past their break force, in index order
 };
 
 namespace {
@@ -340,7 +341,47 @@ namespace {
 struct StepParams {
   float h, invH, pushMax, restitutionThreshold;
   Softness soft, staticSoft;
+  JointStepParams joint;
 };
+
+// Colours the joints first, with the colours their bodies take (as a contact's, below),
+// and lays them out: the overflow set, then each colour's in joint order.
+void layoutJoints(SolverScratch& s, std::uint32_t* used, std::uint32_t allColors) {
+  const std::size_t n = s.jointsFound.size();
+  s.jointColor.resize(n);
+  std::size_t perColor[kColors + 1] = {};
+  for (std::size_t k = 0; k < n; ++k) {
+    const JointSim& j = s.jointsFound[k];
+    int color = kOverflow;
+    if (j.writeA && j.writeB) {
+      const std::uint32_t free = ~(used[j.slotA] | used[j.slotB]) & allColors;
+      if (free != 0) {
+        color = __builtin_ctz(free);
+        used[j.slotA] |= std::uint32_t{1} << color;
+        used[j.slotB] |= std::uint32_t{1} << color;
+      }
+    } else {
+      const std::int32_t d = j.writeA ? j.slotA : j.slotB;
+      const std::uint32_t free = ~used[d] & allColors & ~std::uint32_t{1};
+      if (free != 0) {
+        color = __builtin_ctz(free);
+        used[d] |= std::uint32_t{1} << color;
+      }
+    }
+    s.jointColor[k] = static_cast<std::uint8_t>(color);
+    ++perColor[color];
+  }
+  s.jointStart[0] = perColor[kOverflow];
+  for (int c = 0; c < kColors; ++c)
+    s.jointStart[c + 1] = s.jointStart[c] + perColor[c];
+  std::size_t fill[kColors + 1];
+  fill[kOverflow] = 0;
+  for (int c = 0; c < kColors; ++c)
+    fill[c] = s.jointStart[c];
+  s.joints.resize(n);
+  for (std::size_t k = 0; k < n; ++k)
+    s.joints[fill[s.jointColor[k]]++] = s.jointsFound[k];
+}
 
 // Colours the touching contacts and lays them out in blocks: the overflow set first (one
 // constraint per block), then each colour's constraints in contact order, `width` to a
@@ -357,6 +398,7 @@ template <class F>
       kColors == 32 ? ~std::uint32_t{0} : (std::uint32_t{1} << kColors) - 1u;
   s.slotColors.assign(s.states.size(), 0);
   std::uint32_t* used = s.slotColors.data();
+  layoutJoints(s, used, kAllColors);
   std::size_t perColor[kColors + 1] = {};
   s.color.resize(s.touching.size());
   for (std::size_t k = 0; k < s.touching.size(); ++k) {
@@ -391,7 +433,7 @@ template <class F>
   for (int c = 0; c < kColors; ++c) {
     colorStart[c] = next;
     next += (perColor[c] + W - 1) / W;
-    if (perColor[c] > 0) stats.colors = c + 1;
+    if (perColor[c] > 0 || s.jointStart[c + 1] > s.jointStart[c]) stats.colors = c + 1;
   }
   colorStart[kColors] = next;
   for (int c = 0; c <= kColors; ++c)
@@ -639,7 +681,7 @@ void reportHits(const SolverScratch& s, const BodyStore& store, const ContactSet
 // warm start, solve, integrate positions, relax; then restitution and the impulses stored.
 template <class F>
 void runStep(SolverScratch& s, std::vector<ContactBlock<F>>& blocks, const WorldDef& def,
-             BodyStore& store, ContactSet& contactSet, EventDispatcher& events,
+             BodyStore& store, ContactSet& contactSet, JointSet& jointSet, EventDispatcher& events,
              const StepParams& params, int substeps, Solver::Stats& stats, TaskRunner& tasks) {
   constexpr int W = F::width;
   std::size_t colorStart[kColors + 1], colorCount[kColors + 1];
@@ -676,37 +718,62 @@ void runStep(SolverScratch& s, std::vector<ContactBlock<F>>& blocks, const World
     bounce,
     impulses
   };
+  // A stage's work: first its joints (the same colour's: no body in common with its
+  // contacts), then its contact blocks or slots; both split into task blocks.
   struct Stage {
     Kind kind;
     std::uint8_t odd;     // the sub-step's solve order
     std::uint32_t first;  // first contact block (or slot) of the stage
     std::uint32_t count;  // contact blocks (or slots) in it
     std::uint32_t size;   // of them per task block
+    std::uint32_t jointFirst = 0, jointCount = 0, jointSize = 1;
+    std::uint32_t jointBlocks = 0;  // task blocks of joints, before the contacts'
   };
   std::vector<Stage> stages;  // a hundred or so
   std::vector<int>& stageBlocks = s.stageBlocks;
   stages.clear();
   stageBlocks.clear();
+  constexpr int kMinJoints = 32;
   auto add = [&](Kind kind, bool odd, std::size_t first, std::size_t count, int minRange,
-                 int perWorker = TaskRunner::kRangesPerWorker) {
-    if (count == 0) return;
-    const int size = tasks.rangeSize(static_cast<int>(count), minRange, perWorker);
-    stages.push_back({kind, static_cast<std::uint8_t>(odd), static_cast<std::uint32_t>(first),
-                      static_cast<std::uint32_t>(count), static_cast<std::uint32_t>(size)});
-    stageBlocks.push_back((static_cast<int>(count) + size - 1) / size);
+                 int perWorker = TaskRunner::kRangesPerWorker, std::size_t jointFirst = 0,
+                 std::size_t jointCount = 0) {
+    if (count == 0 && jointCount == 0) return;
+    Stage st{kind, static_cast<std::uint8_t>(odd), static_cast<std::uint32_t>(first),
+             static_cast<std::uint32_t>(count), 1};
+    int blocksOf = 0;
+    if (count > 0) {
+      const int size = tasks.rangeSize(static_cast<int>(count), minRange, perWorker);
+      st.size = static_cast<std::uint32_t>(size);
+      blocksOf = (static_cast<int>(count) + size - 1) / size;
+    }
+    if (jointCount > 0) {
+      const int size = tasks.rangeSize(static_cast<int>(jointCount), kMinJoints, perWorker);
+      st.jointFirst = static_cast<std::uint32_t>(jointFirst);
+      st.jointCount = static_cast<std::uint32_t>(jointCount);
+      st.jointSize = static_cast<std::uint32_t>(size);
+      st.jointBlocks = static_cast<std::uint32_t>((static_cast<int>(jointCount) + size - 1) / size);
+    }
+    stages.push_back(st);
+    stageBlocks.push_back(blocksOf + static_cast<int>(st.jointBlocks));
   };
+  const std::size_t* js = s.jointStart;
   auto addPass = [&](Kind kind, bool odd) {
-    if (colorStart[0] != 0) {
-      stages.push_back({kind, static_cast<std::uint8_t>(odd), 0,
-                        static_cast<std::uint32_t>(colorStart[0]),
-                        static_cast<std::uint32_t>(colorStart[0])});
+    // The overflow set: its joints then its contacts, one at a time (they share bodies).
+    if (colorStart[0] != 0 || js[0] != 0) {
+      Stage st{kind, static_cast<std::uint8_t>(odd), 0, static_cast<std::uint32_t>(colorStart[0]),
+               static_cast<std::uint32_t>(colorStart[0])};
+      st.jointCount = static_cast<std::uint32_t>(js[0]);
+      st.jointSize = st.jointCount;
+      stages.push_back(st);
       stageBlocks.push_back(1);
     }
     for (int c = 0; c < kColors; ++c)
-      add(kind, odd, colorStart[c], colorStart[c + 1] - colorStart[c], kMinBlocks);
+      add(kind, odd, colorStart[c], colorStart[c + 1] - colorStart[c], kMinBlocks,
+          TaskRunner::kRangesPerWorker, js[c], js[c + 1] - js[c]);
   };
   const std::size_t slots = s.states.size() - 1;  // slot 0 is the resting dummy
-  add(Kind::prepare, false, 0, blockCount, kMinBlocks, TaskRunner::kHeavyRangesPerWorker);
+  add(Kind::prepare, false, 0, blockCount, kMinBlocks, TaskRunner::kHeavyRangesPerWorker, 0,
+      s.joints.size());
   for (int stepIndex = 0; stepIndex < substeps; ++stepIndex) {
     const bool odd = (stepIndex & 1) != 0;
     add(Kind::velocities, false, 1, slots, kMinSlots);
@@ -720,10 +787,63 @@ void runStep(SolverScratch& s, std::vector<ContactBlock<F>>& blocks, const World
   s.hits.resize(blockCount * W);
   add(Kind::impulses, false, 0, blockCount, kMinBlocks);
 
-  tasks.runStages(stageBlocks, [&](int stage, int block, int) {
+  JointSim* jointSims = s.joints.data();
+  auto runJoints = [&](Kind kind, std::size_t first, std::size_t count) {
+    for (std::size_t k = first; k < first + count; ++k) {
+      JointSim& sim = jointSims[k];
+      Joint& joint = jointSet.joints[sim.joint];
+      switch (kind) {
+        case Kind::prepare: {
+          auto body = [&](std::uint32_t index, std::int32_t slot, bool moved) {
+            JointBody jb;
+            if (index == kNoBody) return jb;
+            const Body& b = store.bodies[index];
+            if (moved) {
+              jb.invMass = b.invMass;
+              jb.invInertia = b.invInertia;
+            }
+            (void)slot;
+            jb.center = b.center;
+            jb.localCenter = b.localCenter;
+            jb.q = b.xf.q;
+            return jb;
+          };
+          prepareJoint(sim, joint, body(joint.bodyA, sim.slotA, sim.writeA),
+                       body(joint.bodyB, sim.slotB, sim.writeB), params.joint);
+          break;
+        }
+        case Kind::warm:
+          warmStartJoint(sim, joint, states);
+          break;
+        case Kind::solve:
+          solveJoint(sim, joint, states, s.turned.data(), params.joint, true);
+          break;
+        case Kind::relax:
+          solveJoint(sim, joint, states, s.turned.data(), params.joint, false);
+          break;
+        default:
+          break;
+      }
+    }
+  };
+
+  tasks.runStages(stageBlocks, [&](int stage, int taskBlock, int) {
     const Stage& st = stages[static_cast<std::size_t>(stage)];
-    const std::size_t first = st.first + static_cast<std::size_t>(block) * st.size;
-    const std::size_t count = std::min<std::size_t>(st.size, st.first + st.count - first);
+    std::size_t first = 0, count = 0;
+    if (static_cast<std::uint32_t>(taskBlock) < st.jointBlocks) {
+      const std::size_t jfirst = st.jointFirst + static_cast<std::size_t>(taskBlock) * st.jointSize;
+      runJoints(st.kind, jfirst,
+                std::min<std::size_t>(st.jointSize, st.jointFirst + st.jointCount - jfirst));
+      return;
+    }
+    if (st.jointBlocks == 0 && st.jointCount > 0) {
+      // The overflow stage: its joints, then its contacts, on this one worker.
+      runJoints(st.kind, st.jointFirst, st.jointCount);
+    }
+    if (st.count == 0) return;
+    const int block = taskBlock - static_cast<int>(st.jointBlocks);
+    first = st.first + static_cast<std::size_t>(block) * st.size;
+    count = std::min<std::size_t>(st.size, st.first + st.count - first);
     switch (st.kind) {
       case Kind::prepare:
         prepareBlocks(s, blocks, first, first + count, store, contactSet, params);
@@ -763,8 +883,9 @@ const char* Solver::simdPath() noexcept {
   return kSimdPath;
 }
 
-void Solver::solve(StepContext& step, ContactSet& contactSet,
-                   const std::vector<std::uint64_t>& awake) {
+std::span<const std::uint32_t> Solver::solve(StepContext& step, ContactSet& contactSet,
+                                             JointSet& jointSet,
+                                             const std::vector<std::uint64_t>& awake) {
   const WorldDef& def = step.def;
   BodyStore& store = step.store;
   BroadPhase& broadPhase = step.broadPhase;
@@ -784,6 +905,10 @@ void Solver::solve(StepContext& step, ContactSet& contactSet,
   params.staticSoft = makeSoftness(2.0f * hertz, def.contactDampingRatio, params.h);
   params.pushMax = def.contactPushMaxSpeed;
   params.restitutionThreshold = def.restitutionThreshold;
+  params.joint.h = params.h;
+  params.joint.invH = params.invH;
+  params.joint.jointSoft =
+      makeSoftness(minf(def.jointHertz, 0.25f * params.invH), def.jointDampingRatio, params.h);
 
   // The moving bodies' state, contiguous: slot 0 is the resting body static bodies read.
   // The awake set in body order (sleeping bodies, like static ones, read slot 0): each word
@@ -855,12 +980,41 @@ void Solver::solve(StepContext& step, ContactSet& contactSet,
   for (std::size_t k = 0; k < s.pairs.size(); ++k)
     s.touching[k] = s.pairs[k].contact;
   stats_.constraints = s.touching.size();
+  // Joints with an awake dynamic body, in joint order (a mouse joint's missing body A reads
+  // the resting slot).
+  s.jointsFound.clear();
+  for (std::uint32_t j = 0; j < jointSet.joints.size(); ++j) {
+    const Joint& joint = jointSet.joints[j];
+    if (!joint.alive) continue;
+    const std::int32_t sa = joint.bodyA == kNoBody ? 0 : s.bodySlot[joint.bodyA];
+    const std::int32_t sb = s.bodySlot[joint.bodyB];
+    const bool dynA = s.sims[static_cast<std::size_t>(sa)].dynamic;
+    const bool dynB = s.sims[static_cast<std::size_t>(sb)].dynamic;
+    if (!dynA && !dynB) continue;
+    JointSim sim;
+    sim.joint = j;
+    sim.slotA = sa;
+    sim.slotB = sb;
+    sim.writeA = dynA;
+    sim.writeB = dynB;
+    s.jointsFound.push_back(sim);
+  }
+  stats_.joints = s.jointsFound.size();
 
   if (def.scalarSolver) {
-    runStep(s, s.narrow, def, store, contactSet, events, params, substeps, stats_, tasks);
+    runStep(s, s.narrow, def, store, contactSet, jointSet, events, params, substeps, stats_, tasks);
   } else {
-    runStep(s, s.wide, def, store, contactSet, events, params, substeps, stats_, tasks);
+    runStep(s, s.wide, def, store, contactSet, jointSet, events, params, substeps, stats_, tasks);
   }
+  // The joints' force and torque of this step, and those past their break thresholds.
+  s.broken.clear();
+  for (const JointSim& sim : s.joints) {
+    Joint& joint = jointSet.joints[sim.joint];
+    finishJoint(sim, joint, params.invH);
+    if (length(joint.force) > joint.def.breakForce || absf(joint.torque) > joint.def.breakTorque)
+      s.broken.push_back(sim.joint);
+  }
+  std::sort(s.broken.begin(), s.broken.end());
 
   // Finalise bodies (on the workers: each writes its own body), then move their proxies
   // and report those stopped at the edge of the world, in slot order.
@@ -916,6 +1070,7 @@ void Solver::solve(StepContext& step, ContactSet& contactSet,
       events.events.outOfBounds.push_back(store.bodyId(i));
     }
   }
+  return s.broken;
 }
 
 }  // namespace quack::detail

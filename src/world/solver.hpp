@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "quack/collision/manifold.hpp"
@@ -21,6 +22,7 @@ namespace quack::detail {
 
 class BodyStore;
 class ContactSet;
+class JointSet;
 class EventDispatcher;
 class TaskRunner;
 struct StepContext;
@@ -32,6 +34,16 @@ struct Softness {
   float massScale = 1.0f;
   float impulseScale = 0.0f;
 };
+// The coefficients of a spring of `hertz` (0: rigid, no bias) with damping ratio `zeta` in
+// sub-steps of h seconds.
+inline Softness makeSoftness(float hertz, float zeta, float h) {
+  if (hertz == 0.0f) return {0.0f, 1.0f, 0.0f};
+  const float omega = 2.0f * kPi * hertz;
+  const float a1 = 2.0f * zeta + h * omega;
+  const float a2 = h * omega * a1;
+  const float a3 = 1.0f / (1.0f + a2);
+  return {omega / a1, a2 * a3, a3};
+}
 
 struct SolverScratch;  // solver.cpp: the per-step arrays
 
@@ -41,7 +53,10 @@ class Solver {
   /// `contacts` solved, their impulses stored back, the bodies moved and their proxies with
   /// them. Bodies whose motion would leave the world are held (StepEvents::outOfBounds).
   /// `awake`: a bit per body index for the bodies that move (IslandSet::awakeBits).
-  void solve(StepContext& step, ContactSet& contacts, const std::vector<std::uint64_t>& awake);
+  /// Returns the joints whose force or torque passed their break thresholds in this step,
+  /// in index order (the world breaks them); valid until the next solve.
+  std::span<const std::uint32_t> solve(StepContext& step, ContactSet& contacts, JointSet& joints,
+                                       const std::vector<std::uint64_t>& awake);
 
   Solver();
   ~Solver();
@@ -53,6 +68,7 @@ class Solver {
     int colors = 0;               // colours used
     std::size_t constraints = 0;  // touching contacts solved
     std::size_t overflow = 0;     // of which solved one at a time (no colour had room)
+    std::size_t joints = 0;       // joints solved
   };
   const Stats& stats() const noexcept { return stats_; }
   /// The lanes this build solves with: "sse2", "avx2", "neon" or "scalar" (QUACK_SIMD).

@@ -13,12 +13,14 @@ namespace quack::detail {
 
 class BodyStore;
 class EventDispatcher;
+class JointSet;
 class TaskRunner;
 
 struct StepContext {
   const WorldDef& def;
   BodyStore& store;
   BroadPhase& broadPhase;
+  const JointSet& joints;  // which pairs of bodies must not collide
   EventDispatcher& events;
   TaskRunner& tasks;
   float dt = 0.0f;   // seconds

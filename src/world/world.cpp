@@ -84,6 +84,8 @@ Status checkWorldDef(const WorldDef& def) {
   for (auto [value, name] :
        {std::pair{def.contactHertz, "WorldDef.contactHertz"},
         std::pair{def.contactDampingRatio, "WorldDef.contactDampingRatio"},
+        std::pair{def.jointHertz, "WorldDef.jointHertz"},
+        std::pair{def.jointDampingRatio, "WorldDef.jointDampingRatio"},
         std::pair{def.contactPushMaxSpeed, "WorldDef.contactPushMaxSpeed"},
         std::pair{def.restitutionThreshold, "WorldDef.restitutionThreshold"},
         std::pair{def.hitEventThreshold, "WorldDef.hitEventThreshold"},
@@ -209,6 +211,12 @@ Status World::checkShape(ShapeId id, const char* function) const {
                            state().store.shapeIds.capacity());
 }
 
+Status World::checkJoint(JointId id, const char* function) const {
+  if (isValid(id)) return {};
+  return describeBadHandle(id, function, "joint", id.world == 0 ? 0 : state().store.worldId(),
+                           state().joints.ids.capacity());
+}
+
 // ---- bodies ------------------------------------------------------------------------------
 
 Result<BodyId> World::createBody(const BodyDef& def) {
@@ -270,6 +278,18 @@ Status World::destroyBody(BodyId id) {
 }
 
 void World::destroyBodyNow(detail::WorldState& w, std::uint32_t index) {
+  // Its joints go first, each reported with the next step's events.
+  std::vector<std::uint32_t> joints;
+  w.joints.forEachOf(index, [&](std::uint32_t j) { joints.push_back(j); });
+  for (std::uint32_t j : joints) {
+    const detail::Joint& joint = w.joints.joints[j];
+    w.joints.endsSinceStep.push_back(
+        {detail::jointId(w, j),
+         joint.bodyA == detail::kNoBody ? BodyId{} : w.store.bodyId(joint.bodyA),
+         w.store.bodyId(joint.bodyB), JointEndReason::bodyDestroyed, joint.force, joint.torque,
+         joint.def.userData});
+    detail::destroyJointNow(w, j);
+  }
   std::vector<std::uint32_t> shapes = w.store.bodies[index].shapes;
   for (std::uint32_t s : shapes)
     destroyShapeNow(w, s);
@@ -351,7 +371,7 @@ void World::destroyShapeNow(detail::WorldState& w, std::uint32_t index) {
   Shape& s = store.shapes[index];
   // What rested on it, and its own body, wake.
   w.islands.wake(store, s.body);
-  w.islands.wakeTouching(store, w.contacts, s.body);
+  w.islands.wakeTouching(store, w.contacts, w.joints, s.body);
   std::vector<std::uint32_t> contacts = s.contacts;
   for (std::uint32_t c : contacts)
     w.contacts.destroy(c, store, w.events, true, w.inStep);
@@ -375,7 +395,7 @@ namespace {
 // phase -> islands and sleep. Each takes the step's context and what it needs, and hands on
 // what it produced. Callbacks run after, in World::step.
 void runPhases(detail::WorldState& w, float dt, int substeps) {
-  detail::StepContext step{w.def, w.store, w.broadPhase, w.events, w.tasks, dt, substeps};
+  detail::StepContext step{w.def, w.store, w.broadPhase, w.joints, w.events, w.tasks, dt, substeps};
   // New contacts from the broad phase's pairs; sleeping bodies they find with static
   // geometry wake.
   w.contacts.findNew(step);
@@ -393,11 +413,20 @@ void runPhases(detail::WorldState& w, float dt, int substeps) {
   w.contacts.update(step, w.edges, w.islands.awakeBits());
   applyContactChanges(w);
   w.contacts.markAwake(w.store, w.islands.awakeBits(), w.islands.awakeCount(), bodyCount);
-  w.solver.solve(step, w.contacts, w.islands.awakeBits());
+  // Joints past their break thresholds break now, reported in this step's events.
+  for (std::uint32_t j : w.solver.solve(step, w.contacts, w.joints, w.islands.awakeBits())) {
+    const detail::Joint& joint = w.joints.joints[j];
+    w.events.events.jointEnd.push_back(
+        {detail::jointId(w, j),
+         joint.bodyA == detail::kNoBody ? BodyId{} : w.store.bodyId(joint.bodyA),
+         w.store.bodyId(joint.bodyB), JointEndReason::broken, joint.force, joint.torque,
+         joint.def.userData});
+    detail::destroyJointNow(w, j);
+  }
   // A bullet may have hit a sleeping body: it moves now.
   for (std::uint32_t b : w.continuous.run(step, w.islands.awakeBits(), w.edges, w.contacts))
     w.islands.wake(w.store, b);
-  w.islands.updateSleep(w.def, w.store, w.contacts, dt, w.tasks);
+  w.islands.updateSleep(w.def, w.store, w.contacts, w.joints, dt, w.tasks);
   // The solver and the continuous phase may both have stopped a body at the edge.
   std::vector<BodyId>& held = w.events.events.outOfBounds;
   std::sort(held.begin(), held.end(), [](BodyId a, BodyId b) { return a.index < b.index; });
@@ -409,6 +438,10 @@ void runPhases(detail::WorldState& w, float dt, int substeps) {
 void World::finishCallbacks(detail::WorldState& w) {
   w.inCallbacks = false;
   w.inStep = false;
+  for (std::uint32_t j : w.pendingJointDestroy) {
+    if (w.joints.ids.isAlive(j) && w.joints.joints[j].pendingDestroy) detail::destroyJointNow(w, j);
+  }
+  w.pendingJointDestroy.clear();
   for (std::uint32_t s : w.pendingShapeDestroy) {
     if (w.store.shapeAlive(s) && w.store.shapes[s].pendingDestroy) destroyShapeNow(w, s);
   }
@@ -430,6 +463,10 @@ StepStatus World::step(float dt, int substeps) {
     return fail("step: substeps must be in 1..64, got " + std::to_string(substeps));
   w.inStep = true;
   w.events.beginStep();
+  // Joints taken by bodies destroyed since the last step come first in this step's list.
+  for (const JointEndEvent& e : w.joints.endsSinceStep)
+    w.events.events.jointEnd.push_back(e);
+  w.joints.endsSinceStep.clear();
   // The phases throw only std::bad_alloc of their own; a game's job system (enqueueTask)
   // may throw anything. Either way the step stopped part way.
   auto stopped = [&](const char* why) {
@@ -766,6 +803,11 @@ Status World::setBodyType(BodyId id, BodyType type) {
   state().islands.removeBody(store, id.index);
   applyContactChanges(*s_);
   state().islands.addBody(store, id.index, true);
+  // Its joints join it to its neighbours' islands again under the new type.
+  state().joints.forEachOf(id.index, [&](std::uint32_t j) {
+    const detail::Joint& joint = state().joints.joints[j];
+    state().islands.link(store, joint.bodyA, joint.bodyB);
+  });
   return {};
 }
 
@@ -778,7 +820,7 @@ Status World::setAwake(BodyId id, bool awake) {
   if (awake) {
     wakeForChange(id.index);
   } else if (state().def.enableSleep) {
-    state().islands.sleepNow(state().store, state().contacts, id.index);
+    state().islands.sleepNow(state().store, state().contacts, state().joints, id.index);
   }
   return {};
 }
@@ -787,7 +829,7 @@ void World::wakeForChange(std::uint32_t index) {
   state().islands.wake(state().store, index);
   // A kinematic body carries what rests on it.
   if (state().store.bodies[index].type == BodyType::kinematicBody)
-    state().islands.wakeTouching(state().store, state().contacts, index);
+    state().islands.wakeTouching(state().store, state().contacts, state().joints, index);
 }
 
 bool World::isAwake(BodyId id) const {
@@ -850,7 +892,8 @@ Status World::validate() const {
     }
   }
   if (Status s = state().contacts.validate(store); !s) return s;
-  if (Status s = state().islands.validate(store, state().contacts); !s)
+  if (Status s = state().joints.validate(store); !s) return fail("joints: " + s.message());
+  if (Status s = state().islands.validate(store, state().contacts, state().joints); !s)
     return fail("sleep: " + s.message());
   return {};
 }

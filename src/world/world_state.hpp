@@ -13,6 +13,7 @@
 #include "event_dispatcher.hpp"
 #include "ghost_edges.hpp"
 #include "islands.hpp"
+#include "joint_set.hpp"
 #include "quack/collision/proxy.hpp"
 #include "quack/world/world.hpp"
 #include "solver.hpp"
@@ -33,6 +34,7 @@ struct WorldState {
   BroadPhase broadPhase;
   BodyStore store;
   ContactSet contacts;
+  JointSet joints;
   IslandSet islands;
   GhostEdges edges;
   Solver solver;
@@ -43,6 +45,7 @@ struct WorldState {
   // Destruction asked for inside a callback waits until the callbacks are done.
   std::vector<std::uint32_t> pendingBodyDestroy;
   std::vector<std::uint32_t> pendingShapeDestroy;
+  std::vector<std::uint32_t> pendingJointDestroy;
   std::uint64_t stepCount = 0;
   double time = 0.0;
   bool inStep = false;
@@ -51,6 +54,12 @@ struct WorldState {
   // so World refuses changes until a snapshot is restored. Empty when the world is sound.
   std::string failure;
 };
+
+// The handle of joint slot `joint` (world_joints.cpp).
+JointId jointId(const WorldState& w, std::uint32_t joint) noexcept;
+// Destroys a joint now (world_joints.cpp): its bodies wake, their island is marked for a
+// split, and, unless it let them collide, their shapes look for pairs again.
+void destroyJointNow(WorldState& w, std::uint32_t joint);
 
 // A new world id: unique in the process, never 0 (world.cpp).
 std::uint32_t nextWorldId();

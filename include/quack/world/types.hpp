@@ -2,6 +2,7 @@
 /// The vocabulary of the world: handles, body and shape definitions, events.
 
 #include <cstdint>
+#include <limits>
 #include <variant>
 
 #include "quack/broadphase/broad_phase.hpp"
@@ -26,6 +27,14 @@ struct ShapeId {
   std::uint32_t generation = 0;
   std::uint32_t world = 0;  ///< World::id() of its world; 0: none
   friend constexpr bool operator==(ShapeId, ShapeId) noexcept = default;
+};
+
+/// Handle to a joint, as BodyId.
+struct JointId {
+  std::uint32_t index = 0xffffffffu;
+  std::uint32_t generation = 0;
+  std::uint32_t world = 0;  ///< World::id() of its world; 0: none
+  friend constexpr bool operator==(JointId, JointId) noexcept = default;
 };
 
 /// Static bodies never move; kinematic bodies move at the velocity they are given and are
@@ -70,6 +79,106 @@ struct ShapeDef {
   /// A sensor reports overlaps (sensor events) and takes no part in the solver.
   bool sensor = false;
   Filter filter;
+  std::uint64_t userData = 0;
+};
+
+/// The kinds of joint (docs/world.md, "Joints").
+enum class JointType : std::uint8_t {
+  revolute,   ///< a shared point: B turns about it (limits, motor, spring on the angle)
+  prismatic,  ///< B slides along an axis fixed in A, without turning (limits, motor, spring)
+  distance,   ///< two points held at a length, or within [minLength, maxLength] (a rope)
+  weld,       ///< B held fixed to A, rigidly or through linear and angular springs
+  wheel,      ///< B slides on an axis of A on a spring (suspension) and turns freely (motor)
+  motor,      ///< B driven towards a pose relative to A, with a most force and torque
+  mouse,      ///< a point of B pulled towards a target, softly, with a most force
+};
+/// The scene-file name of a joint type ("revolute", "prismatic", ...).
+const char* toString(JointType type) noexcept;
+
+/// A new joint between two bodies (World::createJoint). One record for every type: the
+/// fields a type does not use are ignored. Anchors, axes and targets are in the world frame
+/// at creation (the bodies' poses then fix them to the bodies); angles in radians, lengths
+/// in metres. Every setting is documented in docs/world.md, "Joints".
+struct JointDef {
+  JointType type = JointType::revolute;
+  /// The two bodies; they must differ, and one at least must be dynamic. A mouse joint has
+  /// no body A (leave it null): it pulls body B towards `target`.
+  BodyId bodyA, bodyB;
+  /// The joint's point (revolute, prismatic, weld, wheel; the point of B a mouse grabs);
+  /// for a distance joint, the end on body A.
+  Vec2 anchorA;
+  /// A distance joint's end on body B.
+  Vec2 anchorB;
+  /// Prismatic and wheel: the direction B slides along, fixed in A (any length but zero).
+  Vec2 axis{1.0f, 0.0f};
+
+  /// Limits: revolute, the angle of B relative to A since creation (radians, within
+  /// [-pi, pi]); prismatic and wheel, B's travel along the axis from the anchor (metres);
+  /// distance, the length within [minLength, maxLength].
+  bool enableLimit = false;
+  float lower = 0.0f, upper = 0.0f;
+  /// Motor: a revolute or wheel joint turns B relative to A at motorSpeed (rad/s) with at
+  /// most maxMotorTorque (N m); a prismatic joint slides it at motorSpeed (m/s) with at most
+  /// maxMotorForce (N).
+  bool enableMotor = false;
+  float motorSpeed = 0.0f;
+  float maxMotorTorque = 0.0f;
+  float maxMotorForce = 0.0f;
+  /// Spring: on the revolute angle (towards 0), the prismatic or wheel travel (towards 0),
+  /// the distance (towards `length`). Also the mouse joint's stiffness (always on). Hertz
+  /// >= 0 (0: no spring force: a distance joint's length is then free within its limits,
+  /// a rope), damping ratio >= 0.
+  bool enableSpring = false;
+  float hertz = 5.0f;
+  float dampingRatio = 0.7f;
+
+  /// Distance: the rest length (< 0: the anchors' distance at creation) and the limits'
+  /// range. Without a spring the length is held rigidly at `length`; a rope is a spring of
+  /// 0 Hz with a limit at maxLength.
+  float length = -1.0f;
+  float minLength = 0.0f;
+  float maxLength = 1.0e6f;
+
+  /// Weld: springs on the offset and the angle (Hz; 0: rigid) and their damping ratios.
+  float linearHertz = 0.0f, angularHertz = 0.0f;
+  float linearDampingRatio = 1.0f, angularDampingRatio = 1.0f;
+
+  /// Motor joint: B's centre held at linearOffset from A's origin (in A's frame) and its
+  /// angle at angularOffset from A's, with at most maxForce (N) and maxTorque (N m);
+  /// correctionFactor in [0, 1] is the share of the error corrected per sub-step.
+  Vec2 linearOffset;
+  float angularOffset = 0.0f;
+  float maxForce = 0.0f;
+  float maxTorque = 0.0f;
+  float correctionFactor = 0.3f;
+
+  /// Mouse: where B's grabbed point is pulled (maxForce caps the pull; hertz and
+  /// dampingRatio set the spring).
+  Vec2 target;
+
+  /// Whether the two bodies' shapes still collide with each other (false: they pass
+  /// through each other, as the parts of a ragdoll at a joint should).
+  bool collideConnected = false;
+  /// The joint breaks (is destroyed, StepEvents::jointEnd) in the first step whose
+  /// constraint force (N) or torque (N m) passes these. Infinite: never.
+  float breakForce = std::numeric_limits<float>::infinity();
+  float breakTorque = std::numeric_limits<float>::infinity();
+  std::uint64_t userData = 0;
+};
+
+/// Why a joint ended.
+enum class JointEndReason : std::uint8_t {
+  broken,         ///< its force or torque passed JointDef::breakForce or breakTorque
+  bodyDestroyed,  ///< one of its bodies was destroyed (World::destroyBody)
+};
+/// A joint ended without World::destroyJoint: broken in the step, or taken with a body
+/// destroyed since the last step. The handle is stale when the event is read.
+struct JointEndEvent {
+  JointId joint;
+  BodyId bodyA, bodyB;  ///< stale too when that body was destroyed
+  JointEndReason reason = JointEndReason::broken;
+  Vec2 force;           ///< the constraint force of its last step, N, world frame
+  float torque = 0.0f;  ///< the constraint torque of its last step, N m
   std::uint64_t userData = 0;
 };
 
@@ -124,6 +233,9 @@ struct StepEvents {
   /// bound): each was held where its last impact left it for the rest of the step, and met
   /// by others as if it could not move. In the order they reached the bound.
   std::vector<BodyId> toiCapped;
+  /// Joints that broke in this step, then those taken by bodies destroyed since the last
+  /// step (in the order they were destroyed).
+  std::vector<JointEndEvent> jointEnd;
 };
 
 }  // namespace quack

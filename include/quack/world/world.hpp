@@ -31,6 +31,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "quack/collision/manifold.hpp"
@@ -60,6 +61,12 @@ struct WorldDef {
   float contactHertz = 30.0f;
   /// Damping ratio of contacts: 10, heavily over-damped, so pushing out does not bounce.
   float contactDampingRatio = 10.0f;
+  /// Stiffness of rigid joints, Hz (capped at a quarter of the sub-step rate, like
+  /// contactHertz): how fast a joint pulled apart is pushed back together. 60 Hz, twice the
+  /// contacts', so that a chain does not stretch under the bodies it holds.
+  float jointHertz = 60.0f;
+  /// Damping ratio of rigid joints: 2, over-damped, so that closing a gap does not bounce.
+  float jointDampingRatio = 2.0f;
   /// Fastest speed at which overlap is pushed out, m/s.
   float contactPushMaxSpeed = 3.0f;
   /// Approach speed below which restitution is ignored, m/s (resting contacts do not jitter).
@@ -220,7 +227,7 @@ const char* toString(SnapshotKind kind) noexcept;
 
 /// The snapshot format's version (docs/determinism.md, "Snapshots"): snapshots of another
 /// version are refused. Bumped whenever the layout, or the arithmetic of a step, changes.
-inline constexpr std::uint32_t kSnapshotFormatVersion = 1;
+inline constexpr std::uint32_t kSnapshotFormatVersion = 2;
 
 /// Which shapes a query sees: those whose filter accepts this one (see shouldCollide).
 struct QueryFilter {
@@ -339,6 +346,46 @@ class World {
   /// when it is kinematic.
   Status setAwake(BodyId body, bool awake);
 
+  // ---- joints (docs/world.md, "Joints") ---------------------------------------------------
+  /// A joint between two bodies, solved with the contacts in every sub-step. Creating it
+  /// wakes both bodies and joins their islands (jointed bodies sleep and wake together);
+  /// unless `collideConnected`, contacts between the two bodies end (with end events in the
+  /// next step) and are not made again while the joint lives. Errors, naming the field:
+  /// a bad body handle, the same body twice, no dynamic body, non-finite or out-of-range
+  /// numbers (negative hertz, lower > upper, a zero axis, ...).
+  Result<JointId> createJoint(const JointDef& def);
+  /// Destroys the joint (no event: the game asked for it) and wakes its bodies.
+  Status destroyJoint(JointId joint);
+  bool isValid(JointId joint) const noexcept;
+  std::size_t jointCount() const noexcept;
+  class JointRange;
+  /// Every live joint, in index order (a range of JointId; nothing is allocated).
+  JointRange joints() const noexcept;
+  /// The joint's settings as created (anchors and axis in the world frame at creation),
+  /// with the changes made since by the setters below. A default JointDef for a bad handle.
+  const JointDef& jointDef(JointId joint) const;
+  /// The joint's anchors now, world frame: on body A and on body B (for a mouse joint, the
+  /// target and B's grabbed point). They coincide while a point joint holds.
+  std::pair<Vec2, Vec2> jointAnchors(JointId joint) const;
+  /// The force (N, world frame, on body B) and torque (N m) the joint applied in the last
+  /// step: its accumulated impulse over the sub-step.
+  Vec2 jointForce(JointId joint) const;
+  float jointTorque(JointId joint) const;
+  /// Revolute and weld: B's angle relative to A less the angle at creation (radians, in
+  /// [-pi, pi]); 0 for the other types.
+  float jointAngle(JointId joint) const;
+  /// Prismatic and wheel: B's travel along the axis from the anchor; distance: the length
+  /// between the anchors (metres); 0 for the other types.
+  float jointTranslation(JointId joint) const;
+  /// Motors (revolute, prismatic, wheel): on or off, speed and strength; wakes the bodies.
+  Status setJointMotor(JointId joint, bool enable, float speed, float maxTorqueOrForce);
+  /// Limits (revolute, prismatic, wheel, distance): on or off and the range; wakes.
+  Status setJointLimits(JointId joint, bool enable, float lower, float upper);
+  /// A mouse joint's target (world frame); wakes body B.
+  Status setMouseTarget(JointId joint, Vec2 target);
+  /// A motor joint's target pose of B relative to A; wakes the bodies.
+  Status setMotorTarget(JointId joint, Vec2 linearOffset, float angularOffset);
+
   // ---- stepping ------------------------------------------------------------------------
   /// Advances by `def().timeStep` with `def().substeps`.
   StepStatus step();
@@ -411,6 +458,10 @@ class World {
   void onSensorEnd(std::uint64_t sensorCategories, std::uint64_t visitorCategories,
                    ContactCallback f);
 
+  /// Joints that ended without destroyJoint (StepEvents::jointEnd), in event order.
+  using JointEndCallback = std::function<void(World&, const JointEndEvent& event)>;
+  void onJointEnd(JointEndCallback f);
+
   // ---- queries (world frame) ---------------------------------------------------------------
   /// The first shape the ray `origin + t translation`, t in [0, 1], enters.
   std::optional<RayHitResult> rayCastClosest(Vec2 origin, Vec2 translation,
@@ -472,11 +523,14 @@ class World {
   // number of slots when none; the handle of a slot; a body's shape slots.
   std::uint32_t nextBody(std::uint32_t from) const noexcept;
   std::uint32_t nextTouchingContact(std::uint32_t from) const noexcept;
+  std::uint32_t nextJoint(std::uint32_t from) const noexcept;
+  JointId jointAt(std::uint32_t index) const noexcept;
   BodyId bodyAt(std::uint32_t index) const noexcept;
   ShapeId shapeAt(std::uint32_t index) const noexcept;
   ContactView contactAt(std::uint32_t index) const noexcept;
   Status checkBody(BodyId id, const char* function) const;
   Status checkShape(ShapeId id, const char* function) const;
+  Status checkJoint(JointId id, const char* function) const;
   // Fails when this World was moved from, or is refusing changes after a step that failed
   // to allocate (see step()); says which call it was.
   Status checkUsable(const char* function) const;
@@ -537,6 +591,26 @@ class World::BodyRange {
  public:
   using iterator = WorldSlotIterator<BodyId, Next, At>;
   BodyRange(const World* world, std::uint32_t first, std::uint32_t end)
+      : world_(world), first_(first), end_(end) {}
+  iterator begin() const { return {world_, first_}; }
+  iterator end() const { return {world_, end_}; }
+
+ private:
+  const World* world_;
+  std::uint32_t first_, end_;
+};
+
+class World::JointRange {
+  struct Next {
+    std::uint32_t operator()(const World& w, std::uint32_t i) const { return w.nextJoint(i); }
+  };
+  struct At {
+    JointId operator()(const World& w, std::uint32_t i) const { return w.jointAt(i); }
+  };
+
+ public:
+  using iterator = WorldSlotIterator<JointId, Next, At>;
+  JointRange(const World* world, std::uint32_t first, std::uint32_t end)
       : world_(world), first_(first), end_(end) {}
   iterator begin() const { return {world_, first_}; }
   iterator end() const { return {world_, end_}; }

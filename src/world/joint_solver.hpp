@@ -1,0 +1,57 @@
+#pragma once
+// The joints' part of the solver (docs/world.md, "Joints"): each joint type's constraints
+// in the soft step the contacts use (solver.cpp). Per step a joint is prepared once (its
+// arms, the bodies' offsets and masses at the step's start); per sub-step it is warm
+// started, solved with the position error as a soft bias, and relaxed without it, as the
+// contacts are. Joints are solved one at a time (no lanes): a scene has far fewer of them
+// than contacts. Box2D v3's joint files (revolute_joint.c, prismatic_joint.c, ...) and
+// Catto's "Solver2D" notes showed the constraints (read for understanding; the code is ours).
+
+#include <cstdint>
+
+#include "joint_set.hpp"
+#include "simd.hpp"
+#include "solver.hpp"
+
+namespace quack::detail {
+
+/// What preparing a joint reads of one of its bodies: zero masses for a body the solver
+/// does not move (static, kinematic, asleep, or a mouse joint's missing body A).
+struct JointBody {
+  float invMass = 0.0f, invInertia = 0.0f;
+  Vec2 center;       // centre of mass, world frame, at the step's start
+  Vec2 localCenter;  // body frame
+  Rot q;             // at the step's start
+};
+
+struct JointStepParams {
+  float h = 0.0f, invH = 0.0f;
+  Softness jointSoft;  // the rigid constraints' push (WorldDef::jointHertz)
+};
+
+/// One joint as a step solves it.
+struct JointSim {
+  std::uint32_t joint = 0;
+  std::int32_t slotA = 0, slotB = 0;    // the solver's body states (0: at rest)
+  bool writeA = false, writeB = false;  // the body is dynamic and awake: its state is written
+  float mA = 0.0f, iA = 0.0f, mB = 0.0f, iB = 0.0f;
+  Vec2 rA, rB;              // arms from the centres of mass to the anchors, world axes, at start
+  Vec2 deltaCenter;         // cB - cA at start (mouse: cB - target)
+  float deltaAngle = 0.0f;  // B's angle less A's less the reference, in [-pi, pi], at start
+  Vec2 axis;                // prismatic, wheel: the axis, world frame, at start
+  Softness spring;          // the joint's own spring (revolute, prismatic, wheel, distance, mouse)
+  Softness linearSoft, angularSoft;  // weld
+};
+
+void prepareJoint(JointSim& sim, const Joint& joint, const JointBody& a, const JointBody& b,
+                  const JointStepParams& params);
+/// The impulses of the last sub-step applied again.
+void warmStartJoint(const JointSim& sim, const Joint& joint, BodyState* states);
+/// One pass: `useBias` pushes the position error out (the solve pass), or not (relax).
+/// `turned`: each slot's rotation since the step began, radians.
+void solveJoint(const JointSim& sim, Joint& joint, BodyState* states, const float* turned,
+                const JointStepParams& params, bool useBias);
+/// The step's force and torque from the accumulated impulses (Joint::force, torque).
+void finishJoint(const JointSim& sim, Joint& joint, float invH);
+
+}  // namespace quack::detail
