@@ -505,8 +505,9 @@ void readJoint(Reader& r, Joint& j, std::size_t bodySlots) {
     r.fail("joint type " + std::to_string(type) + " is not a joint type");
   d.type = static_cast<JointType>(type);
   j.bodyA = r.u32("joint body A");
-  j.bodyB = r.index("joint body B", bodySlots);
+  j.bodyB = r.u32("joint body B");
   if (j.bodyA != kNoBody && j.bodyA >= bodySlots) r.fail("joint body A is out of range");
+  if (j.bodyB >= bodySlots) r.fail("joint body B is out of range");
   if ((j.bodyA == kNoBody) != (d.type == JointType::mouse))
     r.fail("joint body A: only a mouse joint has none");
   const std::uint8_t flags = r.u8("joint flags");

@@ -120,9 +120,6 @@ Result<JointId> World::createJoint(const JointDef& def) {
   const std::uint32_t b = def.bodyB.index;
   const Transform xfA = mouse ? Transform{} : store.bodies[a].xf;
   const Transform xfB = store.bodies[b].xf;
-  const bool dynA = !mouse && store.bodies[a].type == BodyType::dynamicBody;
-  const bool dynB = store.bodies[b].type == BodyType::dynamicBody;
-  if (!dynA && !dynB) return fail("createJoint: neither body is dynamic (nothing would move)");
 
   Joint j;
   j.def = def;

@@ -101,8 +101,9 @@ const char* toString(JointType type) noexcept;
 /// in metres. Every setting is documented in docs/world.md, "Joints".
 struct JointDef {
   JointType type = JointType::revolute;
-  /// The two bodies; they must differ, and one at least must be dynamic. A mouse joint has
-  /// no body A (leave it null): it pulls body B towards `target`.
+  /// The two bodies; they must differ. A joint acts while one of them is dynamic (a joint
+  /// between static bodies waits for setBodyType). A mouse joint has no body A (leave it
+  /// null): it pulls body B towards `target`.
   BodyId bodyA, bodyB;
   /// The joint's point (revolute, prismatic, weld, wheel; the point of B a mouse grabs);
   /// for a distance joint, the end on body A.

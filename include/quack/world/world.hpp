@@ -351,7 +351,7 @@ class World {
   /// wakes both bodies and joins their islands (jointed bodies sleep and wake together);
   /// unless `collideConnected`, contacts between the two bodies end (with end events in the
   /// next step) and are not made again while the joint lives. Errors, naming the field:
-  /// a bad body handle, the same body twice, no dynamic body, non-finite or out-of-range
+  /// a bad body handle, the same body twice, non-finite or out-of-range
   /// numbers (negative hertz, lower > upper, a zero axis, ...).
   Result<JointId> createJoint(const JointDef& def);
   /// Destroys the joint (no event: the game asked for it) and wakes its bodies.
