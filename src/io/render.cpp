@@ -1,6 +1,7 @@
 #include "quack/io/render.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -148,6 +149,17 @@ std::size_t strideFor(std::size_t total, std::size_t most) {
 
 }  // namespace
 
+namespace {
+// A joint drawn as body A's centre -> its anchor -> B's anchor -> B's centre (a mouse
+// joint: the target twice).
+std::array<Vec2, 4> jointLine(const World& world, JointId j) {
+  const JointDef& d = world.jointDef(j);
+  const auto [onA, onB] = world.jointAnchors(j);
+  const Vec2 cA = d.type == JointType::mouse ? onA : world.worldCenterOfMass(d.bodyA);
+  return {cA, onA, onB, world.worldCenterOfMass(d.bodyB)};
+}
+}  // namespace
+
 Outline outlineOf(const ShapeGeometry& geometry, float maxArcStep) {
   struct Visitor {
     float step;
@@ -248,6 +260,26 @@ std::string renderSvg(const SceneWorld& scene, const std::string& title,
       line += "\" r=\"" + std::to_string(2.5f * stroke) + "\" fill=\"#d62828\"/>\n";
       out += line;
     }
+  }
+  for (JointId j : scene.world.joints()) {
+    const std::array<Vec2, 4> line = jointLine(scene.world, j);
+    std::string path = "<polyline points=\"";
+    for (const Vec2& p : line) {
+      appendNumber(path, static_cast<double>(p.x));
+      path += ',';
+      appendNumber(path, static_cast<double>(p.y));
+      path += ' ';
+    }
+    path += "\" fill=\"none\" stroke=\"#2a9d8f\"/>";
+    for (int k = 1; k <= 2; ++k) {
+      path += "<circle cx=\"";
+      appendNumber(path, static_cast<double>(line[k].x));
+      path += "\" cy=\"";
+      appendNumber(path, static_cast<double>(line[k].y));
+      path += "\" r=\"" + std::to_string(2.5f * stroke) + "\" fill=\"#2a9d8f\"/>";
+    }
+    if (out.size() + path.size() > options.maxBytes) break;
+    out += path + "\n";
   }
   out += "</g>\n";
   if (drawn < total || contacts < contactsTotal) {
@@ -390,6 +422,18 @@ void ReplayRecorder::record(const SceneWorld& scene) {
     if (contacts == options_.maxContactsPerFrame) break;
   }
   f += ']';
+  if (scene.world.jointCount() > 0) {
+    f += ",\"j\":[";
+    bool firstJoint = true;
+    for (JointId j : scene.world.joints()) {
+      for (const Vec2& p : jointLine(scene.world, j)) {
+        if (!firstJoint) f += ',';
+        firstJoint = false;
+        appendVec(f, p);
+      }
+    }
+    f += ']';
+  }
   if (options_.broadPhaseBoxes) {
     f += ",\"a\":[";
     std::size_t boxes = 0;

@@ -26,6 +26,7 @@ inline constexpr const char* kReplayPage = R"QUACKPAGE(<!doctype html>
   <span id="awake" title="bodies simulated in this frame; sleeping bodies are drawn faded"></span>
   <label>speed <select id="speed"><option>0.25</option><option>0.5</option><option selected>1</option><option>2</option><option>4</option></select></label>
   <label><input type="checkbox" id="contacts" checked> contacts</label>
+  <label><input type="checkbox" id="joints" checked> joints</label>
   <label><input type="checkbox" id="boxes"> broad-phase boxes</label>
   <button id="zoomIn" title="zoom in (+, wheel)">+</button>
   <button id="zoomOut" title="zoom out (-, wheel)">&minus;</button>
@@ -41,7 +42,7 @@ inline constexpr const char* kReplayPage = R"QUACKPAGE(<!doctype html>
   const canvas = document.getElementById("view");
   const ctx = canvas.getContext("2d");
   const ui = {};
-  for (const id of ["play", "scrub", "clock", "awake", "speed", "contacts", "boxes", "zoomIn", "zoomOut", "fit"]) ui[id] = document.getElementById(id);
+  for (const id of ["play", "scrub", "clock", "awake", "speed", "contacts", "joints", "boxes", "zoomIn", "zoomOut", "fit"]) ui[id] = document.getElementById(id);
   const frames = data.frames;
   const state = { frame: 0, playing: true, position: 0, cx: 0, cy: 0, scale: 1, last: null };
   ui.scrub.max = String(Math.max(0, frames.length - 1));
@@ -126,6 +127,26 @@ inline constexpr const char* kReplayPage = R"QUACKPAGE(<!doctype html>
         ctx.strokeRect(X0, Y1, X1 - X0, Y0 - Y1);
       }
     }
+    // Joints: from body A's centre to its anchor, across to B's anchor, to B's centre.
+    if (ui.joints.checked && f.j) {
+      ctx.strokeStyle = "#2a9d8f";
+      ctx.fillStyle = "#2a9d8f";
+      ctx.lineWidth = 1.5 * devicePixelRatio;
+      for (let k = 0; k < f.j.length; k += 8) {
+        const pts = [];
+        for (let m = 0; m < 8; m += 2) pts.push(toScreen(f.j[k + m], f.j[k + m + 1]));
+        ctx.beginPath();
+        ctx.moveTo(pts[0][0], pts[0][1]);
+        for (let m = 1; m < 4; ++m) ctx.lineTo(pts[m][0], pts[m][1]);
+        ctx.stroke();
+        for (const m of [1, 2]) {
+          ctx.beginPath();
+          ctx.arc(pts[m][0], pts[m][1], 3 * devicePixelRatio, 0, 2 * Math.PI);
+          ctx.fill();
+        }
+      }
+      ctx.lineWidth = 1;
+    }
     if (ui.contacts.checked) {
       ctx.strokeStyle = "#d62828";
       ctx.fillStyle = "#d62828";
@@ -180,6 +201,7 @@ inline constexpr const char* kReplayPage = R"QUACKPAGE(<!doctype html>
   ui.play.addEventListener("click", () => setPlaying(!state.playing));
   ui.scrub.addEventListener("input", () => { state.frame = Number(ui.scrub.value); state.position = state.frame; draw(); });
   ui.contacts.addEventListener("change", draw);
+  ui.joints.addEventListener("change", draw);
   ui.boxes.addEventListener("change", draw);
   ui.zoomIn.addEventListener("click", () => zoom(1.25, canvas.width / 2, canvas.height / 2));
   ui.zoomOut.addEventListener("click", () => zoom(0.8, canvas.width / 2, canvas.height / 2));

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <random>
 #include <sstream>
 
@@ -643,6 +644,259 @@ Status generate(const Parser& p, const json& g, const std::string& path, std::si
               "\" (expected pyramid, rain, field, tiles)");
 }
 
+// A joint: {"type", "a", "b", ...} with the keys its type takes (docs/scenes.md, "Joints").
+// A limit is on when "lower" and "upper" are given, a motor when a most torque or force
+// is, a spring when "hertz" is; a distance joint with "minLength" or "maxLength" and no
+// "hertz" is a rope (free within its limits).
+Result<SceneJoint> parseJoint(const json& j, const std::string& path,
+                              const std::vector<SceneBody>& bodies) {
+  if (!j.is_object()) return fail(path + ": must be an object");
+  if (!j.contains("type") || !j.at("type").is_string())
+    return fail(path +
+                ".type: must be one of revolute, prismatic, distance, weld, wheel, "
+                "motor, mouse");
+  const std::string type = j.at("type").get<std::string>();
+  SceneJoint out;
+  out.path = path;
+  JointDef& d = out.def;
+  std::vector<const char*> keys;
+  if (type == "revolute") {
+    d.type = JointType::revolute;
+    keys = {"type",
+            "a",
+            "b",
+            "anchor",
+            "lower",
+            "upper",
+            "motorSpeed",
+            "maxMotorTorque",
+            "hertz",
+            "dampingRatio",
+            "collideConnected",
+            "breakForce",
+            "breakTorque"};
+  } else if (type == "prismatic") {
+    d.type = JointType::prismatic;
+    keys = {"type",
+            "a",
+            "b",
+            "anchor",
+            "axis",
+            "lower",
+            "upper",
+            "motorSpeed",
+            "maxMotorForce",
+            "hertz",
+            "dampingRatio",
+            "collideConnected",
+            "breakForce",
+            "breakTorque"};
+  } else if (type == "wheel") {
+    d.type = JointType::wheel;
+    keys = {"type",
+            "a",
+            "b",
+            "anchor",
+            "axis",
+            "lower",
+            "upper",
+            "motorSpeed",
+            "maxMotorTorque",
+            "hertz",
+            "dampingRatio",
+            "collideConnected",
+            "breakForce",
+            "breakTorque"};
+  } else if (type == "distance") {
+    d.type = JointType::distance;
+    keys = {"type",       "a",          "b",     "anchors",      "length",
+            "minLength",  "maxLength",  "hertz", "dampingRatio", "collideConnected",
+            "breakForce", "breakTorque"};
+  } else if (type == "weld") {
+    d.type = JointType::weld;
+    keys = {"type",
+            "a",
+            "b",
+            "anchor",
+            "hertz",
+            "dampingRatio",
+            "linearHertz",
+            "angularHertz",
+            "linearDampingRatio",
+            "angularDampingRatio",
+            "collideConnected",
+            "breakForce",
+            "breakTorque"};
+  } else if (type == "motor") {
+    d.type = JointType::motor;
+    keys = {"type",
+            "a",
+            "b",
+            "linearOffset",
+            "angularOffset",
+            "maxForce",
+            "maxTorque",
+            "correctionFactor",
+            "collideConnected",
+            "breakForce",
+            "breakTorque"};
+  } else if (type == "mouse") {
+    d.type = JointType::mouse;
+    keys = {"type",       "b",          "anchor",       "target",
+            "maxForce",   "hertz",      "dampingRatio", "collideConnected",
+            "breakForce", "breakTorque"};
+  } else {
+    return fail(path + ".type: \"" + type +
+                "\" is not a joint type (revolute, prismatic, distance, weld, wheel, motor, "
+                "mouse)");
+  }
+  for (const auto& item : j.items()) {
+    bool known = false;
+    for (const char* k : keys)
+      known |= item.key() == k;
+    if (!known) return fail(path + "." + item.key() + ": unknown key for a " + type + " joint");
+  }
+  auto body = [&](const char* key) -> Result<std::size_t> {
+    if (!j.contains(key) || !j.at(key).is_string())
+      return fail(join(path, key) + ": must name a body (its \"name\")");
+    const std::string name = j.at(key).get<std::string>();
+    std::size_t found = kNoSceneBody;
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      if (bodies[i].name != name) continue;
+      if (found != kNoSceneBody)
+        return fail(join(path, key) + ": \"" + name + "\" names more than one body");
+      found = i;
+    }
+    if (found == kNoSceneBody) return fail(join(path, key) + ": no body is named \"" + name + "\"");
+    return found;
+  };
+  if (d.type != JointType::mouse) {
+    Result<std::size_t> a = body("a");
+    if (!a) return fail(a.error().message);
+    out.a = *a;
+  }
+  Result<std::size_t> b = body("b");
+  if (!b) return fail(b.error().message);
+  out.b = *b;
+  if (out.a == out.b) return fail(path + ": \"a\" and \"b\" name the same body");
+  // Numbers: each checked finite (and >= 0 where it must be), naming its key.
+  auto num = [&](const char* key, float fallback, bool nonNeg) -> Result<float> {
+    return nonNeg ? nonNegative(j, key, path, fallback) : number(j, key, path, fallback);
+  };
+  auto point = [&](const char* key, Vec2 fallback) -> Result<Vec2> {
+    Result<Vec2> v = vec(j, key, path, fallback);
+    if (v && !withinCoordinateLimit(*v))
+      return fail(join(path, key) + ": must be within " + coordinateLimitText());
+    return v;
+  };
+#define QUACK_READ(field, expr)               \
+  do {                                        \
+    auto r_ = (expr);                         \
+    if (!r_) return fail(r_.error().message); \
+    field = *r_;                              \
+  } while (false)
+  if (j.contains("anchor")) QUACK_READ(d.anchorA, point("anchor", {}));
+  if (d.type == JointType::distance) {
+    if (!j.contains("anchors") || !j.at("anchors").is_array() || j.at("anchors").size() != 2)
+      return fail(path + ".anchors: must be two points, [[x, y], [x, y]] (on a, on b)");
+    for (std::size_t k = 0; k < 2; ++k) {
+      const std::string at = path + ".anchors[" + std::to_string(k) + "]";
+      Result<Vec2> v = parseVec2(j.at("anchors")[k], at);
+      if (!v) return fail(v.error().message);
+      if (!withinCoordinateLimit(*v)) return fail(at + ": must be within " + coordinateLimitText());
+      (k == 0 ? d.anchorA : d.anchorB) = *v;
+    }
+  } else if (d.type != JointType::motor && !j.contains("anchor")) {
+    return fail(path + ".anchor: the joint's point [x, y] is required");
+  }
+  if (d.type == JointType::prismatic || d.type == JointType::wheel) {
+    if (!j.contains("axis")) return fail(path + ".axis: the direction [x, y] is required");
+    QUACK_READ(d.axis, vec(j, "axis", path, {}));
+    if (length(d.axis) == 0.0f) return fail(path + ".axis: must not be zero");
+  }
+  const bool hasLower = j.contains("lower"), hasUpper = j.contains("upper");
+  if (hasLower != hasUpper)
+    return fail(join(path, hasLower ? "upper" : "lower") +
+                ": a limit needs both \"lower\" and \"upper\"");
+  if (hasLower) {
+    d.enableLimit = true;
+    QUACK_READ(d.lower, num("lower", 0.0f, false));
+    QUACK_READ(d.upper, num("upper", 0.0f, false));
+    if (d.lower > d.upper) return fail(path + ".lower: must be at most \"upper\"");
+    if (d.type == JointType::revolute && (d.lower < -kPi || d.upper > kPi))
+      return fail(path + ".lower: a revolute joint's limits must be within [-pi, pi]");
+  }
+  QUACK_READ(d.motorSpeed, num("motorSpeed", 0.0f, false));
+  if (j.contains("maxMotorTorque")) {
+    d.enableMotor = true;
+    QUACK_READ(d.maxMotorTorque, num("maxMotorTorque", 0.0f, true));
+  }
+  if (j.contains("maxMotorForce")) {
+    d.enableMotor = true;
+    QUACK_READ(d.maxMotorForce, num("maxMotorForce", 0.0f, true));
+  }
+  if (j.contains("motorSpeed") && !d.enableMotor)
+    return fail(path + ".motorSpeed: a motor needs its most torque or force (\"" +
+                std::string(d.type == JointType::prismatic ? "maxMotorForce" : "maxMotorTorque") +
+                "\")");
+  if (d.type == JointType::mouse) {
+    QUACK_READ(d.hertz, num("hertz", d.hertz, true));
+    if (d.hertz == 0.0f) return fail(path + ".hertz: a mouse joint's spring must be > 0 Hz");
+    QUACK_READ(d.dampingRatio, num("dampingRatio", d.dampingRatio, true));
+    if (!j.contains("target"))
+      return fail(path + ".target: the point [x, y] it pulls to is required");
+    QUACK_READ(d.target, point("target", {}));
+    QUACK_READ(d.maxForce, num("maxForce", 1000.0f, true));
+  } else if (d.type == JointType::weld) {
+    float hz = 0.0f, zeta = 1.0f;
+    QUACK_READ(hz, num("hertz", 0.0f, true));
+    QUACK_READ(zeta, num("dampingRatio", 1.0f, true));
+    QUACK_READ(d.linearHertz, num("linearHertz", hz, true));
+    QUACK_READ(d.angularHertz, num("angularHertz", hz, true));
+    QUACK_READ(d.linearDampingRatio, num("linearDampingRatio", zeta, true));
+    QUACK_READ(d.angularDampingRatio, num("angularDampingRatio", zeta, true));
+  } else if (j.contains("hertz")) {
+    d.enableSpring = true;
+    QUACK_READ(d.hertz, num("hertz", 0.0f, true));
+    QUACK_READ(d.dampingRatio, num("dampingRatio", 0.0f, true));
+  } else if (j.contains("dampingRatio")) {
+    return fail(path + ".dampingRatio: a spring needs its \"hertz\"");
+  }
+  if (d.type == JointType::distance) {
+    // Without "length", the anchors' distance when the joint is made.
+    d.length = -1.0f;
+    if (j.contains("length")) QUACK_READ(d.length, num("length", 0.0f, true));
+    const bool hasMin = j.contains("minLength"), hasMax = j.contains("maxLength");
+    if (hasMin || hasMax) {
+      d.enableLimit = true;
+      QUACK_READ(d.minLength, num("minLength", 0.0f, true));
+      QUACK_READ(d.maxLength, num("maxLength", 1.0e6f, true));
+      if (d.minLength > d.maxLength)
+        return fail(path + ".minLength: must be at most \"maxLength\"");
+      // A rope: free within its limits unless a spring is asked for.
+      if (!d.enableSpring) {
+        d.enableSpring = true;
+        d.hertz = 0.0f;
+      }
+    }
+  }
+  if (d.type == JointType::motor) {
+    QUACK_READ(d.linearOffset, point("linearOffset", {}));
+    QUACK_READ(d.angularOffset, num("angularOffset", 0.0f, false));
+    QUACK_READ(d.maxForce, num("maxForce", 1000.0f, true));
+    QUACK_READ(d.maxTorque, num("maxTorque", 1000.0f, true));
+    QUACK_READ(d.correctionFactor, num("correctionFactor", 0.3f, true));
+    if (d.correctionFactor > 1.0f) return fail(path + ".correctionFactor: must be in [0, 1]");
+  }
+  QUACK_READ(d.collideConnected, boolean(j, "collideConnected", path, false));
+  QUACK_READ(d.breakForce, num("breakForce", 0.0f, true));
+  if (!j.contains("breakForce")) d.breakForce = std::numeric_limits<float>::infinity();
+  QUACK_READ(d.breakTorque, num("breakTorque", 0.0f, true));
+  if (!j.contains("breakTorque")) d.breakTorque = std::numeric_limits<float>::infinity();
+#undef QUACK_READ
+  return out;
+}
+
 Result<WorldDef> parseWorld(const json& j, const std::string& path) {
   WorldDef def;
   if (!j.is_object()) return fail(path + ": must be an object");
@@ -690,7 +944,7 @@ Result<Scene> parseScene(std::string_view text, const std::string& fileName,
     return p.error("", std::string("not valid JSON: ") + e.what());
   }
   if (!root.is_object()) return p.error("", "a scene must be a JSON object");
-  if (Status s = checkKeys(root, "", {"world", "categories", "bodies", "generate"}); !s) {
+  if (Status s = checkKeys(root, "", {"world", "categories", "bodies", "generate", "joints"}); !s) {
     return p.relabel(fail(s.message()));
   }
   Scene scene;
@@ -739,6 +993,16 @@ Result<Scene> parseScene(std::string_view text, const std::string& fileName,
           !s) {
         return p.relabel(fail(s.message()));
       }
+    }
+  }
+  if (root.contains("joints")) {
+    const json& joints = root.at("joints");
+    if (!joints.is_array()) return p.error("joints", "must be an array");
+    for (std::size_t i = 0; i < joints.size(); ++i) {
+      Result<SceneJoint> jt =
+          parseJoint(joints[i], "joints[" + std::to_string(i) + "]", scene.bodies);
+      if (!jt) return p.relabel(jt.error());
+      scene.joints.push_back(std::move(jt).value());
     }
   }
   return scene;
@@ -804,6 +1068,15 @@ Result<SceneWorld> buildWorld(const Scene& scene, const SceneProgress& progress)
     out.names.push_back(b.name);
     if ((i + 1) % kProgressEvery == 0 && progress && !progress(i + 1, scene.bodies.size()))
       return fail(scene.file + ": interrupted");
+  }
+  out.joints.reserve(scene.joints.size());
+  for (const SceneJoint& sj : scene.joints) {
+    JointDef def = sj.def;
+    if (sj.a != kNoSceneBody) def.bodyA = out.bodies[sj.a];
+    def.bodyB = out.bodies[sj.b];
+    Result<JointId> j = out.world.createJoint(def);
+    if (!j) return fail(scene.file + ": " + sj.path + ": " + j.error().message);
+    out.joints.push_back(*j);
   }
   return out;
 }

@@ -70,6 +70,25 @@ StateFile captureState(const SceneWorld& scene, const EventTotals& events) {
                         scene.world.linearVelocity(b), scene.world.angularVelocity(b),
                         scene.world.isAwake(b)});
   }
+  if (!scene.joints.empty()) {
+    s.hasJoints = true;
+    std::vector<const std::string*> nameOf;  // by body index
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+      const std::uint32_t index = scene.bodies[i].index;
+      if (index >= nameOf.size()) nameOf.resize(index + 1, nullptr);
+      nameOf[index] = &scene.names[i];
+    }
+    auto name = [&](BodyId b) {
+      return b.index < nameOf.size() && nameOf[b.index] != nullptr ? *nameOf[b.index]
+                                                                   : std::string();
+    };
+    for (JointId j : scene.joints) {
+      if (!scene.world.isValid(j)) continue;  // broken, or taken with a body
+      const JointDef& d = scene.world.jointDef(j);
+      s.joints.push_back({toString(d.type), d.type == JointType::mouse ? "" : name(d.bodyA),
+                          name(d.bodyB), scene.world.jointForce(j), scene.world.jointTorque(j)});
+    }
+  }
   s.events = events;
   return s;
 }
@@ -94,6 +113,20 @@ std::string writeState(const StateFile& state) {
     out += b.awake ? ", \"awake\": true}" : ", \"awake\": false}";
   }
   out += state.bodies.empty() ? "],\n" : "\n ],\n";
+  if (state.hasJoints) {
+    out += " \"joints\": [";
+    for (std::size_t i = 0; i < state.joints.size(); ++i) {
+      const JointState& jt = state.joints[i];
+      out += i == 0 ? "\n  " : ",\n  ";
+      out += "{\"type\": " + json(jt.type).dump() + ", \"a\": " + json(jt.a).dump() +
+             ", \"b\": " + json(jt.b).dump() + ", \"force\": ";
+      appendVec(out, jt.force);
+      out += ", \"torque\": ";
+      appendDouble(out, static_cast<double>(jt.torque));
+      out += "}";
+    }
+    out += state.joints.empty() ? "],\n" : "\n ],\n";
+  }
   out += " \"events\": {\"begin\": " + std::to_string(state.events.begin) +
          ", \"end\": " + std::to_string(state.events.end) +
          ", \"hit\": " + std::to_string(state.events.hit) +
@@ -147,6 +180,14 @@ void appendEventLines(std::string& out, std::uint64_t step, const StepEvents& ev
   for (BodyId b : events.outOfBounds) {
     out += head + "out-of-bounds\", \"body\": " + std::to_string(b.index) + "}\n";
   }
+  for (const JointEndEvent& e : events.jointEnd) {
+    out += head + "joint-end\", \"joint\": " + std::to_string(e.joint.index) + ", \"reason\": \"" +
+           (e.reason == JointEndReason::broken ? "broken" : "body-destroyed") + "\", \"force\": ";
+    appendVec(out, e.force);
+    out += ", \"torque\": ";
+    appendDouble(out, static_cast<double>(e.torque));
+    out += "}\n";
+  }
 }
 
 Result<StateFile> parseState(std::string_view text, const std::string& fileName) {
@@ -155,7 +196,8 @@ Result<StateFile> parseState(std::string_view text, const std::string& fileName)
   if (j.is_discarded() || !j.is_object()) return error("not a JSON object");
   for (const auto& item : j.items()) {
     const std::string& k = item.key();
-    if (k != "time" && k != "steps" && k != "bodies" && k != "events" && k != "timing") {
+    if (k != "time" && k != "steps" && k != "bodies" && k != "joints" && k != "events" &&
+        k != "timing") {
       return error(k + ": unknown key");
     }
   }
@@ -194,6 +236,32 @@ Result<StateFile> parseState(std::string_view text, const std::string& fileName)
       st.awake = b.at("awake").get<bool>();
     }
     s.bodies.push_back(st);
+  }
+  if (j.contains("joints")) {
+    const json& joints = j.at("joints");
+    if (!joints.is_array()) return error("joints: must be an array");
+    s.hasJoints = true;
+    for (std::size_t i = 0; i < joints.size(); ++i) {
+      const json& jt = joints[i];
+      const std::string path = "joints[" + std::to_string(i) + "]";
+      if (!jt.is_object()) return error(path + ": must be an object");
+      JointState st;
+      for (auto [key, target] :
+           {std::pair{"type", &st.type}, std::pair{"a", &st.a}, std::pair{"b", &st.b}}) {
+        if (!jt.contains(key) || !jt.at(key).is_string())
+          return error(path + "." + key + ": must be a string");
+        *target = jt.at(key).get<std::string>();
+      }
+      if (!jt.contains("force")) return error(path + ".force: missing");
+      Result<Vec2> f = readVec(jt.at("force"), path + ".force");
+      if (!f) return error(f.error().message);
+      st.force = *f;
+      if (!jt.contains("torque")) return error(path + ".torque: missing");
+      Result<float> t = readFloat(jt.at("torque"), path + ".torque");
+      if (!t) return error(t.error().message);
+      st.torque = *t;
+      s.joints.push_back(st);
+    }
   }
   if (!j.contains("events") || !j.at("events").is_object())
     return error("events: must be an object");

@@ -79,6 +79,64 @@ TEST(Scene, BadFilesGetMessagesNamingFileAndPath) {
 }
 
 // Issue 12: a directory given as the scene said "unexpected end of input".
+// Joint keys reach the world as docs/scenes.md says: a limit when lower and upper are
+// given, a motor when a most torque or force is, a spring when hertz is, a rope when a
+// distance joint has a limit and no hertz; anchors in the world frame.
+TEST(Scene, JointKeysReachTheWorld) {
+  Result<Scene> scene = parseScene(R"({"bodies": [
+      {"name": "g", "type": "static"},
+      {"name": "a", "pos": [0, 1], "shapes": [{"type": "circle", "radius": 0.5}]},
+      {"name": "b", "pos": [3, 1], "angle": 0.5, "shapes": [{"type": "circle", "radius": 0.5}]}],
+    "joints": [
+      {"type": "revolute", "a": "g", "b": "a", "anchor": [0, 2], "lower": -1, "upper": 1,
+       "maxMotorTorque": 5, "collideConnected": true},
+      {"type": "prismatic", "a": "g", "b": "b", "anchor": [3, 1], "axis": [0, 2],
+       "motorSpeed": 2, "maxMotorForce": 9, "hertz": 3, "dampingRatio": 0.2},
+      {"type": "distance", "a": "a", "b": "b", "anchors": [[0, 1], [3, 1]], "maxLength": 4,
+       "breakForce": 50},
+      {"type": "weld", "a": "a", "b": "b", "anchor": [1.5, 1], "hertz": 2},
+      {"type": "mouse", "b": "a", "anchor": [0, 1], "target": [1, 1]}]})",
+                                   "j");
+  ASSERT_TRUE(scene.ok()) << scene.error().message;
+  SceneWorld sw = buildWorld(scene.value()).value();
+  ASSERT_EQ(sw.joints.size(), 5u);
+  const World& w = sw.world;
+  const JointDef& rev = w.jointDef(sw.joints[0]);
+  EXPECT_EQ(rev.type, JointType::revolute);
+  EXPECT_TRUE(rev.enableLimit);
+  EXPECT_EQ(rev.lower, -1.0f);
+  EXPECT_TRUE(rev.enableMotor);
+  EXPECT_EQ(rev.motorSpeed, 0.0f);
+  EXPECT_EQ(rev.maxMotorTorque, 5.0f);
+  EXPECT_FALSE(rev.enableSpring);
+  EXPECT_TRUE(rev.collideConnected);
+  EXPECT_EQ(w.jointAnchors(sw.joints[0]).first, (Vec2{0, 2}));
+  const JointDef& pri = w.jointDef(sw.joints[1]);
+  EXPECT_FALSE(pri.enableLimit);
+  EXPECT_TRUE(pri.enableMotor);
+  EXPECT_EQ(pri.maxMotorForce, 9.0f);
+  EXPECT_TRUE(pri.enableSpring);
+  EXPECT_EQ(pri.hertz, 3.0f);
+  EXPECT_EQ(pri.axis, (Vec2{0, 1}));  // normalised
+  const JointDef& rope = w.jointDef(sw.joints[2]);
+  EXPECT_TRUE(rope.enableLimit);
+  EXPECT_TRUE(rope.enableSpring);
+  EXPECT_EQ(rope.hertz, 0.0f);
+  EXPECT_EQ(rope.maxLength, 4.0f);
+  EXPECT_EQ(rope.length, 3.0f);  // the anchors' distance
+  EXPECT_EQ(rope.breakForce, 50.0f);
+  EXPECT_TRUE(std::isinf(rev.breakForce));
+  const JointDef& weld = w.jointDef(sw.joints[3]);
+  EXPECT_EQ(weld.linearHertz, 2.0f);
+  EXPECT_EQ(weld.angularHertz, 2.0f);
+  const JointDef& mouse = w.jointDef(sw.joints[4]);
+  EXPECT_EQ(mouse.bodyA, BodyId{});
+  EXPECT_EQ(mouse.target, (Vec2{1, 1}));
+  EXPECT_EQ(mouse.hertz, 5.0f);
+  // The joints' bodies: b's joints are the prismatic, distance and weld ones.
+  EXPECT_EQ(w.jointDef(sw.joints[1]).bodyB, sw.bodies[2]);
+}
+
 TEST(Scene, ADirectoryAsTheSceneIsCalledADirectory) {
   Result<Scene> dir = loadScene((kSource / "scenes").string());
   ASSERT_FALSE(dir.ok());

@@ -25,6 +25,38 @@ TEST(State, RoundTripsExactly) {
   EXPECT_EQ(writeState(back.value()), text);
 }
 
+// A scene with joints: the state file lists the live ones in scene order with their force
+// and torque, and reads back bit for bit; a scene without joints writes no "joints" key.
+TEST(State, JointsRoundTripExactly) {
+  Result<Scene> scene = parseScene(R"({"bodies": [
+      {"name": "pivot", "type": "static"},
+      {"name": "bob", "pos": [1, -1], "shapes": [{"type": "circle", "radius": 0.2}]},
+      {"name": "tail", "pos": [2, -1], "shapes": [{"type": "circle", "radius": 0.2}]}],
+      "joints": [{"type": "revolute", "a": "pivot", "b": "bob", "anchor": [0, 0]},
+                 {"type": "distance", "a": "bob", "b": "tail", "anchors": [[1, -1], [2, -1]],
+                  "breakForce": 0.001}]})",
+                                   "joints");
+  ASSERT_TRUE(scene.ok()) << scene.error().message;
+  SceneWorld sw = buildWorld(scene.value()).value();
+  for (int i = 0; i < 10; ++i)
+    ASSERT_TRUE(sw.world.step().ok());
+  StateFile state = captureState(sw, {});
+  // The distance joint broke at once (1 mN): only the revolute one is left.
+  ASSERT_EQ(state.joints.size(), 1u);
+  EXPECT_EQ(state.joints[0].type, "revolute");
+  EXPECT_EQ(state.joints[0].a, "pivot");
+  EXPECT_EQ(state.joints[0].b, "bob");
+  EXPECT_GT(length(state.joints[0].force), 1.0f);
+  const std::string text = writeState(state);
+  EXPECT_NE(text.find("\"joints\": ["), std::string::npos);
+  Result<StateFile> back = parseState(text, "state.json");
+  ASSERT_TRUE(back.ok()) << back.error().message;
+  EXPECT_EQ(back.value(), state);
+  EXPECT_EQ(writeState(back.value()), text);
+  SceneWorld none = buildWorld(parseScene(R"({"bodies": []})", "none").value()).value();
+  EXPECT_EQ(writeState(captureState(none, {})).find("joints"), std::string::npos);
+}
+
 // The event list's lines, worked out by hand: every kind, in the documented order, numbers
 // as state files print them.
 TEST(State, EventLinesByHand) {
@@ -36,6 +68,10 @@ TEST(State, EventLinesByHand) {
   e.sensorEnd.push_back({ShapeId{2, 1, 1}, ShapeId{8, 1, 1}});
   e.toi.push_back({0.25f, ShapeId{5, 1, 1}, ShapeId{0, 1, 1}, Vec2{0.1f, 3.0f}, Vec2{-1.0f, 0.0f}});
   e.outOfBounds.push_back(BodyId{6, 1, 1});
+  e.jointEnd.push_back({JointId{2, 1, 1}, BodyId{3, 1, 1}, BodyId{4, 1, 1}, JointEndReason::broken,
+                        Vec2{1.5f, -2.0f}, 0.5f, 0});
+  e.jointEnd.push_back({JointId{0, 1, 1}, BodyId{3, 1, 1}, BodyId{5, 1, 1},
+                        JointEndReason::bodyDestroyed, Vec2{}, 0.0f, 0});
   std::string out = "before\n";
   appendEventLines(out, 3, e);
   EXPECT_EQ(out,
@@ -48,7 +84,11 @@ TEST(State, EventLinesByHand) {
             "{\"step\": 3, \"event\": \"sensor-end\", \"sensor\": 2, \"visitor\": 8}\n"
             "{\"step\": 3, \"event\": \"toi\", \"time\": 0.25, \"a\": 5, \"b\": 0, "
             "\"point\": [0.10000000149011612, 3.0], \"normal\": [-1.0, 0.0]}\n"
-            "{\"step\": 3, \"event\": \"out-of-bounds\", \"body\": 6}\n");
+            "{\"step\": 3, \"event\": \"out-of-bounds\", \"body\": 6}\n"
+            "{\"step\": 3, \"event\": \"joint-end\", \"joint\": 2, \"reason\": \"broken\", "
+            "\"force\": [1.5, -2.0], \"torque\": 0.5}\n"
+            "{\"step\": 3, \"event\": \"joint-end\", \"joint\": 0, \"reason\": "
+            "\"body-destroyed\", \"force\": [0.0, 0.0], \"torque\": 0.0}\n");
   std::string none;
   appendEventLines(none, 4, StepEvents{});
   EXPECT_EQ(none, "");

@@ -62,14 +62,25 @@ struct SceneBody {
   std::vector<SceneChain> chains;
 };
 
+/// A joint of a scene ({"type": "revolute", "a": NAME, "b": NAME, ...} in "joints"):
+/// its settings (world-frame anchors and axis, as the file gives them) and its bodies as
+/// indices into Scene::bodies (`a` is kNoSceneBody for a mouse joint).
+inline constexpr std::size_t kNoSceneBody = static_cast<std::size_t>(-1);
+struct SceneJoint {
+  JointDef def;  ///< bodyA and bodyB are set when the world is built
+  std::size_t a = kNoSceneBody, b = kNoSceneBody;
+  std::string path;  ///< "joints[2]"
+};
+
 /// A parsed scene: the world settings and every body, listed bodies first, then the
-/// generators' bodies in order.
+/// generators' bodies in order; then the joints.
 struct Scene {
   std::string file;  ///< where it came from, for messages
   WorldDef world;
   /// Category names; category i is filter bit i.
   std::vector<std::string> categories;
   std::vector<SceneBody> bodies;
+  std::vector<SceneJoint> joints;
 };
 
 /// Progress of a long scene operation: `done` of `total` bodies (total 0: not known yet).
@@ -84,11 +95,13 @@ Result<Scene> parseScene(std::string_view text, const std::string& fileName,
 /// the reason, and those of parseScene).
 Result<Scene> loadScene(const std::string& path, const SceneProgress& progress = {});
 
-/// A world built from a scene, with its bodies in scene order and their names.
+/// A world built from a scene, with its bodies in scene order and their names, and its
+/// joints in scene order.
 struct SceneWorld {
   World world;
   std::vector<BodyId> bodies;
   std::vector<std::string> names;
+  std::vector<JointId> joints;
 };
 
 /// Builds the world. The scene was checked when parsed, so this fails only on what the

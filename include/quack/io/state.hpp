@@ -6,6 +6,10 @@
 ///  "bodies": [{"name", "pos": [x, y], "angle", "vel": [x, y], "angvel", "awake"}, ...],
 ///  "events": {"begin", "end", "hit", "sensor"}}
 ///
+/// plus, when the scene has joints, "joints": [{"type", "a", "b", "force": [x, y],
+/// "torque"}, ...]: each joint still alive at the end, in scene order, with the bodies'
+/// names and the force (N, on b, world frame) and torque (N m) it applied in the last step.
+///
 /// A state file is a pure function of the scene and the step count: two runs write the
 /// same bytes. How long a run took is not in it (`quack run` prints it, and writes it with
 /// `--timing FILE`); a "timing" object in a file from an older Quack is accepted and
@@ -42,10 +46,21 @@ struct EventTotals {
   friend bool operator==(const EventTotals&, const EventTotals&) = default;
 };
 
+/// A joint of a state file.
+struct JointState {
+  std::string type;  ///< "revolute", ...
+  std::string a, b;  ///< the bodies' names ("" for a mouse joint's missing body a)
+  Vec2 force;        ///< N, on b, world frame, in the last step
+  float torque = 0.0f;
+  friend bool operator==(const JointState&, const JointState&) = default;
+};
+
 struct StateFile {
   double time = 0.0;
   std::uint64_t steps = 0;
   std::vector<BodyState> bodies;
+  std::vector<JointState> joints;  ///< written only when the scene has joints
+  bool hasJoints = false;
   EventTotals events;
   friend bool operator==(const StateFile&, const StateFile&) = default;
 };
@@ -69,6 +84,8 @@ Result<StateFile> parseState(std::string_view text, const std::string& fileName)
 ///   {"step": 3, "event": "sensor-begin", "sensor": 2, "visitor": 7}   (and "sensor-end")
 ///   {"step": 3, "event": "toi", "time": t, "a": 4, "b": 9, "point": [x, y], "normal": [x, y]}
 ///   {"step": 3, "event": "out-of-bounds", "body": 5}
+///   {"step": 3, "event": "joint-end", "joint": 2, "reason": "broken", "force": [x, y],
+///    "torque": t}   (reason "broken" or "body-destroyed"; the joint's id index)
 void appendEventLines(std::string& out, std::uint64_t step, const StepEvents& events);
 
 }  // namespace quack
