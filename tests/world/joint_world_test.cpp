@@ -237,6 +237,32 @@ TEST(JointIslands, JointedBodiesSleepAndWakeTogether) {
   ASSERT_TRUE(valid(world));
 }
 
+// Changing a jointed body's type keeps the islands right (World::validate checks that
+// jointed dynamic bodies share an island), and a kinematic body drives what is jointed to it.
+TEST(JointIslands, BodyTypeChangesAndKinematicDrivers) {
+  World world = World::create({}).value();
+  const BodyId a = addBox(world, {0.0f, 5.0f}, {0.5f, 0.5f});
+  const BodyId b = addBox(world, {2.0f, 5.0f}, {0.5f, 0.5f});
+  const JointId j = world.createJoint(revolute(a, b, {1.0f, 5.0f})).value();
+  for (BodyType t : {BodyType::staticBody, BodyType::kinematicBody, BodyType::dynamicBody}) {
+    ASSERT_TRUE(world.setBodyType(a, t).ok());
+    ASSERT_TRUE(valid(world));
+    ASSERT_TRUE(stepAndValidate(world));
+  }
+  EXPECT_TRUE(world.isValid(j));
+  // A kinematic body turning about its centre carries b around on the joint.
+  ASSERT_TRUE(world.setBodyType(a, BodyType::kinematicBody).ok());
+  ASSERT_TRUE(world.setAngularVelocity(a, 1.0f).ok());
+  for (int i = 0; i < 90; ++i)
+    ASSERT_TRUE(stepAndValidate(world));
+  const auto [onA, onB] = world.jointAnchors(j);
+  EXPECT_LT(length(onB - onA), 0.02f);
+  EXPECT_TRUE(world.isAwake(b));
+  // a turned 1.5 rad: the joint's point on a is now above a's centre and to the left.
+  EXPECT_NEAR(world.angle(a), 1.5f, 1e-3f);
+  EXPECT_GT(onA.y, world.position(a).y + 0.9f);
+}
+
 // Closed form: a weld with a spring of f Hz on its angle holding a bar; with a rigid weld the
 // bar does not sag at all beyond the joint's softness.
 TEST(JointTypes, WeldHoldsABarOutRigidly) {
@@ -433,7 +459,9 @@ TEST(JointScenes, RagdollDroppedOnAPyramidNeverGainsEnergyAndRests) {
 }
 
 // Box2D v3's joint_grid, scaled down to 40 x 40: circles joined to their left and upper
-// neighbours, hanging from a few static ones in the top row; it holds together.
+// neighbours, hanging from a few static ones in the top row; it holds together as well as
+// v3's does (v3's own grid keeps its circles from colliding; here they may: v3 measured
+// the same gap both ways).
 TEST(JointScenes, JointGridHoldsTogether) {
   World world = World::create({}).value();
   const int n = 40;
@@ -474,7 +502,56 @@ TEST(JointScenes, JointGridHoldsTogether) {
   }
   std::printf("joint grid %dx%d: widest joint gap %.4f m, %d colours\n", n, n, worst,
               world.solverStats().colors);
-  EXPECT_LT(worst, 0.1f);
+  // Against Box2D v3 on the same 40 x 40 grid and steps: 0.0840 m (within 5%).
+  EXPECT_LT(worst, 1.05f * 0.0840f);
+}
+
+// Box2D v3's joint_grid at its own size, 100 x 100 (slow): it holds together under gravity.
+TEST(JointScenes, HundredByHundredJointGridHoldsTogether) {
+  World world = World::create({}).value();
+  const int n = 100;
+  std::vector<BodyId> grid(static_cast<std::size_t>(n * n));
+  for (int k = 0; k < n; ++k) {
+    for (int i = 0; i < n; ++i) {
+      const bool fixed = i == 0 && k >= n / 2 - 3 && k <= n / 2 + 3;
+      BodyId b = world
+                     .createBody({.type = fixed ? BodyType::staticBody : BodyType::dynamicBody,
+                                  .position = {static_cast<float>(k), -static_cast<float>(i)}})
+                     .value();
+      (void)world.createShape(b, {}, makeCircle({}, 0.4f).value());
+      grid[static_cast<std::size_t>(k * n + i)] = b;
+      if (i > 0) {
+        ASSERT_TRUE(
+            world
+                .createJoint(revolute(grid[static_cast<std::size_t>(k * n + i - 1)], b,
+                                      {static_cast<float>(k), 0.5f - static_cast<float>(i)}))
+                .ok());
+      }
+      if (k > 0) {
+        ASSERT_TRUE(
+            world
+                .createJoint(revolute(grid[static_cast<std::size_t>((k - 1) * n + i)], b,
+                                      {static_cast<float>(k) - 0.5f, -static_cast<float>(i)}))
+                .ok());
+      }
+    }
+  }
+  for (int s = 0; s < 120; ++s)
+    ASSERT_TRUE(world.step());
+  ASSERT_TRUE(valid(world));
+  float worst = 0.0f;
+  for (JointId j : world.joints()) {
+    const auto [pa, pb] = world.jointAnchors(j);
+    worst = std::max(worst, length(pb - pa));
+  }
+  std::printf("joint grid %dx%d: widest joint gap %.4f m after 2 s\n", n, n, worst);
+  for (BodyId b : world.bodies())
+    ASSERT_TRUE(isFinite(world.position(b)));
+  // Against the best peer on the same scene: ten thousand half-kilogram bodies hang from
+  // seven, and the top joints stretch. Box2D v3 (617d32a, its own joint_grid built with the
+  // same layout, 120 steps of 1/60 s, 4 sub-steps) ends with its widest joint gap at
+  // 0.5913 m; Quack must do at least as well, within 5%.
+  EXPECT_LT(worst, 1.05f * 0.5913f);
 }
 
 // A scene with every joint type, contacts and sleeping, for the bit-for-bit tests.
