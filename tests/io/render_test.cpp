@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 
 namespace quack {
@@ -49,6 +50,41 @@ TEST(Render, SvgHasEveryShapeAndContact) {
   EXPECT_EQ(paths, 5u);
   EXPECT_NE(svg.find("<circle"), std::string::npos);  // resting bodies have contact points
   EXPECT_NE(svg.find("</svg>"), std::string::npos);
+}
+
+// Joints are drawn: in the SVG one teal polyline per live joint, through its anchors; in the
+// replay's frames, eight numbers per joint (centre A, anchor A, anchor B, centre B).
+TEST(Render, JointsAreDrawnInTheSvgAndTheReplay) {
+  Result<Scene> scene = parseScene(R"({"bodies": [
+      {"name": "pivot", "type": "static"},
+      {"name": "a", "pos": [1, 0], "shapes": [{"type": "circle", "radius": 0.2}]},
+      {"name": "b", "pos": [2, 0], "shapes": [{"type": "circle", "radius": 0.2}]}],
+      "joints": [{"type": "revolute", "a": "pivot", "b": "a", "anchor": [0, 0]},
+                 {"type": "distance", "a": "a", "b": "b", "anchors": [[1, 0], [2, 0]]}]})",
+                                   "j");
+  ASSERT_TRUE(scene.ok()) << scene.error().message;
+  SceneWorld sw = buildWorld(scene.value()).value();
+  ReplayRecorder replay(sw, 3);
+  replay.record(sw);
+  for (int i = 0; i < 3; ++i) {
+    ASSERT_TRUE(sw.world.step().ok());
+    replay.record(sw);
+  }
+  const std::string svg = renderSvg(sw, "joints");
+  std::size_t lines = 0;
+  for (std::size_t at = svg.find("<polyline"); at != std::string::npos;
+       at = svg.find("<polyline", at + 1))
+    ++lines;
+  EXPECT_EQ(lines, 2u);
+  EXPECT_NE(svg.find("stroke=\"#2a9d8f\""), std::string::npos);
+  // The revolute joint's polyline starts at the static pivot's centre, (0, 0).
+  EXPECT_NE(svg.find("<polyline points=\"0,0 0,"), std::string::npos) << svg;
+  const std::string html = replay.html("joints");
+  const std::size_t frame = html.find("\"j\":[");
+  ASSERT_NE(frame, std::string::npos);
+  const std::size_t end = html.find(']', frame);
+  const std::string numbers = html.substr(frame + 5, end - frame - 5);
+  EXPECT_EQ(std::count(numbers.begin(), numbers.end(), ',') + 1, 16);
 }
 
 TEST(Render, ReplayKeepsAtMostItsFrameBudget) {
