@@ -157,8 +157,10 @@ Result<JointId> World::createJoint(const JointDef& def) {
         if (contact.bodyA == other || contact.bodyB == other) doomed.push_back(c);
       }
     }
+    // Reported with the next step's events, also from a callback (this step's lists are
+    // being handed out).
     for (std::uint32_t c : doomed)
-      w.contacts.destroy(c, store, w.events, true, w.inStep);
+      w.contacts.destroy(c, store, w.events, true, false);
     w.islands.apply(store, w.contacts.changes());
     w.contacts.clearChanges();
   }

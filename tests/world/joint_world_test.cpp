@@ -174,6 +174,53 @@ TEST(JointEvents, DestroyingABodyEndsItsJointsWithAnEvent) {
   EXPECT_TRUE(world.events().jointEnd.empty());
 }
 
+// A game's sticky bomb: on contact, weld the two bodies together from the callback. The
+// contact between them ends (reported with the next step), the weld holds them, and
+// destroying the joint from a callback waits until the callbacks are done.
+TEST(JointEvents, JointsMadeAndDestroyedFromCallbacks) {
+  World world = World::create({}).value();
+  addStaticBox(world, {0.0f, -0.5f}, {20.0f, 0.5f});
+  const BodyId base = addBox(world, {0.0f, 0.5f}, {2.0f, 0.5f});
+  const BodyId bomb = addBall(world, {1.0f, 3.0f}, 0.25f);
+  JointId weld;
+  world.onContactBegin(~0ull, ~0ull, [&](World& w, ShapeId a, ShapeId b) {
+    const BodyId ba = w.body(a), bb = w.body(b);
+    if ((ba == bomb || bb == bomb) && !w.isValid(weld)) {
+      const BodyId other = ba == bomb ? bb : ba;
+      weld = w.createJoint({.type = JointType::weld,
+                            .bodyA = other,
+                            .bodyB = bomb,
+                            .anchorA = w.position(bomb)})
+                 .value();
+    }
+  });
+  int steps = 0;
+  while (!world.isValid(weld) && steps < 120) {
+    ASSERT_TRUE(stepAndValidate(world));
+    ++steps;
+  }
+  ASSERT_TRUE(world.isValid(weld));
+  ASSERT_TRUE(stepAndValidate(world));
+  // The bomb's contact with the base ended when the weld was made.
+  bool ended = false;
+  for (const ContactEndEvent& e : world.events().end)
+    ended = ended || world.body(e.shapeA) == bomb || world.body(e.shapeB) == bomb;
+  EXPECT_TRUE(ended);
+  world.onJointEnd([](World&, const JointEndEvent&) {});
+  world.onContactBegin(~0ull, ~0ull, [&](World& w, ShapeId, ShapeId) {
+    if (w.isValid(weld)) {
+      EXPECT_TRUE(w.destroyJoint(weld).ok());
+      EXPECT_TRUE(w.isValid(weld));  // until the callbacks are done
+    }
+  });
+  // Something else lands on the base: its begin event destroys the weld.
+  addBall(world, {-1.0f, 2.0f}, 0.25f);
+  for (int i = 0; i < 60 && world.isValid(weld); ++i)
+    ASSERT_TRUE(stepAndValidate(world));
+  EXPECT_FALSE(world.isValid(weld));
+  (void)base;
+}
+
 // A joint holding a 10 kg ball against gravity carries 100 N: a break force of 50 N breaks
 // it in the first step, reported in that step's events and to the callback; 150 N holds.
 TEST(JointEvents, ABreakForceBreaksTheJointAndSaysSo) {
