@@ -639,7 +639,8 @@ EMSCRIPTEN_KEEPALIVE int qk_world_cull(double y) {
 /// few pixels of slack): a mouse joint on it at that point, pulling towards the pointer
 /// with a 5 Hz spring damped at 0.7 and at most 1,000 times the body's weight, enough to
 /// lift what hangs from it (a chain, a ragdoll) and still bounded, so that a body dragged
-/// into a wall presses on it instead of being shot through. Releases an earlier grab.
+/// into a wall presses on it instead of being shot through (Box2D's samples bound their
+/// mouse joint by the body's mass in the same way). Releases an earlier grab.
 /// Returns {"grabbed": shape index} or {"grabbed": null} (nothing dynamic there), or
 /// {"error"}.
 EMSCRIPTEN_KEEPALIVE const char* qk_world_grab(double x, double y, double radius) {
