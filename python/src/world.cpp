@@ -8,9 +8,13 @@
 
 #include <pybind11/stl.h>
 
+#include <cctype>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <optional>
+#include <string_view>
+#include <utility>
 
 #include "bindings.hpp"
 #include "quack/io/render.hpp"
@@ -32,6 +36,11 @@ struct BodyHandle {
 struct ShapeHandle {
   py::object world;
   ShapeId id;
+};
+
+struct JointHandle {
+  py::object world;
+  JointId id;
 };
 
 class PyWorld {
@@ -81,6 +90,8 @@ class PyWorld {
     }
     sw.bodies.resize(out);
     sw.names.resize(out);
+    // Joints end with their bodies and when they break: keep the live ones, in order.
+    std::erase_if(sw.joints, [&](JointId j) { return !sw.world.isValid(j); });
   }
 };
 
@@ -152,6 +163,96 @@ const ShapeHandle& validShape(const ShapeHandle& s) {
   if (!worldOf(s.world).world().isValid(s.id))
     raiseValue("stale quack.ShapeHandle (the shape was destroyed)");
   return s;
+}
+
+const JointHandle& validJoint(const JointHandle& j) {
+  worldOf(j.world).checkIdle();
+  if (!worldOf(j.world).world().isValid(j.id))
+    raiseValue(
+        "stale quack.JointHandle (the joint was destroyed, broke, or went with one of its "
+        "bodies)");
+  return j;
+}
+
+// create_joint's keyword arguments and the scene-file keys they stand for: the arguments
+// become a scene file's joint object, checked by the scene parser (parseSceneJoint), so a
+// joint made here follows the same rules as one in a file (docs/scenes.md, "Joints").
+struct JointArg {
+  const char* name;  // Python
+  const char* key;   // scene file
+  bool point;        // [x, y] (or anchors' [[x, y], [x, y]]); else a number
+};
+constexpr JointArg kJointArgs[] = {
+    {"anchor", "anchor", true},
+    {"anchors", "anchors", true},
+    {"axis", "axis", true},
+    {"lower", "lower", false},
+    {"upper", "upper", false},
+    {"motor_speed", "motorSpeed", false},
+    {"max_motor_torque", "maxMotorTorque", false},
+    {"max_motor_force", "maxMotorForce", false},
+    {"hertz", "hertz", false},
+    {"damping_ratio", "dampingRatio", false},
+    {"length", "length", false},
+    {"min_length", "minLength", false},
+    {"max_length", "maxLength", false},
+    {"linear_hertz", "linearHertz", false},
+    {"angular_hertz", "angularHertz", false},
+    {"linear_damping_ratio", "linearDampingRatio", false},
+    {"angular_damping_ratio", "angularDampingRatio", false},
+    {"linear_offset", "linearOffset", true},
+    {"angular_offset", "angularOffset", false},
+    {"max_force", "maxForce", false},
+    {"max_torque", "maxTorque", false},
+    {"correction_factor", "correctionFactor", false},
+    {"target", "target", true},
+    {"break_force", "breakForce", false},
+    {"break_torque", "breakTorque", false},
+};
+
+bool isWordChar(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_';
+}
+
+// The scene parser's message with the Python argument names in place of the file's keys
+// ("maxMotorTorque: must be >= 0" -> "max_motor_torque: must be >= 0").
+std::string pythonJointMessage(std::string message) {
+  if (!message.empty() && message.front() == '.') message.erase(0, 1);
+  auto replaceWord = [&](const std::string& from, const std::string& to) {
+    std::size_t at = 0;
+    while ((at = message.find(from, at)) != std::string::npos) {
+      const std::size_t end = at + from.size();
+      if ((at == 0 || !isWordChar(message[at - 1])) &&
+          (end == message.size() || !isWordChar(message[end]))) {
+        message.replace(at, from.size(), to);
+        at += to.size();
+      } else {
+        at = end;  // inside a longer word: not the key
+      }
+    }
+  };
+  for (const JointArg& a : kJointArgs)
+    if (std::string_view(a.name) != a.key) replaceWord(a.key, a.name);
+  replaceWord("collideConnected", "collide_connected");
+  const std::string unknown = ": unknown key for a ";
+  if (std::size_t at = message.find(unknown); at != std::string::npos)
+    message.replace(at, unknown.size(), ": not an argument of a ");
+  return message;
+}
+
+JointType toJointType(const std::string& s) {
+  for (JointType t : {JointType::revolute, JointType::prismatic, JointType::distance,
+                      JointType::weld, JointType::wheel, JointType::motor, JointType::mouse})
+    if (s == toString(t)) return t;
+  raiseValue("type: \"" + s +
+             "\" is not a joint type (revolute, prismatic, distance, weld, wheel, motor, "
+             "mouse)");
+}
+
+// A body handle of an event: None for a null one (a mouse joint's body A).
+py::object eventBody(py::object world, BodyId b) {
+  if (b == BodyId{}) return py::none();
+  return py::cast(BodyHandle{std::move(world), b});
 }
 
 // The bodies a bulk call reads or writes: the given handles (checked), or every live body
@@ -258,6 +359,13 @@ py::object hitTuple(py::module_& m, py::object world, const ContactHitEvent& e) 
   return m.attr("HitEvent")(ShapeHandle{world, e.shapeA}, ShapeHandle{world, e.shapeB},
                             toTuple(e.point), toTuple(e.normal),
                             static_cast<double>(e.approachSpeed));
+}
+
+py::object jointEndTuple(py::module_& m, py::object world, const JointEndEvent& e) {
+  return m.attr("JointEndEvent")(JointHandle{world, e.joint}, eventBody(world, e.bodyA),
+                                 eventBody(world, e.bodyB),
+                                 e.reason == JointEndReason::broken ? "broken" : "body-destroyed",
+                                 toTuple(e.force), static_cast<double>(e.torque));
 }
 
 // Runs a Python callback from inside the world's step: with the GIL, at most one exception
@@ -402,11 +510,18 @@ void registerWorld(py::module_& m) {
   py::exec(R"py(
 import collections as _collections
 Events = _collections.namedtuple(
-    "Events", "begin end hit sensor_begin sensor_end toi out_of_bounds toi_capped")
+    "Events", "begin end hit sensor_begin sensor_end toi out_of_bounds toi_capped joint_end")
 Events.__doc__ = ("The events of the last step: begin, end (lists of (shape_a, shape_b)), hit "
                   "(HitEvent), sensor_begin, sensor_end ((sensor, visitor)), toi (ToiEvent, "
                   "in time order), out_of_bounds (bodies held at the edge of the world), "
-                  "toi_capped (bodies that used up their impacts for the step).")
+                  "toi_capped (bodies that used up their impacts for the step), joint_end "
+                  "(JointEndEvent: joints that broke, or went with a destroyed body).")
+JointEndEvent = _collections.namedtuple(
+    "JointEndEvent", "joint body_a body_b reason force torque")
+JointEndEvent.__doc__ = ("A joint that ended without destroy(): joint (a stale JointHandle), "
+                         "body_a (None for a mouse joint), body_b (stale when destroyed), "
+                         "reason ('broken' or 'body-destroyed'), force (N, world frame, on "
+                         "body_b) and torque (N m) of its last step.")
 HitEvent = _collections.namedtuple("HitEvent", "shape_a shape_b point normal approach_speed")
 ToiEvent = _collections.namedtuple("ToiEvent", "time shape_a shape_b point normal approach_speed")
 RayHit = _collections.namedtuple("RayHit", "shape body point normal fraction")
@@ -422,7 +537,7 @@ ShapeOverlap.__doc__ = ("A shape overlapping a query shape: shape, body, depth (
                         "depenetration (the vector that moves the query shape out).")
 ShapeCastHit.__doc__ = ("The first shape a swept query shape meets: shape, body, point, normal, "
                         "fraction of the translation.")
-for _t in (Events, HitEvent, ToiEvent, RayHit, ShapeOverlap, ShapeCastHit):
+for _t in (Events, HitEvent, ToiEvent, JointEndEvent, RayHit, ShapeOverlap, ShapeCastHit):
     _t.__module__ = "quack"
 del _t, _collections
 )py",
@@ -608,6 +723,191 @@ del _t, _collections
                (w.steppingElsewhere() || w.sw.world.isValid(s.id) ? "" : ", stale") + ")";
       });
 
+  py::class_<JointHandle>(m, "JointHandle", handleGc<JointHandle>(),
+                          "A joint between two bodies of a World (World.create_joint). valid "
+                          "says whether it still exists: a joint ends when destroyed, when it "
+                          "breaks and with either body; everything else then raises ValueError.")
+      .def_property_readonly(
+          "valid",
+          [](const JointHandle& j) {
+            worldOf(j.world).checkIdle();
+            return worldOf(j.world).world().isValid(j.id);
+          },
+          "Whether the joint still exists (False once destroyed, broken or gone with a body).")
+      .def_property_readonly(
+          "world", [](const JointHandle& j) { return j.world; },
+          "The quack.World the joint belongs to.")
+      .def_property_readonly(
+          "type",
+          [](const JointHandle& j) {
+            return std::string(toString(worldOf(validJoint(j).world).world().jointDef(j.id).type));
+          },
+          "revolute, prismatic, distance, weld, wheel, motor or mouse.")
+      .def_property_readonly(
+          "body_a",
+          [](const JointHandle& j) {
+            return eventBody(j.world, worldOf(validJoint(j).world).world().jointDef(j.id).bodyA);
+          },
+          "The first body (quack.BodyHandle), None for a mouse joint.")
+      .def_property_readonly(
+          "body_b",
+          [](const JointHandle& j) {
+            return BodyHandle{j.world, worldOf(validJoint(j).world).world().jointDef(j.id).bodyB};
+          },
+          "The second body (quack.BodyHandle): the one a mouse joint pulls.")
+      .def_property_readonly(
+          "anchors",
+          [](const JointHandle& j) {
+            const auto [onA, onB] = worldOf(validJoint(j).world).world().jointAnchors(j.id);
+            return py::make_tuple(toTuple(onA), toTuple(onB));
+          },
+          "The anchors now, world frame: (on body_a, on body_b); for a mouse joint (target, "
+          "grabbed point). A point joint's two coincide while it holds.")
+      .def_property_readonly(
+          "force",
+          [](const JointHandle& j) {
+            return toTuple(worldOf(validJoint(j).world).world().jointForce(j.id));
+          },
+          "The force (N, world frame, on body_b) the joint applied in the last step.")
+      .def_property_readonly(
+          "torque",
+          [](const JointHandle& j) {
+            return static_cast<double>(worldOf(validJoint(j).world).world().jointTorque(j.id));
+          },
+          "The torque (N m) the joint applied in the last step.")
+      .def_property_readonly(
+          "angle",
+          [](const JointHandle& j) {
+            return static_cast<double>(worldOf(validJoint(j).world).world().jointAngle(j.id));
+          },
+          "Revolute and weld: body_b's angle relative to body_a since creation (radians, in "
+          "[-pi, pi]); 0 for the other types.")
+      .def_property_readonly(
+          "translation",
+          [](const JointHandle& j) {
+            return static_cast<double>(worldOf(validJoint(j).world).world().jointTranslation(j.id));
+          },
+          "Prismatic and wheel: body_b's travel along the axis (m); distance: the length "
+          "between the anchors; 0 for the other types.")
+      .def(
+          "set_motor",
+          [](const JointHandle& j, py::handle speed, py::handle maxTorque, py::handle maxForce,
+             bool enable) {
+            PyWorld& w = worldOf(validJoint(j).world);
+            const JointDef& d = w.world().jointDef(j.id);
+            const bool prismatic = d.type == JointType::prismatic;
+            if (d.type != JointType::revolute && d.type != JointType::wheel && !prismatic)
+              raiseValue(std::string("set_motor: a ") + toString(d.type) + " joint has no motor");
+            // A motor's strength is a torque, except a prismatic joint's (a force): the
+            // other argument names the mistake rather than being ignored.
+            if (prismatic && !maxTorque.is_none())
+              raiseValue("max_torque: a prismatic joint's motor takes max_force (N)");
+            if (!prismatic && !maxForce.is_none())
+              raiseValue(std::string("max_force: a ") + toString(d.type) +
+                         " joint's motor takes max_torque (N m)");
+            const char* strengthName = prismatic ? "max_force" : "max_torque";
+            py::handle strength = prismatic ? maxForce : maxTorque;
+            float s = prismatic ? d.maxMotorForce : d.maxMotorTorque;
+            if (!strength.is_none()) {
+              s = static_cast<float>(toDouble(strength, strengthName));
+              if (!(s >= 0.0f) || !std::isfinite(s))
+                raiseValue(std::string(strengthName) + ": must be finite and >= 0");
+            }
+            float v = d.motorSpeed;
+            if (!speed.is_none()) {
+              v = static_cast<float>(toDouble(speed, "speed"));
+              if (!std::isfinite(v)) raiseValue("speed: must be finite (as a float)");
+            }
+            w.changed();
+            check(w.world().setJointMotor(j.id, enable, v, s));
+          },
+          py::arg("speed") = py::none(), py::arg("max_torque") = py::none(),
+          py::arg("max_force") = py::none(), py::arg("enable") = true,
+          "Turns the motor of a revolute, wheel (max_torque, N m) or prismatic (max_force, N) "
+          "joint on (enable=False: off) at speed (rad/s or m/s); an argument left None keeps "
+          "its value. Wakes the bodies.")
+      .def(
+          "set_limits",
+          [](const JointHandle& j, py::handle lower, py::handle upper) {
+            PyWorld& w = worldOf(validJoint(j).world);
+            const JointDef& d = w.world().jointDef(j.id);
+            // As in scene files: both or neither (neither turns the limit off).
+            if (lower.is_none() != upper.is_none())
+              raiseValue(std::string(lower.is_none() ? "lower" : "upper") +
+                         ": a limit needs both lower and upper (neither: no limit)");
+            const bool enable = !lower.is_none();
+            float lo = d.type == JointType::distance ? d.minLength : d.lower;
+            float hi = d.type == JointType::distance ? d.maxLength : d.upper;
+            if (enable) {
+              lo = static_cast<float>(toDouble(lower, "lower"));
+              hi = static_cast<float>(toDouble(upper, "upper"));
+              if (!std::isfinite(lo)) raiseValue("lower: must be finite (as a float)");
+              if (!std::isfinite(hi)) raiseValue("upper: must be finite (as a float)");
+              if (lo > hi) raiseValue("lower: must be at most upper");
+            }
+            w.changed();
+            Status s = w.world().setJointLimits(j.id, enable, lo, hi);
+            if (!s) raiseValue("set_limits: " + s.message().substr(s.message().find(": ") + 2));
+          },
+          py::arg("lower") = py::none(), py::arg("upper") = py::none(),
+          "Limits of a revolute (radians within [-pi, pi]), prismatic or wheel (m of travel) "
+          "or distance (m of length) joint: both given turn the limit on, neither turns it "
+          "off. Wakes the bodies.")
+      .def(
+          "set_target",
+          [](const JointHandle& j, py::handle target) {
+            PyWorld& w = worldOf(validJoint(j).world);
+            const JointType t = w.world().jointDef(j.id).type;
+            if (t != JointType::mouse)
+              raiseValue(std::string("set_target: a ") + toString(t) +
+                         " joint has no target (a mouse joint has)");
+            const Vec2 p = toPosition(target, "target");
+            w.changed();
+            check(w.world().setMouseTarget(j.id, p));
+          },
+          py::arg("target"),
+          "Moves a mouse joint's target (world frame, m): where it pulls body_b's grabbed "
+          "point. Wakes body_b.")
+      .def(
+          "set_offsets",
+          [](const JointHandle& j, py::handle linearOffset, py::handle angularOffset) {
+            PyWorld& w = worldOf(validJoint(j).world);
+            const JointType t = w.world().jointDef(j.id).type;
+            if (t != JointType::motor)
+              raiseValue(std::string("set_offsets: a ") + toString(t) +
+                         " joint has no offsets (a motor joint has)");
+            const Vec2 p = toPosition(linearOffset, "linear_offset");
+            const auto a = static_cast<float>(toDouble(angularOffset, "angular_offset"));
+            if (!std::isfinite(a)) raiseValue("angular_offset: must be finite (as a float)");
+            w.changed();
+            check(w.world().setMotorTarget(j.id, p, a));
+          },
+          py::arg("linear_offset"), py::arg("angular_offset") = 0.0,
+          "A motor joint's target pose of body_b relative to body_a: linear_offset (m, in "
+          "body_a's frame) and angular_offset (radians). Wakes the bodies.")
+      .def(
+          "destroy",
+          [](const JointHandle& j) {
+            PyWorld& w = worldOf(validJoint(j).world);
+            check(w.world().destroyJoint(j.id));
+            w.changed();
+            w.compact();
+          },
+          "Destroys the joint (no joint_end event: that is for joints that end by themselves) "
+          "and wakes its bodies. The same as World.destroy_joint(joint).")
+      .def("__eq__", [](const JointHandle& a,
+                        const JointHandle& b) { return a.world.is(b.world) && a.id == b.id; })
+      .def("__hash__",
+           [](const JointHandle& j) {
+             return py::hash(py::make_tuple(j.id.world, j.id.index, j.id.generation));
+           })
+      .def("__repr__", [](const JointHandle& j) {
+        const PyWorld& w = worldOf(j.world);
+        return "JointHandle(index=" + std::to_string(j.id.index) +
+               ", generation=" + std::to_string(j.id.generation) +
+               (w.steppingElsewhere() || w.sw.world.isValid(j.id) ? "" : ", stale") + ")";
+      });
+
   py::class_<PyWorld>(m, "World", worldGc(),
                       "Rigid bodies carrying shapes, stepped by Quack's solver (docs/world.md). "
                       "World frame, SI units.")
@@ -719,6 +1019,141 @@ del _t, _collections
             w.changed();
           },
           py::arg("shape"), "Destroys a shape (deferred inside a callback).")
+      .def(
+          "create_joint",
+          [](py::object self, const std::string& type, py::handle a, py::handle b,
+             py::handle anchor, py::handle anchors, py::handle axis, py::handle lower,
+             py::handle upper, py::handle motorSpeed, py::handle maxMotorTorque,
+             py::handle maxMotorForce, py::handle hertz, py::handle dampingRatio, py::handle length,
+             py::handle minLength, py::handle maxLength, py::handle linearHertz,
+             py::handle angularHertz, py::handle linearDampingRatio, py::handle angularDampingRatio,
+             py::handle linearOffset, py::handle angularOffset, py::handle maxForce,
+             py::handle maxTorque, py::handle correctionFactor, py::handle target,
+             py::handle breakForce, py::handle breakTorque, bool collideConnected) {
+            PyWorld& w = worldOf(self);
+            w.checkIdle();
+            const JointType t = toJointType(type);
+            // The bodies first (handles, not names), then every other argument as the scene
+            // file's key, checked by the scene parser.
+            BodyId bodyA;
+            if (t == JointType::mouse) {
+              if (!a.is_none())
+                raiseValue("a: must be None for a mouse joint (it pulls body b to its target)");
+            } else {
+              if (a.is_none()) raiseValue(std::string("a: a ") + type + " joint needs body a");
+              bodyA = bodyId(w, a, "a");
+            }
+            const BodyId bodyB = bodyId(w, b, "b");
+            if (bodyA == bodyB) raiseValue("b: the same body as a (a joint joins two bodies)");
+            const py::handle values[] = {anchor,
+                                         anchors,
+                                         axis,
+                                         lower,
+                                         upper,
+                                         motorSpeed,
+                                         maxMotorTorque,
+                                         maxMotorForce,
+                                         hertz,
+                                         dampingRatio,
+                                         length,
+                                         minLength,
+                                         maxLength,
+                                         linearHertz,
+                                         angularHertz,
+                                         linearDampingRatio,
+                                         angularDampingRatio,
+                                         linearOffset,
+                                         angularOffset,
+                                         maxForce,
+                                         maxTorque,
+                                         correctionFactor,
+                                         target,
+                                         breakForce,
+                                         breakTorque};
+            static_assert(std::size(values) == std::size(kJointArgs));
+            nlohmann::json j = nlohmann::json::object();
+            j["type"] = type;
+            if (t != JointType::mouse) j["a"] = "a";
+            j["b"] = "b";
+            for (std::size_t i = 0; i < std::size(values); ++i) {
+              if (values[i].is_none()) continue;
+              const JointArg& arg = kJointArgs[i];
+              // Numbers through toDouble (bool and complex refused, naming the argument);
+              // NaN and infinity pass on to the parser, which names them as in a file.
+              j[arg.key] = arg.point ? toJson(values[i], arg.name)
+                                     : nlohmann::json(toDouble(values[i], arg.name));
+            }
+            j["collideConnected"] = collideConnected;
+            std::vector<SceneBody> named(2);
+            named[0].name = "a";
+            named[1].name = "b";
+            Result<SceneJoint> parsed = parseSceneJoint(j, "", named);
+            if (!parsed) raiseValue(pythonJointMessage(parsed.error().message));
+            JointDef def = parsed->def;
+            def.bodyA = bodyA;
+            def.bodyB = bodyB;
+            const JointId id = valueOrRaise(w.world().createJoint(def));
+            w.changed();
+            w.sw.joints.push_back(id);
+            return JointHandle{self, id};
+          },
+          py::arg("type"), py::arg("a"), py::arg("b"), py::kw_only(),
+          py::arg("anchor") = py::none(), py::arg("anchors") = py::none(),
+          py::arg("axis") = py::none(), py::arg("lower") = py::none(),
+          py::arg("upper") = py::none(), py::arg("motor_speed") = py::none(),
+          py::arg("max_motor_torque") = py::none(), py::arg("max_motor_force") = py::none(),
+          py::arg("hertz") = py::none(), py::arg("damping_ratio") = py::none(),
+          py::arg("length") = py::none(), py::arg("min_length") = py::none(),
+          py::arg("max_length") = py::none(), py::arg("linear_hertz") = py::none(),
+          py::arg("angular_hertz") = py::none(), py::arg("linear_damping_ratio") = py::none(),
+          py::arg("angular_damping_ratio") = py::none(), py::arg("linear_offset") = py::none(),
+          py::arg("angular_offset") = py::none(), py::arg("max_force") = py::none(),
+          py::arg("max_torque") = py::none(), py::arg("correction_factor") = py::none(),
+          py::arg("target") = py::none(), py::arg("break_force") = py::none(),
+          py::arg("break_torque") = py::none(), py::arg("collide_connected") = false,
+          "A joint of `type` (revolute, prismatic, distance, weld, wheel, motor, mouse) between "
+          "bodies a and b (quack.BodyHandle; a is None for a mouse joint), with the settings "
+          "of a scene file's joint (docs/scenes.md, \"Joints\"), in the world frame at "
+          "creation: a limit is on when lower and upper are given, a motor when "
+          "max_motor_torque (revolute, wheel) or max_motor_force (prismatic) is, a spring "
+          "when hertz is; a distance joint with min_length or max_length and no hertz is a "
+          "rope. Each type takes only its own arguments; a ValueError names the argument. "
+          "Returns a quack.JointHandle.")
+      .def(
+          "destroy_joint",
+          [](PyWorld& w, py::handle joint) {
+            w.checkIdle();
+            if (!py::isinstance<JointHandle>(joint))
+              raiseValue("joint: must be a quack.JointHandle");
+            const JointHandle& j = joint.cast<const JointHandle&>();
+            if (&worldOf(j.world) != &w) raiseValue("joint: a joint of another world");
+            if (!w.world().isValid(j.id))
+              raiseValue("joint: stale handle (the joint was destroyed)");
+            check(w.world().destroyJoint(j.id));
+            w.changed();
+            w.compact();
+          },
+          py::arg("joint"),
+          "Destroys a joint (no joint_end event; deferred inside a callback) and wakes its "
+          "bodies.")
+      .def_property_readonly(
+          "joints",
+          [](py::object self) {
+            PyWorld& w = worldOf(self);
+            w.checkIdle();
+            py::list out;
+            for (JointId id : w.world().joints())
+              out.append(JointHandle{self, id});
+            return out;
+          },
+          "Every live joint (quack.JointHandle), in the world's index order.")
+      .def_property_readonly(
+          "joint_count",
+          [](PyWorld& w) {
+            w.checkIdle();
+            return w.world().jointCount();
+          },
+          "Live joints.")
       .def_property_readonly(
           "bodies",
           [](py::object self) {
@@ -872,7 +1307,7 @@ del _t, _collections
                     py::make_tuple(ShapeHandle{self, x.*first}, ShapeHandle{self, x.*second}));
               return out;
             };
-            py::list hits, tois, outs, capped;
+            py::list hits, tois, outs, capped, jointEnds;
             for (const ContactHitEvent& h : e.hit)
               hits.append(hitTuple(m, self, h));
             for (const ToiEvent& t : e.toi)
@@ -881,12 +1316,14 @@ del _t, _collections
               outs.append(BodyHandle{self, b});
             for (BodyId b : e.toiCapped)
               capped.append(BodyHandle{self, b});
+            for (const JointEndEvent& j : e.jointEnd)
+              jointEnds.append(jointEndTuple(m, self, j));
             return m.attr("Events")(
                 pairs(e.begin, &ContactBeginEvent::shapeA, &ContactBeginEvent::shapeB),
                 pairs(e.end, &ContactEndEvent::shapeA, &ContactEndEvent::shapeB), hits,
                 pairs(e.sensorBegin, &SensorEvent::sensor, &SensorEvent::visitor),
-                pairs(e.sensorEnd, &SensorEvent::sensor, &SensorEvent::visitor), tois, outs,
-                capped);
+                pairs(e.sensorEnd, &SensorEvent::sensor, &SensorEvent::visitor), tois, outs, capped,
+                jointEnds);
           },
           "The events of the last step (quack.Events). Shapes destroyed since are stale handles.")
       .def(
@@ -938,6 +1375,24 @@ del _t, _collections
           py::arg("categories_b") = ~std::uint64_t{0},
           "fn(impact, swapped) for each quack.ToiEvent (continuous collision) between the "
           "categories, in time order; swapped as for on_hit.")
+      .def(
+          "on_joint_end",
+          [](PyWorld& w, py::function fn) {
+            w.checkIdle();
+            const std::size_t slot = w.callables.size();
+            w.callables.push_back(std::move(fn));
+            PyWorld* self = &w;
+            w.world().onJointEnd([self, slot](World&, const JointEndEvent& event) {
+              runCallback(*self, [&] {
+                if (self->callables[slot].is_none()) return;
+                py::module_ quackModule = py::module_::import("quack");
+                self->callables[slot](jointEndTuple(quackModule, selfObject(*self), event));
+              });
+            });
+          },
+          py::arg("fn"),
+          "fn(event) after each step for each quack.JointEndEvent: a joint that broke, or "
+          "went with a destroyed body (not one destroyed by destroy_joint).")
       .def(
           "get_positions",
           [](PyWorld& w, py::handle bodies) {

@@ -932,6 +932,11 @@ Result<WorldDef> parseWorld(const json& j, const std::string& path) {
 
 }  // namespace
 
+Result<SceneJoint> parseSceneJoint(const json& joint, const std::string& path,
+                                   const std::vector<SceneBody>& bodies) {
+  return parseJoint(joint, path, bodies);
+}
+
 Result<Scene> parseScene(std::string_view text, const std::string& fileName,
                          const SceneProgress& progress) {
   Parser p{fileName, {}, &progress};

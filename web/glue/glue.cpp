@@ -15,7 +15,9 @@
 #include <cstdint>
 #include <cstring>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -255,6 +257,11 @@ bool sameBits(Vec3 x, Vec3 y) {
 struct Sandbox {
   std::optional<World> world;
   std::vector<ShapeId> shapes;  // every shape ever created, by sandbox index
+  JointId mouse;                // the pointer's mouse joint while a body is dragged
+  std::vector<JointId> drive;   // the cars' wheel joints, which qk_world_drive turns
+  // The static pivot each chain hangs from, and the chain's first joint: the pivot goes
+  // when that joint has (its link fell off the world, or was cleared).
+  std::vector<std::pair<BodyId, JointId>> pivots;
 };
 Sandbox gSandbox;
 
@@ -263,6 +270,156 @@ int sandboxIndex(ShapeId id) {
     if (gSandbox.shapes[i] == id) return static_cast<int>(i);
   }
   return -1;
+}
+
+// A body with one shape, its shape recorded under the next sandbox index (so that the
+// page draws it).
+Result<BodyId> addBody(World& world, BodyType type, Vec2 position, float angle,
+                       const ShapeGeometry& geometry, const ShapeDef& shape = {}) {
+  BodyDef def;
+  def.type = type;
+  def.position = position;
+  def.angle = angle;
+  Result<BodyId> body = world.createBody(def);
+  if (!body) return body;
+  Result<ShapeId> s = world.createShape(*body, shape, geometry);
+  if (!s) {
+    (void)world.destroyBody(*body);
+    return s.error();
+  }
+  gSandbox.shapes.push_back(*s);
+  return body;
+}
+
+Result<BodyId> addBox(World& world, Vec2 position, Vec2 half, const ShapeDef& shape = {}) {
+  Result<Polygon> box = makeBox(half.x, half.y);
+  if (!box) return box.error();
+  return addBody(world, BodyType::dynamicBody, position, 0.0f, *box, shape);
+}
+
+ShapeDef material(float density, float friction) {
+  ShapeDef d;
+  d.density = density;
+  d.friction = friction;
+  return d;
+}
+
+JointDef revoluteAt(BodyId a, BodyId b, Vec2 anchor) {
+  JointDef d;
+  d.type = JointType::revolute;
+  d.bodyA = a;
+  d.bodyB = b;
+  d.anchorA = anchor;
+  return d;
+}
+
+// The drop-ins (qk_world_drop). Each returns the joints it made; a failure part way leaves
+// what was made (the world refuses only at its limits, which the page does not reach).
+
+// 20 capsule links, 0.25 m each, from a static pivot at `at`, laid level towards the middle
+// of the view so that the chain swings down.
+Result<std::vector<JointId>> addChain(World& world, Vec2 at) {
+  Result<Circle> pin = makeCircle({}, 0.08f);
+  Result<Capsule> link = makeCapsule({-0.1f, 0.0f}, {0.1f, 0.0f}, 0.05f);
+  if (!pin || !link) return fail("chain: bad shapes");
+  Result<BodyId> pivot = addBody(world, BodyType::staticBody, at, 0.0f, *pin);
+  if (!pivot) return pivot.error();
+  const float dir = at.x > 0.0f ? -1.0f : 1.0f;
+  std::vector<JointId> joints;
+  BodyId previous = *pivot;
+  for (int i = 0; i < 20; ++i) {
+    const float x = at.x + dir * 0.25f * static_cast<float>(i);
+    Result<BodyId> b = addBody(world, BodyType::dynamicBody, {x + dir * 0.125f, at.y}, 0.0f, *link,
+                               material(1.0f, 0.4f));
+    if (!b) return b.error();
+    Result<JointId> j = world.createJoint(revoluteAt(previous, *b, {x, at.y}));
+    if (!j) return j.error();
+    joints.push_back(*j);
+    previous = *b;
+  }
+  gSandbox.pivots.push_back({*pivot, joints.front()});
+  return joints;
+}
+
+// A chassis on two wheels: wheel joints on vertical axes with 5 Hz suspension springs and
+// limits, and motors held at speed 0 (brakes) until qk_world_drive turns them.
+Result<std::vector<JointId>> addCar(World& world, Vec2 at) {
+  Result<BodyId> chassis = addBox(world, at, {1.0f, 0.22f}, material(1.0f, 0.6f));
+  if (!chassis) return chassis.error();
+  Result<Circle> tyre = makeCircle({}, 0.32f);
+  if (!tyre) return tyre.error();
+  std::vector<JointId> joints;
+  for (float dx : {-0.7f, 0.7f}) {
+    const Vec2 hub = at + Vec2{dx, -0.45f};
+    Result<BodyId> wheel =
+        addBody(world, BodyType::dynamicBody, hub, 0.0f, *tyre, material(1.0f, 0.9f));
+    if (!wheel) return wheel.error();
+    JointDef d;
+    d.type = JointType::wheel;
+    d.bodyA = *chassis;
+    d.bodyB = *wheel;
+    d.anchorA = hub;
+    d.axis = {0.0f, 1.0f};
+    d.enableSpring = true;
+    d.hertz = 5.0f;
+    d.dampingRatio = 0.7f;
+    d.enableLimit = true;
+    d.lower = -0.2f;
+    d.upper = 0.2f;
+    d.enableMotor = true;
+    d.motorSpeed = 0.0f;
+    d.maxMotorTorque = 6.0f;
+    Result<JointId> j = world.createJoint(d);
+    if (!j) return j.error();
+    joints.push_back(*j);
+    gSandbox.drive.push_back(*j);
+  }
+  return joints;
+}
+
+// A ragdoll of 10 boxes about the hip at `at` (1.8 m tall), its joints revolute with limits
+// and joint friction (a motor held at speed 0 with a small torque, so that limbs come to
+// rest): the figure of tests/world/joint_world_test.cpp's addRagdoll.
+Result<std::vector<JointId>> addRagdoll(World& world, Vec2 at) {
+  struct Part {
+    Vec2 center, half;
+  };
+  const Part parts[10] = {{{0.0f, 0.35f}, {0.12f, 0.35f}},   {{0.0f, 0.85f}, {0.1f, 0.12f}},
+                          {{-0.2f, 0.45f}, {0.05f, 0.15f}},  {{0.2f, 0.45f}, {0.05f, 0.15f}},
+                          {{-0.2f, 0.15f}, {0.045f, 0.15f}}, {{0.2f, 0.15f}, {0.045f, 0.15f}},
+                          {{-0.08f, -0.2f}, {0.06f, 0.2f}},  {{0.08f, -0.2f}, {0.06f, 0.2f}},
+                          {{-0.08f, -0.6f}, {0.05f, 0.2f}},  {{0.08f, -0.6f}, {0.05f, 0.2f}}};
+  std::vector<BodyId> bodies;
+  for (const Part& p : parts) {
+    Result<BodyId> b = addBox(world, at + p.center, p.half);
+    if (!b) return b.error();
+    bodies.push_back(*b);
+  }
+  struct Link {
+    int a, b;
+    Vec2 anchor;
+    float lower, upper;
+  };
+  const Link links[9] = {{0, 1, {0.0f, 0.72f}, -0.5f, 0.5f}, {0, 2, {-0.2f, 0.6f}, -3.0f, 1.0f},
+                         {0, 3, {0.2f, 0.6f}, -1.0f, 3.0f},  {2, 4, {-0.2f, 0.3f}, -2.5f, 0.0f},
+                         {3, 5, {0.2f, 0.3f}, 0.0f, 2.5f},   {0, 6, {-0.08f, 0.0f}, -1.5f, 1.0f},
+                         {0, 7, {0.08f, 0.0f}, -1.0f, 1.5f}, {6, 8, {-0.08f, -0.4f}, 0.0f, 2.5f},
+                         {7, 9, {0.08f, -0.4f}, -2.5f, 0.0f}};
+  std::vector<JointId> joints;
+  for (const Link& l : links) {
+    JointDef d = revoluteAt(bodies[static_cast<std::size_t>(l.a)],
+                            bodies[static_cast<std::size_t>(l.b)], at + l.anchor);
+    d.enableLimit = true;
+    d.lower = l.lower;
+    d.upper = l.upper;
+    d.enableMotor = true;
+    d.motorSpeed = 0.0f;
+    d.maxMotorTorque = 0.05f;
+    Result<JointId> j = world.createJoint(d);
+    if (!j) return j.error();
+    joints.push_back(*j);
+  }
+  return joints;
 }
 
 json aabbJson(Aabb box) {
@@ -418,6 +575,9 @@ EMSCRIPTEN_KEEPALIVE const char* qk_world_reset(const char* kind) {
   if (!w) return errorAnswer(w.error().message);
   gSandbox.world.emplace(std::move(w.value()));
   gSandbox.shapes.clear();
+  gSandbox.mouse = {};
+  gSandbox.drive.clear();
+  gSandbox.pivots.clear();
   return answer({{"ok", true}});
 }
 
@@ -466,7 +626,106 @@ EMSCRIPTEN_KEEPALIVE int qk_world_cull(double y) {
       removed += world.destroyBody(body) ? 1 : 0;
     }
   }
+  // A chain's pivot goes with the chain (its first joint went with the first link).
+  std::erase_if(gSandbox.pivots, [&](const std::pair<BodyId, JointId>& p) {
+    if (world.isValid(p.second)) return false;
+    (void)world.destroyBody(p.first);
+    return true;
+  });
   return removed;
+}
+
+/// Grabs the dynamic body under the world point (x, y) (within `radius` metres, the page's
+/// few pixels of slack): a mouse joint on it at that point, pulling towards the pointer
+/// with a 5 Hz spring damped at 0.7 and at most 1,000 times the body's weight, enough to
+/// lift what hangs from it (a chain, a ragdoll) and still bounded, so that a body dragged
+/// into a wall presses on it instead of being shot through (Box2D's samples bound their
+/// mouse joint by the body's mass in the same way). Releases an earlier grab.
+/// Returns {"grabbed": shape index} or {"grabbed": null} (nothing dynamic there), or
+/// {"error"}.
+EMSCRIPTEN_KEEPALIVE const char* qk_world_grab(double x, double y, double radius) {
+  if (!gSandbox.world) return errorAnswer("no world: call qk_world_reset first");
+  World& world = *gSandbox.world;
+  if (world.isValid(gSandbox.mouse)) (void)world.destroyJoint(gSandbox.mouse);
+  gSandbox.mouse = {};
+  Result<Circle> pick = makeCircle({}, static_cast<float>(radius));
+  if (!pick) return errorAnswer("radius: " + pick.error().message);
+  const Vec2 at{static_cast<float>(x), static_cast<float>(y)};
+  Result<std::vector<ShapeOverlap>> hits = world.overlapShape(*pick, makeTransform(at, 0.0f));
+  if (!hits) return errorAnswer(hits.error().message);
+  // The deepest hit: the shape the point is inside, rather than one just within the slack.
+  const ShapeOverlap* best = nullptr;
+  for (const ShapeOverlap& hit : *hits) {
+    if (world.bodyType(hit.body) != BodyType::dynamicBody) continue;
+    if (best == nullptr || hit.depth > best->depth) best = &hit;
+  }
+  if (best == nullptr) return answer({{"grabbed", nullptr}});
+  JointDef d;
+  d.type = JointType::mouse;
+  d.bodyB = best->body;
+  d.anchorA = at;
+  d.target = at;
+  d.hertz = 5.0f;
+  d.dampingRatio = 0.7f;
+  d.maxForce = 1000.0f * world.mass(best->body) * length(world.def().gravity);
+  Result<JointId> j = world.createJoint(d);
+  if (!j) return errorAnswer(j.error().message);
+  gSandbox.mouse = *j;
+  return answer({{"grabbed", sandboxIndex(best->shape)}});
+}
+
+/// Moves the grab's target to the world point (x, y). Returns 1, or 0 when nothing is
+/// grabbed (or the grabbed body is gone).
+EMSCRIPTEN_KEEPALIVE int qk_world_drag(double x, double y) {
+  if (!gSandbox.world || !gSandbox.world->isValid(gSandbox.mouse)) return 0;
+  return gSandbox.world->setMouseTarget(gSandbox.mouse,
+                                        {static_cast<float>(x), static_cast<float>(y)})
+             ? 1
+             : 0;
+}
+
+/// Lets go: destroys the grab's mouse joint. Returns 1, or 0 when nothing was grabbed.
+EMSCRIPTEN_KEEPALIVE int qk_world_release() {
+  if (!gSandbox.world) return 0;
+  const bool held = gSandbox.world->isValid(gSandbox.mouse);
+  if (held) (void)gSandbox.world->destroyJoint(gSandbox.mouse);
+  gSandbox.mouse = {};
+  return held ? 1 : 0;
+}
+
+/// Drops in a jointed thing at the world point (x, y): "chain" (20 links from a static
+/// pivot there), "car" (chassis at (x, y) on two sprung, motored wheels) or "ragdoll" (hip
+/// at (x, y)). Returns {"joints": how many it made, "shapes": the sandbox indices of its
+/// shapes, first the first body's, "bodies": the world's body count} or {"error"}.
+EMSCRIPTEN_KEEPALIVE const char* qk_world_drop(const char* kind, double x, double y) {
+  if (!gSandbox.world) return errorAnswer("no world: call qk_world_reset first");
+  World& world = *gSandbox.world;
+  const Vec2 at{static_cast<float>(x), static_cast<float>(y)};
+  const std::string k = kind;
+  const std::size_t firstShape = gSandbox.shapes.size();
+  Result<std::vector<JointId>> made = fail("kind: \"" + k + "\" (expected chain, car, ragdoll)");
+  if (k == "chain") made = addChain(world, at);
+  if (k == "car") made = addCar(world, at);
+  if (k == "ragdoll") made = addRagdoll(world, at);
+  if (!made) return errorAnswer(made.error().message);
+  json shapes = json::array();
+  for (std::size_t i = firstShape; i < gSandbox.shapes.size(); ++i)
+    shapes.push_back(i);
+  return answer({{"joints", made->size()}, {"shapes", shapes}, {"bodies", world.bodyCount()}});
+}
+
+/// Turns every car's wheel motors at `speed` rad/s (negative: clockwise, so a car drives to
+/// the right; 0 brakes). Returns how many wheel joints it set.
+EMSCRIPTEN_KEEPALIVE int qk_world_drive(double speed) {
+  if (!gSandbox.world) return 0;
+  World& world = *gSandbox.world;
+  std::erase_if(gSandbox.drive, [&](JointId j) { return !world.isValid(j); });
+  int set = 0;
+  for (JointId j : gSandbox.drive) {
+    const JointDef& d = world.jointDef(j);
+    set += world.setJointMotor(j, true, static_cast<float>(speed), d.maxMotorTorque) ? 1 : 0;
+  }
+  return set;
 }
 
 /// Wakes every sleeping body with a shape within `radius` metres of the world point (x, y)
@@ -557,8 +816,28 @@ EMSCRIPTEN_KEEPALIVE const char* qk_world_state() {
     contact["b"] = sandboxIndex(c.shapeB);
     contacts.push_back(contact);
   }
+  // Every joint as the replays draw it: body A's centre, its anchor, B's anchor, B's
+  // centre (a mouse joint: the target twice), and the grab's target and grabbed point.
+  json joints = json::array();
+  for (JointId j : world.joints()) {
+    const JointDef& d = world.jointDef(j);
+    const auto [onA, onB] = world.jointAnchors(j);
+    const Vec2 centreA = d.type == JointType::mouse ? onA : world.worldCenterOfMass(d.bodyA);
+    joints.push_back(
+        {{"type", toString(d.type)},
+         {"line",
+          {toJson(centreA), toJson(onA), toJson(onB), toJson(world.worldCenterOfMass(d.bodyB))}}});
+  }
+  json mouse = nullptr;
+  if (world.isValid(gSandbox.mouse)) {
+    const auto [target, grabbed] = world.jointAnchors(gSandbox.mouse);
+    mouse = {{"target", toJson(target)}, {"point", toJson(grabbed)}};
+  }
   BroadPhaseStats stats = bp.stats();
   return answer({{"shapes", shapes},
+                 {"joints", joints},
+                 {"jointCount", world.jointCount()},
+                 {"mouse", mouse},
                  {"fatBoxes", fat},
                  {"treeBoxes", treeBoxes},
                  {"contacts", contacts},

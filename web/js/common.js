@@ -25,6 +25,12 @@ export async function loadQuack() {
     worldStep: (dt, steps) => call('qk_world_step', [dt, steps], ['number', 'number']),
     worldState: () => call('qk_world_state', [], []),
     worldWake: (pos, radius) => call('qk_world_wake', [pos[0], pos[1], radius], ['number', 'number', 'number']),
+    // Joints: a mouse joint for dragging, the jointed drop-ins and the cars' motors.
+    worldGrab: (pos, radius) => call('qk_world_grab', [pos[0], pos[1], radius], ['number', 'number', 'number']),
+    worldDrag: (pos) => module.ccall('qk_world_drag', 'number', ['number', 'number'], [pos[0], pos[1]]),
+    worldRelease: () => module.ccall('qk_world_release', 'number', [], []),
+    worldDrop: (kind, pos) => call('qk_world_drop', [kind, pos[0], pos[1]], ['string', 'number', 'number']),
+    worldDrive: (speed) => module.ccall('qk_world_drive', 'number', ['number'], [speed]),
   };
 }
 

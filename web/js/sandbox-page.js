@@ -1,6 +1,7 @@
-// Page 2: a sandbox World. Click to drop shapes, or on a sleeping body to wake it; the page
-// draws the bodies (sleeping ones faded), the fat boxes of the broad phase, the touching
-// contacts and flashes the events of each step.
+// Page 2: a sandbox World. Click to drop shapes, or on a sleeping body to wake it; press on
+// a body and drag to pull it with a mouse joint; drop in a chain, a car (driven with the
+// arrow keys) or a ragdoll. The page draws the bodies (sleeping ones faded), the joints, the
+// fat boxes of the broad phase, the touching contacts and flashes the events of each step.
 import { loadQuack, View, drawShape, fmt } from './common.js';
 import { PRESETS } from './shapes.js';
 
@@ -10,11 +11,25 @@ const DT = 1 / 60;
 const SLEEPING_ALPHA = 0.35;
 // How far from a click (pixels) a sleeping body still counts as clicked.
 const PICK_PIXELS = 3;
+// How far (pixels) the pointer must move while pressed before a press becomes a drag: a
+// press that stays put is a click (drop a shape, or wake a sleeping body).
+const DRAG_PIXELS = 4;
+// The cars' wheel speed while an arrow key (or drive button) is held, rad/s: 12 rad/s on
+// 0.32 m wheels is about 4 m/s.
+const DRIVE_SPEED = 12;
+// Where the drop-ins land: the chain hangs from the top left (laid level, it swings down
+// across the view), the car stands on the ground at the left, the ragdoll falls in the middle.
+const DROP_AT = { chain: [-2.5, 4.4], car: [-3.5, -2.7], ragdoll: [0.5, 2.5] };
+const JOINT_COLOUR = '#2a9d8f';
+const MOUSE_COLOUR = '#e76f51';
 const PALETTE = ['#4c72b0', '#dd8452', '#55a868', '#c44e52', '#8172b3', '#937860', '#da8bc3', '#8c8c8c'];
 
 let quack;
 let view;
 const state = { paused: false, events: [], flashes: [], counts: [0, 0, 0], world: null, lastRain: 0 };
+// The pointer: where it was pressed (canvas pixels and world), whether that became a drag
+// (and grabbed a body), and whether the click that follows a drag is to be ignored.
+const pointer = { down: null, dragging: false, grabbed: null, swallowClick: false };
 
 function reset() {
   const r = quack.worldReset($('broadphase').value);
@@ -45,6 +60,10 @@ function drop(name, pos, angle = Math.random() * 3) {
 
 // A click wakes the sleeping bodies under it, or, when there is none, drops a shape.
 function click(pos) {
+  if (pointer.swallowClick) {
+    pointer.swallowClick = false;
+    return;
+  }
   const r = quack.worldWake(pos, PICK_PIXELS / view.scale);
   if (r.error) throw new Error(r.error);
   if (r.woken.length > 0) {
@@ -54,6 +73,62 @@ function click(pos) {
     drop($('drop-shape').value, pos);
   }
   state.world = quack.worldState();
+}
+
+// Press, drag, release: past DRAG_PIXELS a press grabs the dynamic body under the point it
+// was pressed at (a mouse joint there, qk_world_grab) and pulls it towards the pointer
+// until the button is released.
+function pointerDown(e) {
+  if (e.button !== 0) return;
+  pointer.down = { x: e.offsetX, y: e.offsetY, world: view.toWorld(e.offsetX, e.offsetY) };
+  pointer.dragging = false;
+  pointer.grabbed = null;
+  view.canvas.setPointerCapture(e.pointerId);
+}
+
+function pointerMove(e) {
+  if (!pointer.down) return;
+  if (!pointer.dragging) {
+    if (Math.hypot(e.offsetX - pointer.down.x, e.offsetY - pointer.down.y) < DRAG_PIXELS) return;
+    pointer.dragging = true;
+    const r = quack.worldGrab(pointer.down.world, PICK_PIXELS / view.scale);
+    if (r.error) throw new Error(r.error);
+    pointer.grabbed = r.grabbed;
+    if (r.grabbed !== null) logEvent(`${state.world.time.toFixed(2)} grab  ${r.grabbed}`);
+  }
+  if (pointer.grabbed !== null) quack.worldDrag(view.toWorld(e.offsetX, e.offsetY));
+  state.world = quack.worldState();
+}
+
+function pointerUp() {
+  if (!pointer.down) return;
+  if (pointer.grabbed !== null) {
+    quack.worldRelease();
+    state.world = quack.worldState();
+    // The click that ends the drag is not a drop.
+    pointer.swallowClick = true;
+  }
+  pointer.down = null;
+  pointer.dragging = false;
+  pointer.grabbed = null;
+}
+
+// Drops in a chain, a car or a ragdoll (qk_world_drop) at its place; returns the answer
+// ({joints, shapes, bodies}).
+function dropJointed(kind, at = DROP_AT[kind]) {
+  const r = quack.worldDrop(kind, at);
+  if (r.error) throw new Error(r.error);
+  logEvent(`${state.world.time.toFixed(2)} ${kind}: ${r.shapes.length} bodies, ${r.joints} joints`);
+  showEvents();
+  state.world = quack.worldState();
+  return r;
+}
+
+// Sets the cars' wheel motors: -1 drives right (clockwise wheels), 1 left, 0 brakes.
+function drive(direction) {
+  const wheels = quack.worldDrive(-direction * DRIVE_SPEED);
+  $('drive-state').textContent = direction === 0 ? 'braked' : direction > 0 ? 'driving right' : 'driving left';
+  return wheels;
 }
 
 // Removes every dynamic body (the ground, walls and obstacles stay).
@@ -103,6 +178,7 @@ function draw() {
     drawShape(view, s, { pos: s.pos, angle: s.angle }, `${colour}55`, colour);
   }
   ctx.globalAlpha = 1;
+  if ($('show-joints').checked) drawJoints(w);
   if ($('show-boxes').checked) {
     ctx.save();
     ctx.strokeStyle = 'rgba(40,160,60,0.8)';
@@ -155,7 +231,31 @@ function draw() {
   $('bp').textContent = `${bp.kind}, ${bp.proxies} proxies` +
     (bp.hasTree ? `, tree height ${bp.height}, area ratio ${fmt(bp.areaRatio, 3)}` : '');
   $('contacts').textContent = `${w.contacts.length} / ${w.contactCount}`;
+  $('joint-count').textContent = String(w.jointCount);
   $('event-counts').textContent = state.counts.join(' / ');
+}
+
+// Every joint as the replays draw it (src/io/replay_page.hpp): body A's centre, its
+// anchor, B's anchor, B's centre, in teal, with dots at the anchors. The mouse joint of a
+// drag is drawn apart: a line from the pointer's target to the grabbed point.
+function drawJoints(w) {
+  const { ctx } = view;
+  ctx.save();
+  ctx.lineWidth = 1.5;
+  for (const j of w.joints) {
+    if (j.type === 'mouse') continue;
+    view.path(j.line, false);
+    ctx.strokeStyle = JOINT_COLOUR;
+    ctx.stroke();
+    view.dot(j.line[1], JOINT_COLOUR, 2.5);
+    view.dot(j.line[2], JOINT_COLOUR, 2.5);
+  }
+  if (w.mouse) {
+    view.line(w.mouse.target, w.mouse.point, MOUSE_COLOUR, 2, [5, 3]);
+    view.dot(w.mouse.point, MOUSE_COLOUR, 3.5);
+    view.dot(w.mouse.target, MOUSE_COLOUR, 2);
+  }
+  ctx.restore();
 }
 
 function frame(now) {
@@ -182,6 +282,14 @@ async function main() {
   for (const name of Object.keys(PRESETS)) $('drop-shape').add(new Option(name, name));
   reset();
   view.canvas.addEventListener('click', (e) => click(view.toWorld(e.offsetX, e.offsetY)));
+  view.canvas.addEventListener('pointerdown', pointerDown);
+  view.canvas.addEventListener('pointermove', pointerMove);
+  view.canvas.addEventListener('pointerup', pointerUp);
+  view.canvas.addEventListener('pointercancel', pointerUp);
+  for (const kind of Object.keys(DROP_AT)) $(`drop-${kind}`).addEventListener('click', () => dropJointed(kind));
+  $('drive-left').addEventListener('click', () => drive(-1));
+  $('brake').addEventListener('click', () => drive(0));
+  $('drive-right').addEventListener('click', () => drive(1));
   $('pause').addEventListener('click', togglePause);
   $('step').addEventListener('click', () => { if (!state.paused) togglePause(); step(); });
   $('reset').addEventListener('click', reset);
@@ -189,6 +297,15 @@ async function main() {
   $('broadphase').addEventListener('change', reset);
   window.addEventListener('keydown', (e) => {
     if (e.key === ' ') { e.preventDefault(); togglePause(); }
+    // Held arrows drive the cars (a key repeat sets the same speed again), unless they
+    // are moving a caret in a number field.
+    if ((e.key === 'ArrowRight' || e.key === 'ArrowLeft') && !(e.target instanceof HTMLInputElement)) {
+      e.preventDefault();
+      drive(e.key === 'ArrowRight' ? 1 : -1);
+    }
+  });
+  window.addEventListener('keyup', (e) => {
+    if (e.key === 'ArrowRight' || e.key === 'ArrowLeft') drive(0);
   });
   $('status').textContent = 'ready';
   window.quackSandbox = {
@@ -201,6 +318,10 @@ async function main() {
     /** Steps n times at once (pause first, so that only these steps run). */
     run: (n) => { for (let i = 0; i < n; ++i) step(); },
     clear,
+    /** Drops in a 'chain', 'car' or 'ragdoll' (at its usual place, or at `at`). */
+    dropJointed,
+    /** Drives the cars: 1 right, -1 left, 0 brake; returns the wheel joints set. */
+    drive,
     /** Where the world point p is drawn, in canvas pixels. */
     toCanvas: (p) => view.toCanvas(p),
     togglePause,

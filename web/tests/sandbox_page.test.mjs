@@ -147,3 +147,146 @@ test('resting boxes fall asleep and are drawn faded; a click wakes the one it hi
   await page.evaluate(() => window.quackSandbox.togglePause());
   assert.deepEqual(errors, []);
 });
+
+// ---- joints: dragging with a mouse joint, the chain, car and ragdoll drop-ins ----------
+
+const pauseSandbox = () => page.evaluate(() => {
+  if (!window.quackSandbox.state().paused) window.quackSandbox.togglePause();
+});
+const resumeSandbox = () => page.evaluate(() => {
+  if (window.quackSandbox.state().paused) window.quackSandbox.togglePause();
+});
+const shapeAt = (s, index) => s.world.shapes.find((x) => x.index === index);
+// Page coordinates of the world point p (the canvas's place, its border, then the view).
+async function pagePoint(p) {
+  const [cx, cy] = await page.evaluate((q) => window.quackSandbox.toCanvas(q), p);
+  const box = await page.locator('#world').boundingBox();
+  const border = await page.$eval('#world', (c) => [c.clientLeft, c.clientTop]);
+  return [box.x + border[0] + cx, box.y + border[1] + cy];
+}
+
+test('pressing on a body and dragging pulls it towards the pointer with a mouse joint', async () => {
+  await page.click('#reset');
+  await pauseSandbox();
+  await page.evaluate(() => window.quackSandbox.clear());
+  const index = await page.evaluate(() => window.quackSandbox.drop('box', [0, -2.9], 0));
+  await page.evaluate(() => window.quackSandbox.run(30));  // settles on the ground
+  let s = await sandbox();
+  const start = shapeAt(s, index).pos;
+  const bodies = s.world.bodies;
+  assert.equal(s.world.jointCount, 0);
+  assert.equal(s.world.mouse, null);
+  // Press on the box's centre and drag 1.5 m right and 1.2 m up (60 pixels a metre), to a
+  // place clear of the obstacles.
+  const [px, py] = await pagePoint(start);
+  await page.mouse.move(px, py);
+  await page.mouse.down();
+  await page.mouse.move(px + 90, py - 72, { steps: 8 });
+  s = await sandbox();
+  assert.equal(s.world.jointCount, 1);
+  assert.deepEqual(s.world.joints.map((j) => j.type), ['mouse']);
+  const target = s.world.mouse.target;
+  assert.ok(Math.abs(target[0] - (start[0] + 1.5)) < 0.05 && Math.abs(target[1] - (start[1] + 1.2)) < 0.05,
+    `target ${target} is not where the pointer is`);
+  // The grabbed point is where the press was: the box's centre, until it moves.
+  assert.ok(Math.hypot(s.world.mouse.point[0] - start[0], s.world.mouse.point[1] - start[1]) < 0.05);
+  // The mouse joint is drawn (the picture changes when joints are hidden). The box is set
+  // directly: a click on it now would go to the canvas, which holds the pointer.
+  const showJoints = (on) => page.$eval('#show-joints', (c, v) => { c.checked = v; }, on);
+  await sleep(100);
+  const withJoint = await snapshot(page, 'world');
+  await showJoints(false);
+  await sleep(100);
+  assert.notEqual(await snapshot(page, 'world'), withJoint, 'the mouse joint did not draw');
+  await showJoints(true);
+  await page.evaluate(() => window.quackSandbox.run(90));
+  s = await sandbox();
+  const end = shapeAt(s, index).pos;
+  // Pulled towards the pointer: up and to the right, and there within 1.5 s (the 5 Hz
+  // spring's sag under the box's weight is g / (2 pi 5 Hz)^2 = 1 cm).
+  assert.ok(end[0] > start[0] + 1 && end[1] > start[1] + 0.8,
+    `the box went from ${start} to ${end}, not towards ${target}`);
+  assert.ok(Math.hypot(end[0] - target[0], end[1] - target[1]) < 0.05, `the box stopped at ${end}`);
+  await page.mouse.up();
+  s = await sandbox();
+  assert.equal(s.world.jointCount, 0, 'releasing did not destroy the mouse joint');
+  assert.equal(s.world.mouse, null);
+  assert.equal(s.world.bodies, bodies, 'the release dropped a shape');
+  // Let go, it falls.
+  await page.evaluate(() => window.quackSandbox.run(30));
+  assert.ok(shapeAt(await sandbox(), index).pos[1] < end[1] - 0.5);
+  // A drag that starts on empty space grabs nothing.
+  const [ex, ey] = await pagePoint([-4, 3.5]);
+  await page.mouse.move(ex, ey);
+  await page.mouse.down();
+  await page.mouse.move(ex + 60, ey, { steps: 4 });
+  assert.equal((await sandbox()).world.jointCount, 0);
+  await page.mouse.up();
+  assert.deepEqual(errors, []);
+  await resumeSandbox();
+});
+
+test('the buttons drop in a chain, a car and a ragdoll, with their joints', async () => {
+  await page.click('#reset');
+  await pauseSandbox();
+  await page.evaluate(() => window.quackSandbox.clear());
+  const added = { chain: [21, 20], car: [3, 2], ragdoll: [10, 9] };  // bodies, joints
+  for (const [kind, [bodies, joints]] of Object.entries(added)) {
+    const before = (await sandbox()).world;
+    await page.click(`#drop-${kind}`);
+    const after = (await sandbox()).world;
+    assert.equal(after.bodies, before.bodies + bodies, kind);
+    assert.equal(after.jointCount, before.jointCount + joints, kind);
+    assert.equal(after.joints.length, after.jointCount);
+    assert.equal(await page.textContent('#joint-count'), String(after.jointCount));
+  }
+  const kinds = (await sandbox()).world.joints.map((j) => j.type);
+  assert.equal(kinds.filter((t) => t === 'revolute').length, 29);
+  assert.equal(kinds.filter((t) => t === 'wheel').length, 2);
+  // Two seconds on, every joint still holds its bodies together: the revolute joints'
+  // two anchors coincide (within their softness), and the chain has swung down.
+  await page.evaluate(() => window.quackSandbox.run(120));
+  const w = (await sandbox()).world;
+  assert.equal(w.jointCount, 31);
+  for (const j of w.joints.filter((x) => x.type === 'revolute')) {
+    const [a, b] = [j.line[1], j.line[2]];
+    assert.ok(Math.hypot(a[0] - b[0], a[1] - b[1]) < 0.05, `a joint came apart: ${a} ${b}`);
+  }
+  const chainEnd = w.joints[19].line[3];  // the last link's centre
+  assert.ok(chainEnd[1] < 4.4 - 2, `the chain did not swing down (its end is at ${chainEnd})`);
+  // The joints are drawn.
+  await sleep(100);
+  const withJoints = await snapshot(page, 'world');
+  await page.uncheck('#show-joints');
+  await sleep(100);
+  assert.notEqual(await snapshot(page, 'world'), withJoints, 'the joints did not draw');
+  await page.check('#show-joints');
+  assert.deepEqual(errors, []);
+  await resumeSandbox();
+});
+
+test('a car drives right while the right arrow is held, and left with the button', async () => {
+  await page.click('#reset');
+  await pauseSandbox();
+  await page.evaluate(() => window.quackSandbox.clear());
+  const car = await page.evaluate(() => window.quackSandbox.dropJointed('car'));
+  const chassis = car.shapes[0];
+  await page.evaluate(() => window.quackSandbox.run(60));  // lands on its springs, braked
+  const x0 = shapeAt(await sandbox(), chassis).pos[0];
+  await page.evaluate(() => window.quackSandbox.run(60));
+  assert.ok(Math.abs(shapeAt(await sandbox(), chassis).pos[0] - x0) < 0.05, 'the braked car rolled');
+  await page.keyboard.down('ArrowRight');
+  assert.equal(await page.textContent('#drive-state'), 'driving right');
+  await page.evaluate(() => window.quackSandbox.run(90));
+  await page.keyboard.up('ArrowRight');
+  assert.equal(await page.textContent('#drive-state'), 'braked');
+  const x1 = shapeAt(await sandbox(), chassis).pos[0];
+  assert.ok(x1 > x0 + 2, `the car went from x = ${x0} to ${x1} in 1.5 s`);
+  await page.click('#drive-left');
+  await page.evaluate(() => window.quackSandbox.run(90));
+  await page.click('#brake');
+  const x2 = shapeAt(await sandbox(), chassis).pos[0];
+  assert.ok(x2 < x1 - 1, `the car did not back up (x = ${x1} then ${x2})`);
+  assert.deepEqual(errors, []);
+  await resumeSandbox();
+});

@@ -12,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "quack/core/result.hpp"
 #include "quack/world/world.hpp"
 
@@ -82,6 +84,14 @@ struct Scene {
   std::vector<SceneBody> bodies;
   std::vector<SceneJoint> joints;
 };
+
+/// One entry of a scene's "joints" list, checked as parseScene checks it (docs/scenes.md,
+/// "Joints"): its "a" and "b" name bodies of `bodies`, and each message starts with `path`
+/// and the key (`joints[2].hertz: must be >= 0`). Other
+/// front ends (the Python module's World.create_joint) call it so that a joint means the
+/// same wherever it is made.
+Result<SceneJoint> parseSceneJoint(const nlohmann::json& joint, const std::string& path,
+                                   const std::vector<SceneBody>& bodies);
 
 /// Progress of a long scene operation: `done` of `total` bodies (total 0: not known yet).
 /// Return false to stop; the operation then fails with "interrupted".
