@@ -1,6 +1,5 @@
 #include "quack/collision/gjk.hpp"
 
-#include <bit>
 #include <cstdint>
 #include <limits>
 #include <type_traits>
@@ -262,9 +261,8 @@ GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, Transform aFromB, GjkCac
       const float side = dot(n, v[0].w);
       onEdge = (side < 0.0f) | (side > 0.0f);
       // -n when side < 0, by flipping the sign bits (a select, not a branch).
-      const std::uint32_t flip = std::bit_cast<std::uint32_t>(side) & 0x80000000u;
-      dir = {std::bit_cast<float>(std::bit_cast<std::uint32_t>(n.x) ^ flip),
-             std::bit_cast<float>(std::bit_cast<std::uint32_t>(n.y) ^ flip)};
+      const std::uint32_t flip = floatBits(side) & 0x80000000u;
+      dir = {bitsFloat(floatBits(n.x) ^ flip), bitsFloat(floatBits(n.y) ^ flip)};
     }
     if (!onEdge) dir = normalizeWithLength(vPoint, vLength);
     run.direction = dir;

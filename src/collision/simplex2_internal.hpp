@@ -4,8 +4,8 @@
 // indices only) and solves it inline; both go through these functions, so they form the
 // same values in the same order and give the same bits.
 
-#include <bit>
 #include <cstdint>
+#include <cstring>
 
 #include "quack/math/vec2.hpp"
 
@@ -19,12 +19,24 @@ namespace quack::detail {
   return ((a > 0.0f) & (b > 0.0f)) | ((a < 0.0f) & (b < 0.0f));
 }
 
+// A float's bits and back. std::memcpy, not std::bit_cast, which emscripten 3.1.6's libc++
+// (the web build) lacks; the compilers make either one register move.
+[[gnu::always_inline]] inline std::uint32_t floatBits(float x) noexcept {
+  std::uint32_t bits = 0;
+  std::memcpy(&bits, &x, sizeof bits);
+  return bits;
+}
+[[gnu::always_inline]] inline float bitsFloat(std::uint32_t bits) noexcept {
+  float x = 0.0f;
+  std::memcpy(&x, &bits, sizeof x);
+  return x;
+}
+
 // c ? x : y by masks: the compilers otherwise branch on c where GJK's pairs make it go
 // either way at random (which axis of a segment is longer, which end is nearer).
 [[gnu::always_inline]] inline float selectf(bool c, float x, float y) noexcept {
   const std::uint32_t mask = 0u - static_cast<std::uint32_t>(c);
-  return std::bit_cast<float>((std::bit_cast<std::uint32_t>(x) & mask) |
-                              (std::bit_cast<std::uint32_t>(y) & ~mask));
+  return bitsFloat((floatBits(x) & mask) | (floatBits(y) & ~mask));
 }
 [[gnu::always_inline]] inline Vec2 selectv(bool c, Vec2 x, Vec2 y) noexcept {
   return {selectf(c, x.x, y.x), selectf(c, x.y, y.y)};
