@@ -4,6 +4,7 @@
 // indices only) and solves it inline; both go through these functions, so they form the
 // same values in the same order and give the same bits.
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 
@@ -64,7 +65,9 @@ struct SegmentSolve {
   // Formed whatever the outcome (a division by zero when ee is, whose value goes unused):
   // selecting the outcome afterwards costs no branch.
   Vec2 p0 = a - (dot(a, r.edge) / r.edgeSq) * r.edge;
-  bool useX = absf(r.edge.x) >= absf(r.edge.y);
+  // std::fabs, not absf: the same comparison (only the sign of a zero or NaN differs), and
+  // a mask where absf compiles to a branch.
+  bool useX = std::fabs(r.edge.x) >= std::fabs(r.edge.y);
   r.mu = selectf(useX, a.x - b.x, a.y - b.y);
   r.c1 = selectf(useX, p0.x - b.x, p0.y - b.y);
   r.c2 = selectf(useX, a.x - p0.x, a.y - p0.y);
