@@ -52,10 +52,9 @@ Vec2 normalizeWithLength(Vec2 v, float len) noexcept {
 
 // closestDirection's normalize(leftPerp(edge)) for a solved edge: the squared length of
 // leftPerp(edge) is the solve's dot(edge, edge) (the same two products, added in the other
-// order, so the same float), and the short-edge test is normalize's, by a select.
+// order, so the same float).
 [[gnu::always_inline]] inline Vec2 edgeNormal(const SegmentSolve& r) noexcept {
-  const float len = std::sqrt(r.edgeSq);
-  return selectv(len < kNormalizeEpsilon, Vec2{}, (1.0f / len) * leftPerp(r.edge));
+  return normalizeWithLength(leftPerp(r.edge), std::sqrt(r.edgeSq));
 }
 
 // The edge ij of the loop's simplex (i < j: the kept vertices stay in insertion order) as
@@ -175,7 +174,8 @@ GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, Transform aFromB, GjkCac
       int j = 2;
       // Both normals are formed before the choice, so that their square roots and
       // divisions overlap the solves' instead of waiting for the comparison.
-      normal = selectv(take1, edgeNormal(r1), edgeNormal(r0));
+      const Vec2 normals[2] = {edgeNormal(r0), edgeNormal(r1)};
+      normal = normals[static_cast<int>(take1)];
       SegmentSolve r2;
       if (t.faces[2]) {
         r2 = solveSegment(v[0].w, v[1].w);
@@ -260,9 +260,10 @@ GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, Transform aFromB, GjkCac
       const Vec2 n = normal;
       const float side = dot(n, v[0].w);
       onEdge = (side < 0.0f) | (side > 0.0f);
-      // -n when side < 0, by flipping the sign bits (a select, not a branch).
-      const std::uint32_t flip = floatBits(side) & 0x80000000u;
-      dir = {bitsFloat(floatBits(n.x) ^ flip), bitsFloat(floatBits(n.y) ^ flip)};
+      // -n when side < 0 (exactly: a product with -1), by a table, not a branch.
+      constexpr float kSign[2] = {1.0f, -1.0f};
+      const float sign = kSign[static_cast<int>(side < 0.0f)];
+      dir = {sign * n.x, sign * n.y};
     }
     if (!onEdge) dir = normalizeWithLength(vPoint, vLength);
     run.direction = dir;

@@ -67,16 +67,25 @@ struct SegmentSolve {
   Vec2 p0 = a - (dot(a, r.edge) / r.edgeSq) * r.edge;
   // std::fabs, not absf: the same comparison (only the sign of a zero or NaN differs), and
   // a mask where absf compiles to a branch.
-  bool useX = std::fabs(r.edge.x) >= std::fabs(r.edge.y);
-  r.mu = selectf(useX, a.x - b.x, a.y - b.y);
-  r.c1 = selectf(useX, p0.x - b.x, p0.y - b.y);
-  r.c2 = selectf(useX, a.x - p0.x, a.y - p0.y);
+  const bool useX = std::fabs(r.edge.x) >= std::fabs(r.edge.y);
+  // The axis, and below the closest point, are picked by indexing a small table rather
+  // than by branches (which GJK's pairs take at random) or bit masks (a dozen moves
+  // between the float and integer registers a segment).
+  const float coords[3][2] = {{a.x, a.y}, {b.x, b.y}, {p0.x, p0.y}};
+  const int axis = static_cast<int>(!useX);  // arithmetic on the bools: no branch
+  const float pa = coords[0][axis];
+  const float pb = coords[1][axis];
+  const float pp = coords[2][axis];
+  r.mu = pa - pb;
+  r.c1 = pp - pb;
+  r.c2 = pa - pp;
   const bool degenerate = r.edgeSq == 0.0f;  // a and b coincide (to float): keep a
   const bool towardA = sameSign(r.mu, r.c1);
   r.inside = !degenerate & towardA & sameSign(r.mu, r.c2);
   // Outside (or on an end of) the segment: the nearer end is closest.
   r.atA = degenerate | towardA;
-  r.closest = selectv(r.inside, p0, selectv(r.atA, a, b));
+  const int nearest = 2 * static_cast<int>(r.inside) + static_cast<int>(!r.inside & !r.atA);
+  r.closest = {coords[nearest][0], coords[nearest][1]};
   return r;
 }
 
