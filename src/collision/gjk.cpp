@@ -98,7 +98,7 @@ Simplex2 toSimplex2(const GjkRun& run, const ShapeProxy& a, const ShapeProxy& b,
 }
 
 template <class Observer>
-GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, Transform aFromB, GjkCache* cache,
+GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, const Transform& aFromB, GjkCache* cache,
               float earlyOutRadius, Observer& observer) noexcept {
   GjkRun run;
   GjkVertex* v = run.vertices;
@@ -306,10 +306,10 @@ GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, Transform aFromB, GjkCac
   return run;
 }
 
-template GjkRun runGjk<NoGjkObserver>(const ShapeProxy&, const ShapeProxy&, Transform, GjkCache*,
-                                      float, NoGjkObserver&) noexcept;
-template GjkRun runGjk<GjkRecorder>(const ShapeProxy&, const ShapeProxy&, Transform, GjkCache*,
-                                    float, GjkRecorder&) noexcept;
+template GjkRun runGjk<NoGjkObserver>(const ShapeProxy&, const ShapeProxy&, const Transform&,
+                                      GjkCache*, float, NoGjkObserver&) noexcept;
+template GjkRun runGjk<GjkRecorder>(const ShapeProxy&, const ShapeProxy&, const Transform&,
+                                    GjkCache*, float, GjkRecorder&) noexcept;
 
 namespace {
 
