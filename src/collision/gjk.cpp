@@ -107,6 +107,23 @@ GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, const Transform& aFromB,
     if constexpr (!std::is_same_v<Observer, NoGjkObserver>) observer.onPass(run, aFromB, support);
   };
 
+  // supportMinkowski, with the proxies' points and counts and the transform read once:
+  // the loop's stores into the run may alias them as far as the compiler knows (an int is
+  // an int), and it would load them again for every search.
+  const Vec2* const pointsA = a.points();
+  const Vec2* const pointsB = b.points();
+  const int countA = a.count();
+  const int countB = b.count();
+  const Transform xf = aFromB;
+  auto support = [&](Vec2 direction) {
+    const int indexA = findFirstMaxDot(pointsA, countA, -direction);
+    const int indexB = findFirstMaxDot(pointsB, countB, invRotate(xf.q, direction));
+    GjkVertex s;
+    s.w = transformPoint(xf, pointsB[indexB]) - pointsA[indexA];
+    s.key = packGjkIndices(indexA, indexB);
+    return s;
+  };
+
   if (loadCache(cache, a, b, aFromB, v)) {
     count = cache->count;
   } else {
@@ -115,9 +132,7 @@ GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, const Transform& aFromB,
     // "Narrow phase").
     Vec2 c = transformPoint(aFromB, b.center()) - a.center();
     if (c == Vec2{}) c = {1.0f, 0.0f};
-    SupportPoint w = supportMinkowski(a, b, aFromB, -c);
-    v[0].w = w.w;
-    v[0].key = packGjkIndices(w.indexA, w.indexB);
+    v[0] = support(-c);
     count = 1;
   }
 
@@ -269,11 +284,14 @@ GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, const Transform& aFromB,
     run.direction = dir;
     previousDirection = dir;
     run.hasDirection = true;
-    const SupportPoint w = supportMinkowski(a, b, aFromB, -dir);
+    const GjkVertex w = support(-dir);
     ++run.iterations;
     // Seen before the stopping tests: whichever ends the loop, this pass's answer is the
     // final one (closest, direction and simplex are not touched again).
-    observe(&w);
+    if constexpr (!std::is_same_v<Observer, NoGjkObserver>) {
+      const SupportPoint found = supportOf(w, a, b, aFromB);
+      observe(&found);
+    }
     // v.w measured along the exact direction: |v| * (dir . w).
     const float vw = vLength * dot(dir, w.w);
     if (earlyOut && vw > 0.0f && vw * vw > earlyOutSq * vv) {
@@ -281,7 +299,7 @@ GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, const Transform& aFromB,
       run.status = GjkStatus::converged;
       break;
     }
-    const std::uint32_t key = packGjkIndices(w.indexA, w.indexB);
+    const std::uint32_t key = w.key;
     if ((v[0].key == key) | ((count == 2) & (v[1].key == key))) {
       run.status = GjkStatus::repeatedSupport;
       break;
