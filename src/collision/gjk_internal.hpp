@@ -61,10 +61,12 @@ Simplex2 toSimplex2(const GjkRun& run, const ShapeProxy& a, const ShapeProxy& b,
 inline WitnessPoints witnessPoints(const GjkRun& run, const ShapeProxy& a, const ShapeProxy& b,
                                    Transform aFromB) noexcept {
   WitnessPoints out;
+  const Vec2* pointsA = a.points();
+  const Vec2* pointsB = b.points();
   for (int i = 0; i < run.count; ++i) {
-    const SupportPoint s = supportOf(run.vertices[i], a, b, aFromB);
-    out.pointA += run.vertices[i].weight * s.pointA;
-    out.pointB += run.vertices[i].weight * s.pointB;
+    const GjkVertex& v = run.vertices[i];
+    out.pointA += v.weight * pointsA[v.indexA()];
+    out.pointB += v.weight * transformPoint(aFromB, pointsB[v.indexB()]);
   }
   return out;
 }
