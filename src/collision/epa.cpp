@@ -225,9 +225,9 @@ PenetrationOutput penetrate(const ShapeProxy& a, Transform worldFromA, const Sha
   const float radii = a.radius() + b.radius();
 
   if (run.status != GjkStatus::overlap) {
-    WitnessPoints witness = computeWitnessPoints(run.simplex);
+    WitnessPoints witness = detail::witnessPoints(run, a, b, aFromB);
     float core = length(run.closest);
-    Vec2 n = detail::closestDirection(run.simplex, run.closest);
+    Vec2 n = detail::closestDirection(run);
     out.normal = rotate(worldFromA.q, n);
     out.pointA = transformPoint(worldFromA, witness.pointA + a.radius() * n);
     out.pointB = transformPoint(worldFromA, witness.pointB - b.radius() * n);
@@ -244,11 +244,12 @@ PenetrationOutput penetrate(const ShapeProxy& a, Transform worldFromA, const Sha
   out.overlap = true;
   const Vec2 c = transformPoint(aFromB, b.center()) - a.center();
   Polytope2 poly;
-  Degenerate flat = buildTriangle(poly, run.simplex, a, b, aFromB, c, out.iterations);
+  const Simplex2 simplex = detail::toSimplex2(run, a, b, aFromB);
+  Degenerate flat = buildTriangle(poly, simplex, a, b, aFromB, c, out.iterations);
   epaObserver.onStart(out.iterations - run.iterations);
   if (flat.flat) {
     // The cores meet but B - A has no area: the witness point of GJK is shared by both cores.
-    WitnessPoints witness = computeWitnessPoints(run.simplex);
+    WitnessPoints witness = computeWitnessPoints(simplex);
     out.depth = radii;
     out.normal = rotate(worldFromA.q, flat.normal);
     out.pointA = transformPoint(worldFromA, witness.pointA + a.radius() * flat.normal);

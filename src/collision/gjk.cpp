@@ -1,6 +1,11 @@
 #include "quack/collision/gjk.hpp"
 
+#include <cstdint>
+#include <limits>
+#include <type_traits>
+
 #include "gjk_internal.hpp"
+#include "simplex2_internal.hpp"
 
 namespace quack {
 
@@ -27,25 +32,14 @@ namespace {
 // float ulps, above the cancellation of the segment projection, below any real rise.
 constexpr float kGjkStallRelativeTolerance = 8.0f * std::numeric_limits<float>::epsilon();
 
-SupportPoint supportFromIndices(const ShapeProxy& a, const ShapeProxy& b, Transform aFromB,
-                                int indexA, int indexB) noexcept {
-  SupportPoint s;
-  s.indexA = indexA;
-  s.indexB = indexB;
-  s.pointA = a.points()[indexA];
-  s.pointB = transformPoint(aFromB, b.points()[indexB]);
-  s.w = s.pointB - s.pointA;
-  return s;
-}
-
 bool loadCache(const GjkCache* cache, const ShapeProxy& a, const ShapeProxy& b, Transform aFromB,
-               Simplex2& s) noexcept {
+               GjkVertex* v) noexcept {
   if (cache == nullptr || cache->count < 1 || cache->count > 3) return false;
   for (int i = 0; i < cache->count; ++i) {
     if (cache->indexA[i] >= a.count() || cache->indexB[i] >= b.count()) return false;
-    s.vertices[i].support = supportFromIndices(a, b, aFromB, cache->indexA[i], cache->indexB[i]);
+    v[i].key = packGjkIndices(cache->indexA[i], cache->indexB[i]);
+    v[i].w = supportOf(v[i], a, b, aFromB).w;
   }
-  s.count = cache->count;
   return true;
 }
 
@@ -56,73 +50,178 @@ Vec2 normalizeWithLength(Vec2 v, float len) noexcept {
   return {inv * v.x, inv * v.y};
 }
 
-// closestDirection with |v| = sqrt(vv) computed at most once and returned when formed.
-struct Direction {
-  Vec2 unit;
-  float vLength = -1.0f;  // length(v) when it was needed, else -1
-};
+// closestDirection's normalize(leftPerp(edge)) for a solved edge: the squared length of
+// leftPerp(edge) is the solve's dot(edge, edge) (the same two products, added in the other
+// order, so the same float).
+[[gnu::always_inline]] inline Vec2 edgeNormal(const SegmentSolve& r) noexcept {
+  return normalizeWithLength(leftPerp(r.edge), std::sqrt(r.edgeSq));
+}
 
-// Always inlined, so that the unobserved runGjk is compiled as if it were the only one:
-// with the observed instantiation as a third caller the compiler would call it instead,
-// and every query would pay for the call.
-[[gnu::always_inline]] inline Direction findClosestDirection(const Simplex2& simplex, Vec2 v,
-                                                             float vv) noexcept {
-  if (simplex.count == 2) {
-    Vec2 a = simplex.vertices[0].support.w;
-    Vec2 n = normalize(leftPerp(simplex.vertices[1].support.w - a));
-    float side = dot(n, a);
-    if (side < 0.0f) return {-n};
-    if (side > 0.0f) return {n};
-  }
-  float len = std::sqrt(vv);
-  return {normalizeWithLength(v, len), len};
+// The edge ij of the loop's simplex (i < j: the kept vertices stay in insertion order) as
+// the new simplex, as solveSimplex2's keepSegment does it, with selects for its branches.
+[[gnu::always_inline]] inline int keepEdge(GjkVertex* v, int i, int j,
+                                           const SegmentSolve& r) noexcept {
+  const SegmentWeights weights = segmentWeights(r);
+  const GjkVertex vi = v[i];
+  const GjkVertex vj = v[j];
+  const bool both = (weights.a > 0.0f) & (weights.b > 0.0f);
+  v[0] = weights.a > 0.0f ? vi : vj;
+  v[0].weight = both ? weights.a : 1.0f;
+  v[1] = vj;  // unused when only one end stays
+  v[1].weight = weights.b;
+  return both ? 2 : 1;
 }
 
 }  // namespace
 
-Vec2 closestDirection(const Simplex2& simplex, Vec2 v) noexcept {
-  return findClosestDirection(simplex, v, lengthSquared(v)).unit;
+Vec2 closestDirection(const GjkRun& run) noexcept {
+  Vec2 v = run.closest;
+  if (run.count == 2) {
+    Vec2 a = run.vertices[0].w;
+    Vec2 n = normalize(leftPerp(run.vertices[1].w - a));
+    float side = dot(n, a);
+    if (side < 0.0f) return -n;
+    if (side > 0.0f) return n;
+  }
+  return normalizeWithLength(v, length(v));
+}
+
+Simplex2 toSimplex2(const GjkRun& run, const ShapeProxy& a, const ShapeProxy& b,
+                    Transform aFromB) noexcept {
+  Simplex2 s;
+  s.count = run.count;
+  for (int i = 0; i < run.count; ++i) {
+    s.vertices[i].support = supportOf(run.vertices[i], a, b, aFromB);
+    s.vertices[i].weight = run.vertices[i].weight;
+  }
+  return s;
 }
 
 template <class Observer>
-GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, Transform aFromB, GjkCache* cache,
+GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, const Transform& aFromB, GjkCache* cache,
               float earlyOutRadius, Observer& observer) noexcept {
   GjkRun run;
-  Simplex2& s = run.simplex;
-  if (!loadCache(cache, a, b, aFromB, s)) {
+  GjkVertex* v = run.vertices;
+  int& count = run.count;
+  auto observe = [&]([[maybe_unused]] const SupportPoint* support) {
+    if constexpr (!std::is_same_v<Observer, NoGjkObserver>) observer.onPass(run, aFromB, support);
+  };
+
+  // supportMinkowski, with the proxies' points and counts and the transform read once:
+  // the loop's stores into the run may alias them as far as the compiler knows (an int is
+  // an int), and it would load them again for every search.
+  const Vec2* const pointsA = a.points();
+  const Vec2* const pointsB = b.points();
+  const int countA = a.count();
+  const int countB = b.count();
+  const Transform xf = aFromB;
+  auto support = [&](Vec2 direction) {
+    const int indexA = findFirstMaxDot(pointsA, countA, -direction);
+    const int indexB = findFirstMaxDot(pointsB, countB, invRotate(xf.q, direction));
+    GjkVertex s;
+    s.w = transformPoint(xf, pointsB[indexB]) - pointsA[indexA];
+    s.key = packGjkIndices(indexA, indexB);
+    return s;
+  };
+
+  if (loadCache(cache, a, b, aFromB, v)) {
+    count = cache->count;
+  } else {
     // Start from the support point towards the origin as seen from the centre of B - A:
     // on a cold start it is usually one edge away from the answer (docs/background.md,
     // "Narrow phase").
     Vec2 c = transformPoint(aFromB, b.center()) - a.center();
     if (c == Vec2{}) c = {1.0f, 0.0f};
-    s.vertices[0].support = supportMinkowski(a, b, aFromB, -c);
-    s.count = 1;
+    v[0] = support(-c);
+    count = 1;
   }
 
   const bool earlyOut = earlyOutRadius >= 0.0f;
-  Simplex2 previous;
+  // The simplex of the pass before, for the stall test: at most two vertices (a triangle
+  // either holds the origin, which ends the run, or is reduced), copied whole each pass.
+  GjkVertex previous[2];
+  int previousCount = 0;
   Vec2 previousClosest;
   Vec2 previousDirection;
   float previousVV = std::numeric_limits<float>::infinity();
   const float earlyOutSq = earlyOutRadius * earlyOutRadius;
   int unchangedSteps = 0;
   for (;;) {
-    SimplexSolution solution = solveSimplex2(s);
-    if (solution.holdsOrigin) {
-      run.closest = {};
-      run.status = GjkStatus::overlap;
-      observer.onPass(run, nullptr);
-      break;
+    // Solve the simplex (solveSimplex2's arithmetic, simplex2_internal.hpp). When it ends
+    // as a segment, the direction below is that segment's unit normal, formed here from
+    // the solve's edge and squared length.
+    Vec2 point;
+    Vec2 normal;
+    if (count == 1) {
+      v[0].weight = 1.0f;
+      point = v[0].w;
+    } else if (count == 2) {
+      const SegmentSolve r = solveSegment(v[0].w, v[1].w);
+      count = keepEdge(v, 0, 1, r);
+      point = r.closest;
+      normal = edgeNormal(r);
+    } else {
+      const TriangleAreas t = triangleAreas(v[0].w, v[1].w, v[2].w);
+      if (!(t.faces[0] | t.faces[1] | t.faces[2])) {
+        v[0].weight = t.sub[0] / t.mu;
+        v[1].weight = t.sub[1] / t.mu;
+        v[2].weight = t.sub[2] / t.mu;
+        run.closest = {};
+        run.status = GjkStatus::overlap;
+        observe(nullptr);
+        break;
+      }
+      // The nearest of the edges facing the origin, tried in solveSimplex2's order (the
+      // edges opposite vertex 0, 1, 2) with its strict comparison. Both edges through
+      // vertex 2 are solved whether they face it or not, so that choosing costs no branch:
+      // in the loop vertex 2 is the support point just found beyond edge 01, so the
+      // origin is on their side and edge 01 faces it only through rounding.
+      const SegmentSolve r0 = solveSegment(v[1].w, v[2].w);
+      const SegmentSolve r1 = solveSegment(v[0].w, v[2].w);
+      const float d0 = lengthSquared(r0.closest);
+      const float d1 = lengthSquared(r1.closest);
+      const bool take0 = t.faces[0] & (d0 < std::numeric_limits<float>::infinity());
+      float best = take0 ? d0 : std::numeric_limits<float>::infinity();
+      const bool take1 = t.faces[1] & (d1 < best);
+      best = take1 ? d1 : best;
+      const SegmentSolve* chosen = take1 ? &r1 : (take0 ? &r0 : nullptr);
+      int i = take1 ? 0 : 1;
+      int j = 2;
+      // Both normals are formed before the choice, so that their square roots and
+      // divisions overlap the solves' instead of waiting for the comparison.
+      const Vec2 normals[2] = {edgeNormal(r0), edgeNormal(r1)};
+      normal = normals[static_cast<int>(take1)];
+      SegmentSolve r2;
+      if (t.faces[2]) {
+        r2 = solveSegment(v[0].w, v[1].w);
+        if (lengthSquared(r2.closest) < best) {
+          chosen = &r2;
+          i = 0;
+          j = 1;
+          normal = edgeNormal(r2);
+        }
+      }
+      if (chosen == nullptr) {
+        // Only reachable with NaN coordinates: keep one vertex so that the run stops.
+        count = 1;
+        v[0].weight = 1.0f;
+        point = v[0].w;
+      } else {
+        count = keepEdge(v, i, j, *chosen);
+        point = chosen->closest;
+      }
     }
-    Vec2 v = solution.closest;
-    float vv = lengthSquared(v);
-    float maxWW = 0.0f;
-    for (int i = 0; i < s.count; ++i)
-      maxWW = maxf(maxWW, lengthSquared(s.vertices[i].support.w));
+
+    const Vec2 vPoint = point;
+    float vv = lengthSquared(vPoint);
+    // The largest |w|^2 of the (one or two) vertices left, in the order of a loop over them.
+    float maxWW = maxf(0.0f, lengthSquared(v[0].w));
+    const float maxWW2 = maxf(maxWW, lengthSquared(v[1].w));
+    maxWW = count == 2 ? maxWW2 : maxWW;
     if (vv <= kGjkContactRelativeTolerance * kGjkContactRelativeTolerance * maxWW) {
       run.closest = {};
       run.status = GjkStatus::overlap;
-      observer.onPass(run, nullptr);
+      observe(nullptr);
       break;
     }
     // |v| must fall every iteration. When it rose (or is NaN), rounding has the last word
@@ -137,93 +236,98 @@ GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, Transform aFromB, GjkCac
     if (vv <= previousVV * (1.0f + kGjkStallRelativeTolerance) && ++unchangedSteps <= 2) {
       // fall through with the new simplex
     } else if (!(vv < previousVV)) {
-      if (previous.count > 0) {
-        s = previous;
+      if (previousCount > 0) {
+        v[0] = previous[0];
+        v[1] = previous[1];
+        count = previousCount;
         run.closest = previousClosest;
         run.direction = previousDirection;
         run.hasDirection = true;
       }
       run.status = GjkStatus::stalled;
-      observer.onPass(run, nullptr);
+      observe(nullptr);
       break;
     }
-    run.closest = v;
+    run.closest = vPoint;
     if (earlyOut && vv <= earlyOutSq) {
       run.status = GjkStatus::overlap;
-      observer.onPass(run, nullptr);
+      observe(nullptr);
       break;
     }
     if (run.iterations >= kGjkMaxIterations) {
       run.status = GjkStatus::maxIterations;
-      observer.onPass(run, nullptr);
+      observe(nullptr);
       break;
     }
-    // Only the vertices in use (a full copy moved three every iteration).
-    previous.count = s.count;
-    for (int i = 0; i < s.count; ++i)
-      previous.vertices[i] = s.vertices[i];
-    previousClosest = v;
+    previous[0] = v[0];
+    previous[1] = v[1];
+    previousCount = count;
+    previousClosest = vPoint;
     previousVV = vv;
 
     // Search along the exact edge normal rather than -v (see closestDirection): with a
     // thin B - A and the origin near it, -v can be off by 1e-3 rad and find the wrong
     // support point, stopping GJK on a diagonal instead of an edge.
-    Direction direction = findClosestDirection(s, v, vv);
-    const Vec2 dir = direction.unit;
-    previousDirection = dir;
+    const float vLength = std::sqrt(vv);
+    bool onEdge = false;
+    Vec2 dir;
+    if (count == 2) {
+      const Vec2 n = normal;
+      const float side = dot(n, v[0].w);
+      onEdge = (side < 0.0f) | (side > 0.0f);
+      // -n when side < 0 (exactly: a product with -1), by a table, not a branch.
+      constexpr float kSign[2] = {1.0f, -1.0f};
+      const float sign = kSign[static_cast<int>(side < 0.0f)];
+      dir = {sign * n.x, sign * n.y};
+    }
+    if (!onEdge) dir = normalizeWithLength(vPoint, vLength);
     run.direction = dir;
+    previousDirection = dir;
     run.hasDirection = true;
-    SupportPoint w = supportMinkowski(a, b, aFromB, -dir);
+    const GjkVertex w = support(-dir);
     ++run.iterations;
     // Seen before the stopping tests: whichever ends the loop, this pass's answer is the
     // final one (closest, direction and simplex are not touched again).
-    observer.onPass(run, &w);
-    // v.w measured along the exact direction: |v| * (dir . w). Formed only when a test
-    // needs it: most runs end on a repeated support point.
-    auto measureVW = [&] {
-      float vLength = direction.vLength >= 0.0f ? direction.vLength : length(v);
-      return vLength * dot(dir, w.w);
-    };
-    if (earlyOut) {
-      float vw = measureVW();
-      if (vw > 0.0f && vw * vw > earlyOutSq * vv) {
-        run.separatedEarly = true;
-        run.status = GjkStatus::converged;
-        break;
-      }
+    if constexpr (!std::is_same_v<Observer, NoGjkObserver>) {
+      const SupportPoint found = supportOf(w, a, b, aFromB);
+      observe(&found);
     }
-    bool repeated = false;
-    for (int i = 0; i < s.count; ++i) {
-      repeated |=
-          s.vertices[i].support.indexA == w.indexA && s.vertices[i].support.indexB == w.indexB;
-    }
-    if (repeated) {
-      run.status = GjkStatus::repeatedSupport;
-      break;
-    }
-    if (measureVW() >= vv) {
+    // v.w measured along the exact direction: |v| * (dir . w).
+    const float vw = vLength * dot(dir, w.w);
+    if (earlyOut && vw > 0.0f && vw * vw > earlyOutSq * vv) {
+      run.separatedEarly = true;
       run.status = GjkStatus::converged;
       break;
     }
-    s.vertices[s.count].support = w;
-    ++s.count;
+    const std::uint32_t key = w.key;
+    if ((v[0].key == key) | ((count == 2) & (v[1].key == key))) {
+      run.status = GjkStatus::repeatedSupport;
+      break;
+    }
+    if (vw >= vv) {
+      run.status = GjkStatus::converged;
+      break;
+    }
+    v[count].w = w.w;
+    v[count].key = key;
+    ++count;
     run.hasDirection = false;
   }
 
   if (cache != nullptr) {
-    cache->count = s.count;
-    for (int i = 0; i < s.count; ++i) {
-      cache->indexA[i] = static_cast<std::uint8_t>(s.vertices[i].support.indexA);
-      cache->indexB[i] = static_cast<std::uint8_t>(s.vertices[i].support.indexB);
+    cache->count = count;
+    for (int i = 0; i < count; ++i) {
+      cache->indexA[i] = static_cast<std::uint8_t>(v[i].indexA());
+      cache->indexB[i] = static_cast<std::uint8_t>(v[i].indexB());
     }
   }
   return run;
 }
 
-template GjkRun runGjk<NoGjkObserver>(const ShapeProxy&, const ShapeProxy&, Transform, GjkCache*,
-                                      float, NoGjkObserver&) noexcept;
-template GjkRun runGjk<GjkRecorder>(const ShapeProxy&, const ShapeProxy&, Transform, GjkCache*,
-                                    float, GjkRecorder&) noexcept;
+template GjkRun runGjk<NoGjkObserver>(const ShapeProxy&, const ShapeProxy&, const Transform&,
+                                      GjkCache*, float, NoGjkObserver&) noexcept;
+template GjkRun runGjk<GjkRecorder>(const ShapeProxy&, const ShapeProxy&, const Transform&,
+                                    GjkCache*, float, GjkRecorder&) noexcept;
 
 namespace {
 
@@ -233,8 +337,9 @@ namespace {
 [[gnu::always_inline]] inline DistanceOutput makeDistanceOutput(const ShapeProxy& a,
                                                                 const ShapeProxy& b,
                                                                 Transform worldFromA,
+                                                                Transform aFromB,
                                                                 const GjkRun& run) noexcept {
-  WitnessPoints witness = computeWitnessPoints(run.simplex);
+  WitnessPoints witness = witnessPoints(run, a, b, aFromB);
   DistanceOutput out;
   float radii = a.radius() + b.radius();
   if (run.status == GjkStatus::overlap) {
@@ -244,7 +349,7 @@ namespace {
     return out;
   }
   float core = length(run.closest);
-  Vec2 n = run.hasDirection ? run.direction : closestDirection(run.simplex, run.closest);
+  Vec2 n = run.hasDirection ? run.direction : closestDirection(run);
   out.coreDistance = core;
   out.normal = rotate(worldFromA.q, n);
   Vec2 pa = witness.pointA + a.radius() * n;
@@ -262,16 +367,17 @@ namespace {
 
 }  // namespace
 
-void GjkRecorder::onPass(const GjkRun& run, const SupportPoint* support) noexcept {
+void GjkRecorder::onPass(const GjkRun& run, Transform aFromB,
+                         const SupportPoint* support) noexcept {
   if (trace == nullptr) return;
   GjkIterationRecord* record = claimTraceRecord(*trace);
   if (record == nullptr) return;
-  record->simplex = run.simplex;
+  record->simplex = toSimplex2(run, a, b, aFromB);
   record->closest = run.closest;
   record->hasSupport = support != nullptr;
   record->direction = support != nullptr ? run.direction : Vec2{};
   record->support = support != nullptr ? *support : SupportPoint{};
-  DistanceOutput answer = makeDistanceOutput(a, b, worldFromA, run);
+  DistanceOutput answer = makeDistanceOutput(a, b, worldFromA, aFromB, run);
   record->distance = answer.distance;
   record->coreDistance = answer.coreDistance;
   record->pointA = answer.pointA;
@@ -288,7 +394,7 @@ DistanceOutput distanceWith(const ShapeProxy& a, Transform worldFromA, const Sha
                             Transform worldFromB, GjkCache* cache, Observer& observer) noexcept {
   Transform aFromB = invMul(worldFromA, worldFromB);
   detail::GjkRun run = detail::runGjk(a, b, aFromB, cache, -1.0f, observer);
-  DistanceOutput out = detail::makeDistanceOutput(a, b, worldFromA, run);
+  DistanceOutput out = detail::makeDistanceOutput(a, b, worldFromA, aFromB, run);
   out.iterations = run.iterations;
   out.status = run.status;
   return out;

@@ -2,15 +2,36 @@
 // GJK's inner loop, shared by computeDistance, testOverlap and EPA (which starts from the
 // final simplex), and the observer hook that records its passes.
 
+#include <cstdint>
+
 #include "quack/collision/gjk.hpp"
 #include "quack/collision/simplex2.hpp"
 
 namespace quack::detail {
 
+// A vertex of GJK's simplex as the loop keeps it: w = pointB - pointA (all the solver
+// reads), the two proxy indices in one key (the repeated-support test compares one number
+// a vertex) and the barycentric weight. The points on A and B are formed again from the
+// indices where they are needed, by the operations that formed them in the loop (so the
+// same bits): the loop moves 16 bytes a vertex, not a 36-byte SimplexVertex.
+struct GjkVertex {
+  Vec2 w;  // A frame
+  float weight = 0.0f;
+  std::uint32_t key = 0;  // indexA | indexB << 16
+
+  int indexA() const noexcept { return static_cast<int>(key & 0xFFFFu); }
+  int indexB() const noexcept { return static_cast<int>(key >> 16); }
+};
+
+constexpr std::uint32_t packGjkIndices(int indexA, int indexB) noexcept {
+  return static_cast<std::uint32_t>(indexA) | (static_cast<std::uint32_t>(indexB) << 16);
+}
+
 struct GjkRun {
-  Simplex2 simplex;  // final simplex, A frame, weights set
-  Vec2 closest;      // the point of B - A closest to the origin (zero on overlap), A frame
-  // closestDirection(simplex, closest) when the loop already formed it (hasDirection), so
+  GjkVertex vertices[3];  // the final simplex, weights set
+  int count = 0;
+  Vec2 closest;  // the point of B - A closest to the origin (zero on overlap), A frame
+  // closestDirection(run) when the loop already formed it (hasDirection), so
   // computeDistance does not normalise the same vector twice.
   Vec2 direction;
   bool hasDirection = false;
@@ -19,11 +40,42 @@ struct GjkRun {
   bool separatedEarly = false;  // earlyOutRadius was given and a separating axis found
 };
 
-// The direction from the origin to the closest point of a solved simplex: along v for a
-// point; for a segment the unit normal of the segment on v's side, which is exact to the
-// rounding of the segment's own direction however small |v| is (v / |v| is not: its
+// A vertex of a run's simplex with its points on A and B (A frame), B placed by aFromB.
+inline SupportPoint supportOf(const GjkVertex& v, const ShapeProxy& a, const ShapeProxy& b,
+                              Transform aFromB) noexcept {
+  SupportPoint s;
+  s.indexA = v.indexA();
+  s.indexB = v.indexB();
+  s.pointA = a.points()[s.indexA];
+  s.pointB = transformPoint(aFromB, b.points()[s.indexB]);
+  s.w = s.pointB - s.pointA;
+  return s;
+}
+
+// The run's simplex as a Simplex2 (for EPA and the trace).
+Simplex2 toSimplex2(const GjkRun& run, const ShapeProxy& a, const ShapeProxy& b,
+                    Transform aFromB) noexcept;
+
+// computeWitnessPoints(toSimplex2(run, ...)), the same sums in the same order, without
+// forming the Simplex2.
+inline WitnessPoints witnessPoints(const GjkRun& run, const ShapeProxy& a, const ShapeProxy& b,
+                                   Transform aFromB) noexcept {
+  WitnessPoints out;
+  const Vec2* pointsA = a.points();
+  const Vec2* pointsB = b.points();
+  for (int i = 0; i < run.count; ++i) {
+    const GjkVertex& v = run.vertices[i];
+    out.pointA += v.weight * pointsA[v.indexA()];
+    out.pointB += v.weight * transformPoint(aFromB, pointsB[v.indexB()]);
+  }
+  return out;
+}
+
+// The direction from the origin to the closest point v of a run's solved simplex: along v
+// for a point; for a segment the unit normal of the segment on v's side, which is exact to
+// the rounding of the segment's own direction however small |v| is (v / |v| is not: its
 // direction error grows like size / |v|). Zero when v is zero.
-Vec2 closestDirection(const Simplex2& simplex, Vec2 v) noexcept;
+Vec2 closestDirection(const GjkRun& run) noexcept;
 
 // The slot for the next record of a trace (GjkTrace, EpaTrace): the first capacity - 1
 // passes in order, then the last slot again and again, so it ends holding the final pass.
@@ -49,9 +101,10 @@ void resetTrace(Trace& trace) noexcept {
 
 // The observers runGjk is instantiated with. onPass sees the run at the end of each pass
 // (after the support search, or at the stop when there is none) with `support` the pass's
-// support point or null. The default does nothing and compiles away.
+// support point or null, and the transform it runs under. The default does nothing and
+// compiles away.
 struct NoGjkObserver {
-  void onPass(const GjkRun&, const SupportPoint*) noexcept {}
+  void onPass(const GjkRun&, Transform, const SupportPoint*) noexcept {}
 };
 
 // Records each pass into a GjkTrace (may be null: then it records nothing).
@@ -61,18 +114,20 @@ struct GjkRecorder {
   Transform worldFromA;
   GjkTrace* trace;
 
-  void onPass(const GjkRun& run, const SupportPoint* support) noexcept;
+  void onPass(const GjkRun& run, Transform aFromB, const SupportPoint* support) noexcept;
 };
 
 // With earlyOutRadius >= 0 the loop also stops as soon as the distance is proven above
-// it (separatedEarly) or below it (status overlap with a non-zero closest point).
+// it (separatedEarly) or below it (status overlap with a non-zero closest point). aFromB
+// by reference: by value it is packed into two vector registers at the call and unpacked
+// again inside, about ten moves a query.
 template <class Observer>
-GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, Transform aFromB, GjkCache* cache,
+GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, const Transform& aFromB, GjkCache* cache,
               float earlyOutRadius, Observer& observer) noexcept;
 
-extern template GjkRun runGjk<NoGjkObserver>(const ShapeProxy&, const ShapeProxy&, Transform,
+extern template GjkRun runGjk<NoGjkObserver>(const ShapeProxy&, const ShapeProxy&, const Transform&,
                                              GjkCache*, float, NoGjkObserver&) noexcept;
-extern template GjkRun runGjk<GjkRecorder>(const ShapeProxy&, const ShapeProxy&, Transform,
+extern template GjkRun runGjk<GjkRecorder>(const ShapeProxy&, const ShapeProxy&, const Transform&,
                                            GjkCache*, float, GjkRecorder&) noexcept;
 
 }  // namespace quack::detail

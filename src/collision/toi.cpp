@@ -339,22 +339,21 @@ ToiOutput computeToi(const ShapeProxy& a, const Sweep& sweepA, const ShapeProxy&
     Sample sample;
     sample.t = t;
     if (run.status == GjkStatus::overlap) return sample;  // distance 0: within any target
-    if (run.simplex.count == 2) {
-      const SupportPoint& s0 = run.simplex.vertices[0].support;
-      const SupportPoint& s1 = run.simplex.vertices[1].support;
-      if (s0.indexA == s1.indexA && s0.indexB != s1.indexB) {
-        sample.face0 = static_cast<std::int8_t>(s0.indexB);
-        sample.face1 = static_cast<std::int8_t>(s1.indexB);
-      } else if (s0.indexB == s1.indexB && s0.indexA != s1.indexA) {
-        sample.face0 = static_cast<std::int8_t>(s0.indexA);
-        sample.face1 = static_cast<std::int8_t>(s1.indexA);
+    if (run.count == 2) {
+      const detail::GjkVertex& s0 = run.vertices[0];
+      const detail::GjkVertex& s1 = run.vertices[1];
+      if (s0.indexA() == s1.indexA() && s0.indexB() != s1.indexB()) {
+        sample.face0 = static_cast<std::int8_t>(s0.indexB());
+        sample.face1 = static_cast<std::int8_t>(s1.indexB());
+      } else if (s0.indexB() == s1.indexB() && s0.indexA() != s1.indexA()) {
+        sample.face0 = static_cast<std::int8_t>(s0.indexA());
+        sample.face1 = static_cast<std::int8_t>(s1.indexA());
         sample.faceOnA = true;
       }
     }
     const float core = length(run.closest);
-    const Vec2 n =
-        run.hasDirection ? run.direction : detail::closestDirection(run.simplex, run.closest);
-    const WitnessPoints witness = computeWitnessPoints(run.simplex);
+    const Vec2 n = run.hasDirection ? run.direction : detail::closestDirection(run);
+    const WitnessPoints witness = detail::witnessPoints(run, a, b, aFromB);
     // Only the rounding overlaps: distance 0, as computeDistance says.
     sample.distance = maxf(core - radii, 0.0f);
     sample.normal = rotate(worldFromA.q, n);

@@ -192,7 +192,9 @@ CosSin portableCosSin(float radians) noexcept {
   // The nearest multiple of pi/2: truncation after adding a half of the right sign is exact
   // integer arithmetic on every platform (no rounding-mode dependence, no C library).
   const double t = x * kTwoOverPiDouble;
-  const auto k = static_cast<std::int64_t>(t + (t >= 0.0 ? 0.5 : -0.5));
+  // copysign, not t >= 0 ? 0.5 : -0.5: the same half (t is never zero here), without a
+  // branch that random angles take at random.
+  const auto k = static_cast<std::int64_t>(t + std::copysign(0.5, t));
   const double kd = static_cast<double>(k);
   const double r = ((x - kd * kPiOver2Part1) - kd * kPiOver2Part2) - kd * kPiOver2Part3;
   // |r| <= pi/4 (plus rounding): Taylor to r^11 for sine and r^12 for cosine truncate below
@@ -210,16 +212,25 @@ CosSin portableCosSin(float radians) noexcept {
                                                                      z * (1.0 / 479001600.0))))));
   const float c = static_cast<float>(cosR);
   const float s = static_cast<float>(sinR);
-  switch (static_cast<unsigned>(k) & 3u) {
-    case 0:
-      return {c, s};
-    case 1:
-      return {-s, c};
-    case 2:
-      return {-c, -s};
-    default:
-      return {s, -c};
-  }
+  // By quadrant: (c, s), (-s, c), (-c, -s), (s, -c). Formed with a swap and two sign flips
+  // on the bits (negation is exact, so the same floats) rather than a switch, whose
+  // branch random angles mispredict three times in four.
+  const auto quadrant = static_cast<std::uint32_t>(k) & 3u;
+  const std::uint32_t swap = 0u - (quadrant & 1u);
+  std::uint32_t cBits = 0;
+  std::uint32_t sBits = 0;
+  std::memcpy(&cBits, &c, sizeof cBits);  // not std::bit_cast, as in reduce
+  std::memcpy(&sBits, &s, sizeof sBits);
+  const std::uint32_t first = (sBits & swap) | (cBits & ~swap);
+  const std::uint32_t second = (cBits & swap) | (sBits & ~swap);
+  const std::uint32_t negateFirst = ((quadrant + 1u) & 2u) << 30;  // quadrants 1 and 2
+  const std::uint32_t negateSecond = (quadrant & 2u) << 30;        // quadrants 2 and 3
+  const std::uint32_t cosBits = first ^ negateFirst;
+  const std::uint32_t sinBits = second ^ negateSecond;
+  CosSin out;
+  std::memcpy(&out.cosine, &cosBits, sizeof cosBits);
+  std::memcpy(&out.sine, &sinBits, sizeof sinBits);
+  return out;
 }
 
 float portableSin(float radians) noexcept {

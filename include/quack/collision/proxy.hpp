@@ -87,6 +87,19 @@ inline int findFirstMaxDot(const Vec2* points, int count, Vec2 direction) noexce
     // overlaps the one before (a point seen twice changes neither the maximum nor the
     // first index that attains it).
     const int last = count - 4;
+    if (count <= 8) {
+      // Boxes and the usual polygons: one or two groups, each formed once, no loop (the
+      // same maximum, compared in the same order, as the loop below).
+      const __m128 first = dots(0);
+      const __m128 second = dots(last);
+      __m128 best = _mm_max_ps(second, first);
+      best = _mm_max_ps(best, _mm_shuffle_ps(best, best, _MM_SHUFFLE(2, 3, 0, 1)));
+      best = _mm_max_ps(best, _mm_shuffle_ps(best, best, _MM_SHUFFLE(1, 0, 3, 2)));
+      const unsigned hits =
+          (static_cast<unsigned>(_mm_movemask_ps(_mm_cmpeq_ps(second, best))) << last) |
+          static_cast<unsigned>(_mm_movemask_ps(_mm_cmpeq_ps(first, best)));
+      return hits == 0 ? 0 : std::countr_zero(hits);
+    }
     __m128 best = dots(last);
     for (int i = 0; i < last; i += 4)
       best = _mm_max_ps(best, dots(i));
