@@ -3,6 +3,7 @@
 #include "quack/collision/mesh3.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <unordered_map>
 
@@ -319,6 +320,136 @@ int collideMesh(const Mesh3& mesh, Transform3 worldFromMesh, const ShapeGeometry
   std::sort(contacts.begin() + static_cast<std::ptrdiff_t>(first), contacts.end(),
             [](const MeshContact3& a, const MeshContact3& b) { return a.triangle < b.triangle; });
   return static_cast<int>(contacts.size() - first);
+}
+
+namespace {
+
+float maxAbs(Vec3 v) noexcept {
+  return std::max({absf(v.x), absf(v.y), absf(v.z)});
+}
+
+// A margin for the tree's box tests: a triangle's own test (Moller-Trumbore, or GJK within
+// kShapeCastTolerance) rounds differently from the slab test against its box, and could
+// accept a point a few ulps outside that box. 1e-5 of the largest coordinate in play is
+// about 80 float ulps of it: far more than either test's rounding, far less than any
+// triangle worth keeping, so the tree finds every triangle the brute-force loop would.
+float treeMargin(Aabb3 bounds, Vec3 a, Vec3 b) noexcept {
+  const float scale =
+      std::max({maxAbs(bounds.lower), maxAbs(bounds.upper), maxAbs(a), maxAbs(b), 1.0f});
+  return 1e-5f * scale;
+}
+
+// The triangle's own hit, kept only when the ray comes at the front: rayCast(Triangle3)
+// is two-sided and turns its normal towards the origin, so a normal against the face's
+// means the ray came from behind.
+RayHit3 frontHit(const Mesh3& mesh, int triangle, const RayCastInput3& ray) noexcept {
+  RayHit3 h = rayCast(mesh.triangle(triangle), ray);
+  if (h.hit && dot(h.normal, mesh.triangles()[static_cast<std::size_t>(triangle)].normal) <= 0.0f) {
+    return {};
+  }
+  return h;
+}
+
+}  // namespace
+
+MeshRayHit3 rayCastMesh(const Mesh3& mesh, Transform3 worldFromMesh,
+                        const RayCastInput3& ray) noexcept {
+  MeshRayHit3 best;
+  if (!isFinite(ray.origin) || !isFinite(ray.translation) || !std::isfinite(ray.maxFraction) ||
+      !(ray.maxFraction >= 0.0f) || lengthSquared(ray.translation) <= 0.0f ||
+      !isFinite(worldFromMesh.p) || !isFinite(worldFromMesh.q)) {
+    return best;
+  }
+  // The ray in the mesh frame, where the triangles and their tree are.
+  RayCastInput3 local{invTransformPoint(worldFromMesh, ray.origin),
+                      invTransformVector(worldFromMesh, ray.translation), ray.maxFraction};
+  const float m =
+      treeMargin(mesh.bounds(), local.origin, local.origin + local.maxFraction * local.translation);
+  RayHit3 hit;
+  mesh.tree().rayCast(local.origin, local.translation, local.maxFraction, Vec3{m, m, m},
+                      [&](std::uint32_t proxy, float maxFraction) {
+                        const int t = static_cast<int>(proxy);
+                        RayCastInput3 clipped = local;
+                        clipped.maxFraction = maxFraction;
+                        const RayHit3 h = frontHit(mesh, t, clipped);
+                        // The same fraction as the best so far: the lower index wins, as in
+                        // a loop over every triangle in order.
+                        if (h.hit && (!hit.hit || h.fraction < hit.fraction ||
+                                      (h.fraction == hit.fraction && t < best.triangle))) {
+                          hit = h;
+                          best.triangle = t;
+                        }
+                        // Clip the ray to the best hit; ties at its fraction are still
+                        // visited. A hit at 0 leaves the reach as it is: the tree stops
+                        // at a clip of 0, and a lower index may tie there.
+                        return hit.hit && hit.fraction > 0.0f ? hit.fraction : maxFraction;
+                      });
+  if (!hit.hit) {
+    best.triangle = -1;
+    return best;
+  }
+  best.hit = true;
+  best.fraction = hit.fraction;
+  best.point = transformPoint(worldFromMesh, hit.point);
+  best.normal = transformVector(worldFromMesh, hit.normal);
+  return best;
+}
+
+MeshShapeCastOutput3 castShapeMesh(const Mesh3& mesh, Transform3 worldFromMesh,
+                                   const ShapeProxy3& b, Transform3 worldFromB, Vec3 translationB,
+                                   float maxFraction) noexcept {
+  MeshShapeCastOutput3 best;
+  best.status = ShapeCastStatus::missed;
+  if (!isFinite(worldFromMesh.p) || !isFinite(worldFromMesh.q) || !isFinite(worldFromB.p) ||
+      !isFinite(worldFromB.q) || !isFinite(translationB) ||
+      !(maxFraction >= 0.0f && maxFraction <= 1.0f)) {
+    best.status = ShapeCastStatus::invalidInput;
+    return best;
+  }
+  // B's swept box in the mesh frame: the box of its points at the start and at the end of
+  // the (clipped) translation holds every point of the sweep (the sweep is their convex
+  // hull), grown by B's radius, the cast's tolerance and the rounding margin.
+  const Transform3 meshFromB = invMul(worldFromMesh, worldFromB);
+  const Vec3 move = invTransformVector(worldFromMesh, maxFraction * translationB);
+  Aabb3 box;
+  for (int i = 0; i < b.count(); ++i) {
+    const Vec3 p = transformPoint(meshFromB, b.points()[i]);
+    const Aabb3 pb{minv(p, p + move), maxv(p, p + move)};
+    box = i == 0 ? pb : Aabb3{minv(box.lower, pb.lower), maxv(box.upper, pb.upper)};
+  }
+  const float grow =
+      b.radius() + kShapeCastTolerance + treeMargin(mesh.bounds(), box.lower, box.upper);
+  box.lower = box.lower - Vec3{grow, grow, grow};
+  box.upper = box.upper + Vec3{grow, grow, grow};
+  const Vec3 translationInMesh = invTransformVector(worldFromMesh, translationB);
+  bool capped = false;
+  float cappedFraction = maxFraction;
+  mesh.query(box, [&](int t) {
+    const MeshTriangle3& tri = mesh.triangles()[static_cast<std::size_t>(t)];
+    if (dot(translationInMesh, tri.normal) > 0.0f) return true;  // leaves its front
+    // Conservative advancement's steps do not depend on maxFraction, only where it stops,
+    // so casting to the best fraction so far finds the same hit at or before it as a cast
+    // to the end would (a later one is no use).
+    const float reach = best.hit ? best.fraction : maxFraction;
+    const ShapeCastOutput3 c =
+        castShape(makeProxy(mesh.triangle(t)), worldFromMesh, b, worldFromB, translationB, reach);
+    if (c.hit) {
+      if (!best.hit || c.fraction < best.fraction ||
+          (c.fraction == best.fraction && t < best.triangle)) {
+        static_cast<ShapeCastOutput3&>(best) = c;
+        best.triangle = t;
+      }
+    } else if (c.status == ShapeCastStatus::maxIterations) {
+      capped = true;
+      cappedFraction = std::min(cappedFraction, c.fraction);
+    }
+    return true;
+  });
+  if (!best.hit && capped) {
+    best.status = ShapeCastStatus::maxIterations;
+    best.fraction = cappedFraction;
+  }
+  return best;
 }
 
 }  // namespace quack

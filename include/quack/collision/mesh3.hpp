@@ -24,6 +24,8 @@
 
 #include "quack/broadphase/dynamic_tree3.hpp"
 #include "quack/collision/manifold3.hpp"
+#include "quack/collision/toi3.hpp"
+#include "quack/geometry/raycast3.hpp"
 
 namespace quack {
 
@@ -120,5 +122,42 @@ Manifold3 collideMeshTriangle(const Mesh3& mesh, int triangle, Transform3 worldF
 int collideMesh(const Mesh3& mesh, Transform3 worldFromMesh, const ShapeGeometry3& convex,
                 Transform3 worldFromConvex, std::vector<MeshContact3>& contacts,
                 float speculativeDistance = kSpeculativeDistance);
+
+/// Where a ray first enters a mesh from a triangle's front. World frame.
+struct MeshRayHit3 : RayHit3 {
+  int triangle = -1;  ///< the triangle hit, or -1 on a miss
+};
+
+/// The ray `ray` (world frame: origin + t * translation, t in [0, maxFraction]) against the
+/// mesh placed by worldFromMesh: the closest hit over the triangles the mesh's tree finds
+/// along it, each by rayCast(Triangle3) in the mesh frame. One-sided, as the mesh's
+/// contacts are: a triangle is hit only from its front (the ray's translation against the
+/// face normal); a ray from behind, or in a triangle's plane, passes through. The normal is
+/// the face normal (unit, world). Ties (a shared edge or vertex) go to the lowest triangle
+/// index, so the answer is the brute-force loop's over every triangle, to the bit. A zero
+/// or non-finite translation, or a maxFraction that is negative or not finite, misses. No
+/// allocation.
+MeshRayHit3 rayCastMesh(const Mesh3& mesh, Transform3 worldFromMesh,
+                        const RayCastInput3& ray) noexcept;
+
+/// The earliest hit of a convex shape swept along a translation against a mesh. World frame.
+struct MeshShapeCastOutput3 : ShapeCastOutput3 {
+  int triangle = -1;  ///< the triangle hit (or overlapped), or -1
+};
+
+/// Casts convex proxy B, placed by worldFromB, along translationB (world, metres, fractions
+/// [0, maxFraction]) against the mesh placed by worldFromMesh: castShape against each
+/// triangle whose box overlaps B's swept box (grown by B's radius and
+/// kShapeCastTolerance), the earliest hit kept; ties go to the lowest triangle index, so the
+/// answer is the brute-force loop's over every triangle. One-sided as rayCastMesh: a
+/// triangle whose front the translation leaves (dot(translationB, face normal) > 0) is not
+/// hit; a shape sliding along a face or standing still keeps it. `point` and `normal` are
+/// the triangle's cast (normal from the mesh to B). Status: the earliest triangle's hit or
+/// overlapped; missed when no triangle is hit; maxIterations when none is hit and some
+/// triangle's cast reached the cap (then `fraction` is the least fraction proven free over
+/// those); invalidInput as castShape. No allocation.
+MeshShapeCastOutput3 castShapeMesh(const Mesh3& mesh, Transform3 worldFromMesh,
+                                   const ShapeProxy3& b, Transform3 worldFromB, Vec3 translationB,
+                                   float maxFraction = 1.0f) noexcept;
 
 }  // namespace quack
