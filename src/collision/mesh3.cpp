@@ -452,4 +452,70 @@ MeshShapeCastOutput3 castShapeMesh(const Mesh3& mesh, Transform3 worldFromMesh,
   return best;
 }
 
+namespace {
+
+// B's box in the mesh frame, grown by its radius and `extra`.
+Aabb3 boxInMesh(Transform3 meshFromB, const ShapeProxy3& b, float extra) noexcept {
+  Aabb3 box;
+  for (int i = 0; i < b.count(); ++i) {
+    const Vec3 p = transformPoint(meshFromB, b.points()[i]);
+    box = i == 0 ? Aabb3{p, p} : Aabb3{minv(box.lower, p), maxv(box.upper, p)};
+  }
+  const float grow = b.radius() + extra;
+  box.lower = box.lower - Vec3{grow, grow, grow};
+  box.upper = box.upper + Vec3{grow, grow, grow};
+  return box;
+}
+
+}  // namespace
+
+bool testOverlapMesh(const Mesh3& mesh, Transform3 worldFromMesh, const ShapeProxy3& b,
+                     Transform3 worldFromB) noexcept {
+  const Transform3 meshFromB = invMul(worldFromMesh, worldFromB);
+  Aabb3 box = boxInMesh(meshFromB, b, 0.0f);
+  const float m = treeMargin(mesh.bounds(), box.lower, box.upper);
+  box.lower = box.lower - Vec3{m, m, m};
+  box.upper = box.upper + Vec3{m, m, m};
+  bool overlap = false;
+  mesh.query(box, [&](int t) {
+    overlap = testOverlap(makeProxy(mesh.triangle(t)), worldFromMesh, b, worldFromB);
+    return !overlap;
+  });
+  return overlap;
+}
+
+MeshDistanceOutput3 computeDistanceMesh(const Mesh3& mesh, Transform3 worldFromMesh,
+                                        const ShapeProxy3& b, Transform3 worldFromB) {
+  const Transform3 meshFromB = invMul(worldFromMesh, worldFromB);
+  const Aabb3 box = boxInMesh(meshFromB, b, 0.0f);
+  const float margin = treeMargin(mesh.bounds(), box.lower, box.upper);
+  // Each triangle's lower bound: the gap between its box and B's (B's box holds B with its
+  // radius), less the rounding margin so that GJK's own rounding cannot undercut it.
+  struct Candidate {
+    float bound;
+    int triangle;
+  };
+  std::vector<Candidate> order(static_cast<std::size_t>(mesh.triangleCount()));
+  for (int t = 0; t < mesh.triangleCount(); ++t) {
+    const Aabb3 tb = triangleBox(mesh.triangle(t));
+    const Vec3 gap = maxv(Vec3{}, maxv(tb.lower - box.upper, box.lower - tb.upper));
+    order[static_cast<std::size_t>(t)] = {length(gap) - margin, t};
+  }
+  std::sort(order.begin(), order.end(), [](const Candidate& x, const Candidate& y) {
+    return x.bound < y.bound || (x.bound == y.bound && x.triangle < y.triangle);
+  });
+  MeshDistanceOutput3 best;
+  for (const Candidate& c : order) {
+    if (best.triangle >= 0 && c.bound > best.distance) break;
+    const DistanceOutput3 d =
+        computeDistance(makeProxy(mesh.triangle(c.triangle)), worldFromMesh, b, worldFromB);
+    if (best.triangle < 0 || d.distance < best.distance ||
+        (d.distance == best.distance && c.triangle < best.triangle)) {
+      static_cast<DistanceOutput3&>(best) = d;
+      best.triangle = c.triangle;
+    }
+  }
+  return best;
+}
+
 }  // namespace quack

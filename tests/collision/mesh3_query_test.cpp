@@ -231,5 +231,47 @@ TEST(Mesh3Query, RandomShapeCastsAgreeWithEveryTriangle) {
   EXPECT_GT(hits, 80);
 }
 
+TEST(Mesh3Query, RandomOverlapAndDistanceAgreeWithEveryTriangle) {
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<float> u(-1, 1);
+  const Mesh3 field =
+      heightField(6, 3, [](float x, float z) { return 0.4f * std::sin(1.3f * x + z); });
+  const Mesh3 box = closedBox({1.5f, 0.7f, 1.1f});
+  const std::vector<ShapeProxy3> shapes = {
+      makeProxy(makeSphere({0, 0, 0}, 0.3f).value()),
+      makeProxy(makeCapsule3({-0.4f, 0, 0}, {0.4f, 0, 0}, 0.15f).value()),
+      makeProxy(makeBox3({0.3f, 0.2f, 0.25f}).value())};
+  int overlaps = 0;
+  for (int q = 0; q < 300; ++q) {
+    const Mesh3& m = q % 2 == 0 ? field : box;
+    const Transform3 worldFromMesh{{u(rng), u(rng), u(rng)},
+                                   normalize(Quat{u(rng), u(rng), u(rng), u(rng) + 0.01f})};
+    const ShapeProxy3& b = shapes[static_cast<std::size_t>(q) % shapes.size()];
+    const Transform3 worldFromB{
+        transformPoint(worldFromMesh, {3 * u(rng), 1.5f * u(rng), 3 * u(rng)}),
+        normalize(Quat{u(rng), u(rng), u(rng), u(rng) + 0.01f})};
+    bool overlap = false;
+    MeshDistanceOutput3 best;
+    for (int t = 0; t < m.triangleCount(); ++t) {
+      const ShapeProxy3 tri = makeProxy(m.triangle(t));
+      overlap = overlap || testOverlap(tri, worldFromMesh, b, worldFromB);
+      const DistanceOutput3 d = computeDistance(tri, worldFromMesh, b, worldFromB);
+      if (best.triangle < 0 || d.distance < best.distance) {
+        static_cast<DistanceOutput3&>(best) = d;
+        best.triangle = t;
+      }
+    }
+    EXPECT_EQ(testOverlapMesh(m, worldFromMesh, b, worldFromB), overlap) << "pose " << q;
+    overlaps += overlap ? 1 : 0;
+    const MeshDistanceOutput3 d = computeDistanceMesh(m, worldFromMesh, b, worldFromB);
+    EXPECT_EQ(d.triangle, best.triangle) << "pose " << q;
+    EXPECT_EQ(d.distance, best.distance) << "pose " << q;
+    EXPECT_EQ(d.pointA, best.pointA) << "pose " << q;
+    EXPECT_EQ(d.pointB, best.pointB) << "pose " << q;
+  }
+  EXPECT_GT(overlaps, 30);
+  EXPECT_LT(overlaps, 270);
+}
+
 }  // namespace
 }  // namespace quack

@@ -160,4 +160,25 @@ MeshShapeCastOutput3 castShapeMesh(const Mesh3& mesh, Transform3 worldFromMesh,
                                    const ShapeProxy3& b, Transform3 worldFromB, Vec3 translationB,
                                    float maxFraction = 1.0f) noexcept;
 
+/// Whether convex proxy B, placed by worldFromB, overlaps (or touches) any triangle of the
+/// mesh placed by worldFromMesh: testOverlap against each triangle the tree finds around
+/// B's box. Two-sided: a triangle is a solid sliver here, whichever side B is on. No
+/// allocation.
+bool testOverlapMesh(const Mesh3& mesh, Transform3 worldFromMesh, const ShapeProxy3& b,
+                     Transform3 worldFromB) noexcept;
+
+/// The distance from a mesh to a convex shape: the closest triangle's. World frame.
+struct MeshDistanceOutput3 : DistanceOutput3 {
+  int triangle = -1;  ///< the closest triangle (the lowest index among equals)
+};
+
+/// The closest triangle of the mesh placed by worldFromMesh to convex proxy B placed by
+/// worldFromB: computeDistance against the triangles in order of their boxes' distance
+/// from B's box, stopping once a box is further than the best distance found, so the
+/// answer is the brute-force loop's over every triangle (ties to the lowest index).
+/// Two-sided, as testOverlapMesh; 0 when B touches or overlaps a triangle. Allocates a list
+/// of the triangles.
+MeshDistanceOutput3 computeDistanceMesh(const Mesh3& mesh, Transform3 worldFromMesh,
+                                        const ShapeProxy3& b, Transform3 worldFromB);
+
 }  // namespace quack
