@@ -15,6 +15,7 @@
 #include "quack/collision/gjk3.hpp"
 #include "quack/collision/manifold.hpp"
 #include "quack/collision/manifold3.hpp"
+#include "quack/collision/mesh3.hpp"
 #include "quack/collision/pieces.hpp"
 #include "quack/collision/shape_cast.hpp"
 #include "quack/collision/toi.hpp"
@@ -291,6 +292,53 @@ QueryAnswer answerRayCast3(const json& id, const ShapeGeometry3& shape, Transfor
   return finished(id, out);
 }
 
+// A query whose shape a is a static triangle mesh (shape b, when there is one, is convex):
+// the mesh's own queries (collision/mesh3.hpp), each answer the convex one with the
+// triangle's index; manifold gives one manifold per touching triangle.
+QueryAnswer answerMesh3(const json& id, const std::string& op, const json& q, float speculative) {
+  if (op != "overlap" && op != "distance" && op != "manifold" && op != "raycast" &&
+      op != "shapecast") {
+    return rejected(id, "a: a mesh supports ops " + std::string(kMeshQueryOps) + ", not " + op);
+  }
+  Result<Mesh3> mesh = parseMesh3(q.at("a"), "a");
+  if (!mesh) return rejected(id, mesh.error().message);
+  Result<Transform3> pa =
+      q.contains("pa") ? parsePose3(q.at("pa"), "pa") : Result<Transform3>(Transform3{});
+  if (!pa) return rejected(id, pa.error().message);
+  json out = {{"id", id}};
+  if (op == "raycast") {
+    if (Status s = checkRay(q); !s) return rejected(id, s.message());
+    const json& ray = q.at("ray");
+    Result<Vec3> origin = parsePosition3(ray.at("origin"), "ray.origin");
+    if (!origin) return rejected(id, origin.error().message);
+    Result<Vec3> translation = parsePosition3(ray.at("translation"), "ray.translation");
+    if (!translation) return rejected(id, translation.error().message);
+    out.update(toJson(rayCastMesh(*mesh, *pa, {*origin, *translation, 1.0f})));
+    return finished(id, out);
+  }
+  Result<ShapeGeometry3> b = parseShape3(q.at("b"), "b");
+  if (!b) return rejected(id, b.error().message);
+  Result<Transform3> pb =
+      q.contains("pb") ? parsePose3(q.at("pb"), "pb") : Result<Transform3>(Transform3{});
+  if (!pb) return rejected(id, pb.error().message);
+  const ShapeProxy3 proxyB = makeProxy(*b);
+  if (op == "shapecast") {
+    if (!q.contains("translation")) return rejected(id, "translation: missing");
+    Result<Vec3> translation = parsePosition3(q.at("translation"), "translation");
+    if (!translation) return rejected(id, translation.error().message);
+    out.update(toJson(castShapeMesh(*mesh, *pa, proxyB, *pb, *translation)));
+  } else if (op == "overlap") {
+    out["overlap"] = testOverlapMesh(*mesh, *pa, proxyB, *pb);
+  } else if (op == "distance") {
+    out.update(toJson(computeDistanceMesh(*mesh, *pa, proxyB, *pb)));
+  } else {
+    std::vector<MeshContact3> contacts;
+    collideMesh(*mesh, *pa, *b, *pb, contacts, speculative);
+    out.update(toJson(contacts));
+  }
+  return finished(id, out);
+}
+
 // A query whose shapes are 3D (answerParsed has checked the keys, the op and the
 // speculative distance, and that no shape is 2D): the same ops, fields and errors as in
 // 2D, with [x, y, z] vectors and {"pos", "quat"} poses.
@@ -299,6 +347,7 @@ QueryAnswer answerParsed3(const json& id, const std::string& op, const json& q, 
     if (!q.contains(key)) return Transform3{};
     return parsePose3(q.at(key), key);
   };
+  if (isMesh3(q.at("a"))) return answerMesh3(id, op, q, speculative);
   Result<ShapeGeometry3> a = parseShape3(q.at("a"), "a");
   if (!a) return rejected(id, a.error().message);
   if (op == "raycast") {

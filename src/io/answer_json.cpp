@@ -101,4 +101,32 @@ json toJson(const ToiOutput3& t) {
   return {{"status", toString(t.status)}, {"t", t.t}};
 }
 
+json toJson(const MeshRayHit3& r) {
+  json out = toJson(static_cast<const RayHit3&>(r));
+  out["triangle"] = r.triangle;
+  return out;
+}
+
+json toJson(const MeshDistanceOutput3& d) {
+  json out = toJson(static_cast<const DistanceOutput3&>(d));
+  out["triangle"] = d.triangle;
+  return out;
+}
+
+json toJson(const MeshShapeCastOutput3& c) {
+  json out = toJson(static_cast<const ShapeCastOutput3&>(c));
+  out["triangle"] = c.triangle;
+  return out;
+}
+
+json toJson(const std::vector<MeshContact3>& contacts) {
+  json manifolds = json::array();
+  for (const MeshContact3& c : contacts) {
+    json m = toJson(c.manifold);
+    m["triangle"] = c.triangle;
+    manifolds.push_back(std::move(m));
+  }
+  return {{"manifolds", manifolds}};
+}
+
 }  // namespace quack

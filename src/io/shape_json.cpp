@@ -379,7 +379,7 @@ Status noRounding(const json& j, const std::string& path, const char* kind) {
 int shapeDimension(const json& j) {
   if (!j.is_object() || !j.contains("type") || !j.at("type").is_string()) return 0;
   const std::string type = j.at("type").get<std::string>();
-  if (type == "sphere" || type == "hull" || type == "triangle") return 3;
+  if (type == "sphere" || type == "hull" || type == "triangle" || type == "mesh") return 3;
   if (type == "circle" || type == "segment" || type == "polygon" || type == "concave") return 2;
   if (type == "capsule") return j.contains("p1") && isTriple(j.at("p1")) ? 3 : 2;
   if (type == "box") return j.contains("half") && isTriple(j.at("half")) ? 3 : 2;
@@ -464,12 +464,77 @@ Result<ShapeGeometry3> parseShape3(const json& j, const std::string& path,
     if (!s) return located(path, s.error());
     return ShapeGeometry3{*s};
   }
+  if (*type == "mesh") {
+    return fail(path + ".type: \"mesh\" is a static triangle mesh, not a convex shape: " +
+                "a query takes it as shape a only (ops " + kMeshQueryOps + ")");
+  }
   if (*type == "circle" || *type == "segment" || *type == "polygon" || *type == "concave") {
     return fail(path + ".type: \"" + *type + "\" is a 2D shape (in 3D: sphere, capsule, box, " +
                 "hull, triangle)");
   }
   return fail(path + ".type: unknown shape type \"" + *type +
               "\" (expected sphere, capsule, box, hull, triangle in 3D)");
+}
+
+bool isMesh3(const json& j) {
+  return j.is_object() && j.contains("type") && j.at("type").is_string() &&
+         j.at("type").get<std::string>() == "mesh";
+}
+
+Result<Mesh3> parseMesh3(const json& j, const std::string& path) {
+  Result<std::string> type = typeOf(j, path);
+  if (!type) return type.error();
+  if (*type != "mesh") return fail(path + ".type: must be \"mesh\"");
+  if (Status s = checkKeys(j, path, {"type", "vertices", "triangles"}, {}); !s)
+    return fail(s.message());
+  Result<std::vector<Vec3>> vertices =
+      parsePoints3(j, "vertices", path, 3, static_cast<std::size_t>(kMaxMeshVertices3Json));
+  if (!vertices) return vertices.error();
+  const std::string at = path + ".triangles";
+  if (!j.contains("triangles")) return fail(at + ": missing");
+  const json& tris = j.at("triangles");
+  if (!tris.is_array()) return fail(at + ": must be an array of [i, j, k]");
+  if (tris.empty()) return fail(at + ": needs at least 1 triangle");
+  if (tris.size() > static_cast<std::size_t>(kMaxMeshTriangles3)) {
+    return fail(at + ": too many triangles (at most " + std::to_string(kMaxMeshTriangles3) + ")");
+  }
+  const auto count = static_cast<std::int64_t>(vertices->size());
+  std::vector<std::array<std::int32_t, 3>> triangles(tris.size());
+  for (std::size_t i = 0; i < tris.size(); ++i) {
+    const std::string ti = at + "[" + std::to_string(i) + "]";
+    if (!tris[i].is_array() || tris[i].size() != 3)
+      return fail(ti + ": must be [i, j, k] (three vertex indices)");
+    for (std::size_t k = 0; k < 3; ++k) {
+      const json& v = tris[i][k];
+      const std::string tk = ti + "[" + std::to_string(k) + "]";
+      if (!v.is_number_integer()) return fail(tk + ": must be an integer vertex index");
+      // Compared as 64-bit: an unsigned 2^64 - 1 read as signed is -1, out of range too.
+      const bool negative = v.is_number_unsigned() ? false : v.get<std::int64_t>() < 0;
+      if (negative ||
+          (v.is_number_unsigned() ? v.get<std::uint64_t>() >= static_cast<std::uint64_t>(count)
+                                  : v.get<std::int64_t>() >= count)) {
+        return fail(tk + ": vertex index " + v.dump() + " is out of range (0 to " +
+                    std::to_string(count - 1) + ")");
+      }
+      triangles[i][k] = static_cast<std::int32_t>(v.get<std::int64_t>());
+    }
+  }
+  Result<Mesh3> mesh = makeMesh3(*vertices, triangles);
+  if (!mesh) {
+    // makeMesh3 names the triangle ("makeMesh3: triangle 4: ..."); say it as its field.
+    std::string message = mesh.error().message;
+    const std::string prefix = "makeMesh3: triangle ";
+    if (message.rfind(prefix, 0) == 0) {
+      const std::size_t colon = message.find(':', prefix.size());
+      if (colon != std::string::npos) {
+        return fail(at + "[" + message.substr(prefix.size(), colon - prefix.size()) + "]" +
+                    message.substr(colon));
+      }
+    }
+    if (message.rfind("makeMesh3: ", 0) == 0) message = message.substr(11);
+    return fail(at + ": " + message);
+  }
+  return std::move(*mesh);
 }
 
 }  // namespace quack

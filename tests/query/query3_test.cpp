@@ -18,6 +18,7 @@
 #include "quack/collision/epa3.hpp"
 #include "quack/collision/gjk3.hpp"
 #include "quack/collision/manifold3.hpp"
+#include "quack/collision/mesh3.hpp"
 #include "quack/collision/toi3.hpp"
 #include "quack/geometry/raycast3.hpp"
 #include "quack/io/answer_json.hpp"
@@ -394,6 +395,110 @@ TEST(Query3, ErrorsNameTheField) {
 
 // The program's output for 3D lines is the library's answer, to the byte: each line is
 // answered here by the collision functions called directly and written by toJson.
+// A 2 x 2 m floor at y = 0 as two triangles (fronts up) sharing the diagonal (0, 2).
+const std::string kFloorJson =
+    R"({"type":"mesh","vertices":[[-1,0,-1],[1,0,-1],[1,0,1],[-1,0,1]],"triangles":[[0,3,2],[0,2,1]]})";
+
+TEST(Query3, MeshAnswersItsOps) {
+  // Straight down onto the floor from 5 m: fraction 0.5 of the 10 m ray, normal up.
+  json r = answerOk(R"({"op":"raycast","a":)" + kFloorJson +
+                    R"(,"ray":{"origin":[0.5,5,-0.25],"translation":[0,-10,0]}})");
+  EXPECT_TRUE(r["hit"].get<bool>());
+  EXPECT_NEAR(r["fraction"].get<double>(), 0.5, 1e-7);
+  expectVec3(r["point"], 0.5, 0, -0.25, 1e-6);
+  expectVec3(r["normal"], 0, 1, 0, 0);
+  EXPECT_EQ(r["triangle"].get<int>(), 1);  // x > -z: the triangle (0, 2, 1)
+  // From below: one-sided, no hit, every number 0 and triangle -1.
+  r = answerOk(R"({"op":"raycast","a":)" + kFloorJson +
+               R"(,"ray":{"origin":[0.5,-5,-0.25],"translation":[0,10,0]}})");
+  EXPECT_FALSE(r["hit"].get<bool>());
+  EXPECT_EQ(r["triangle"].get<int>(), -1);
+
+  // A unit cube 0.01 m deep across the diagonal: one manifold per triangle, each along the
+  // face normal (no ghost bump at the shared edge), points 0.01 deep.
+  const std::string cube = R"(,"b":{"type":"box","half":[0.5,0.5,0.5]},"pb":{"pos":[0,0.49,0]})";
+  json m = answerOk(R"({"op":"manifold","a":)" + kFloorJson + cube + "}");
+  ASSERT_EQ(m["manifolds"].size(), 2u) << m;
+  for (int i = 0; i < 2; ++i) {
+    const json& one = m["manifolds"][static_cast<std::size_t>(i)];
+    EXPECT_EQ(one["triangle"].get<int>(), i);
+    expectVec3(one["normal"], 0, 1, 0, 1e-6);
+    ASSERT_GE(one["points"].size(), 1u);
+    for (const json& p : one["points"])
+      EXPECT_NEAR(p["separation"].get<double>(), -0.01, 1e-5);
+  }
+  EXPECT_TRUE(answerOk(R"({"op":"overlap","a":)" + kFloorJson + cube + "}")["overlap"].get<bool>());
+  // Above the floor by 0.3 m: apart, the closest triangle is the lower index of the two.
+  const std::string above = R"(,"b":{"type":"sphere","radius":0.2},"pb":{"pos":[0.1,0.5,0.1]})";
+  EXPECT_FALSE(
+      answerOk(R"({"op":"overlap","a":)" + kFloorJson + above + "}")["overlap"].get<bool>());
+  json d = answerOk(R"({"op":"distance","a":)" + kFloorJson + above + "}");
+  EXPECT_NEAR(d["distance"].get<double>(), 0.3, 1e-6);
+  expectVec3(d["normal"], 0, 1, 0, 1e-6);
+  EXPECT_EQ(d["triangle"].get<int>(), 0);
+  // Dropped 1 m, the sphere lands after 0.3 m.
+  json c =
+      answerOk(R"({"op":"shapecast","a":)" + kFloorJson + above + R"(,"translation":[0,-1,0]})");
+  EXPECT_EQ(c["status"], "hit");
+  EXPECT_NEAR(c["fraction"].get<double>(), 0.3, 1e-4);
+  EXPECT_GE(c["triangle"].get<int>(), 0);
+}
+
+TEST(Query3, MeshErrorsNameTheFieldAndTheOp) {
+  const std::string b = R"(,"b":{"type":"sphere","radius":0.2})";
+  EXPECT_EQ(errorOf(R"({"op":"penetration","a":)" + kFloorJson + b + "}"),
+            "a: a mesh supports ops overlap, distance, manifold, raycast, shapecast, not "
+            "penetration");
+  EXPECT_EQ(
+      errorOf(
+          R"({"op":"toi","a":)" + kFloorJson +
+          R"(,"b":{"type":"sphere","radius":0.2},"sweepA":{"from":{},"to":{}},"sweepB":{"from":{},"to":{}}})"),
+      "a: a mesh supports ops overlap, distance, manifold, raycast, shapecast, not toi");
+  EXPECT_EQ(
+      errorOf(R"({"op":"distance","a":{"type":"sphere","radius":0.2},"b":)" + kFloorJson + "}"),
+      "b.type: \"mesh\" is a static triangle mesh, not a convex shape: a query takes it "
+      "as shape a only (ops overlap, distance, manifold, raycast, shapecast)");
+  auto meshError = [&](const std::string& mesh) {
+    return errorOf(R"({"op":"distance","a":)" + mesh + b + "}");
+  };
+  EXPECT_EQ(
+      meshError(R"({"type":"mesh","vertices":[[0,0,0],[1,0,0],[0,0,1]],"triangles":[[0,2,3]]})"),
+      "a.triangles[0][2]: vertex index 3 is out of range (0 to 2)");
+  EXPECT_EQ(
+      meshError(R"({"type":"mesh","vertices":[[0,0,0],[1,0,0],[0,0,1]],"triangles":[[0,-1,2]]})"),
+      "a.triangles[0][1]: vertex index -1 is out of range (0 to 2)");
+  EXPECT_EQ(
+      meshError(R"({"type":"mesh","vertices":[[0,0,0],[1,0,0],[0,0,1]],"triangles":[[0,1.5,2]]})"),
+      "a.triangles[0][1]: must be an integer vertex index");
+  EXPECT_EQ(
+      meshError(R"({"type":"mesh","vertices":[[0,0,0],[1,0,0],[0,0,1]],"triangles":[[0,2]]})"),
+      "a.triangles[0]: must be [i, j, k] (three vertex indices)");
+  EXPECT_EQ(meshError(R"({"type":"mesh","vertices":[[0,0,0],[1,0,0],[0,0,1]],"triangles":[]})"),
+            "a.triangles: needs at least 1 triangle");
+  EXPECT_EQ(meshError(R"({"type":"mesh","vertices":[[0,0,0],[1,0,0],[0,0,1]]})"),
+            "a.triangles: missing");
+  EXPECT_EQ(
+      meshError(
+          R"({"type":"mesh","vertices":[[0,0,0],[1,0,0],[0,0,1]],"triangles":[[0,2,1]],"radius":0})")
+          .rfind("a.radius: ", 0),
+      0u);
+  // A degenerate triangle (three points on a line) and a repeated index: makeMesh3's
+  // errors, said as the triangle's field.
+  const std::string line = meshError(
+      R"({"type":"mesh","vertices":[[0,0,0],[1,0,0],[2,0,0],[0,0,1]],"triangles":[[0,3,1],[0,1,2]]})");
+  EXPECT_EQ(line.rfind("a.triangles[1]: ", 0), 0u) << line;
+  EXPECT_EQ(
+      meshError(R"({"type":"mesh","vertices":[[0,0,0],[1,0,0],[0,0,1]],"triangles":[[0,0,1]]})"),
+      "a.triangles[0]: a vertex index is repeated");
+  // Vertices: beyond the coordinate limit, not a triple.
+  EXPECT_EQ(
+      meshError(R"({"type":"mesh","vertices":[[0,0,0],[1e19,0,0],[0,0,1]],"triangles":[[0,2,1]]})"),
+      "a.vertices[1][0]: 1e+19 m is beyond the coordinate limit 1e9 m");
+  EXPECT_EQ(meshError(R"({"type":"mesh","vertices":[[0,0,0],[1,0],[0,0,1]],"triangles":[[0,2,1]]})")
+                .rfind("a.vertices[1]", 0),
+            0u);
+}
+
 TEST(Query3, ProgramOutputMatchesTheLibrary) {
   const Hull3 slab = makeBox3({2, 0.5f, 2}).value();
   const Hull3 cube = makeBox3({0.5f, 0.5f, 0.5f}).value();
@@ -451,6 +556,28 @@ TEST(Query3, ProgramOutputMatchesTheLibrary) {
   add(R"({"id":"r","op":"raycast","a":)" + slabJson + R"(,"pa":)" + turnJson +
           R"(,"ray":{"origin":[0.1,5,0.2],"translation":[0,-10,0]}})",
       toJson(hit), "r");
+
+  // A mesh as shape a: the floor turned by the same quaternion.
+  const std::vector<Vec3> floorVertices = {{-1, 0, -1}, {1, 0, -1}, {1, 0, 1}, {-1, 0, 1}};
+  const std::vector<std::array<std::int32_t, 3>> floorTriangles = {{0, 3, 2}, {0, 2, 1}};
+  const Mesh3 floor = makeMesh3(floorVertices, floorTriangles).value();
+  const std::string floorPair = R"("a":)" + kFloorJson + R"(,"pa":)" + turnJson + R"(,"b":)" +
+                                cubeJson + R"(,"pb":{"pos":[0.3,0.95,-0.2]})";
+  add(R"({"id":"mr","op":"raycast","a":)" + kFloorJson + R"(,"pa":)" + turnJson +
+          R"(,"ray":{"origin":[0.1,5,0.2],"translation":[0,-10,0]}})",
+      toJson(rayCastMesh(floor, slabPose, {{0.1f, 5, 0.2f}, {0, -10, 0}, 1.0f})), "mr");
+  std::vector<MeshContact3> contacts;
+  collideMesh(floor, slabPose, cube, Transform3{{0.3f, 0.2f, -0.2f}, {}}, contacts);
+  EXPECT_FALSE(contacts.empty());
+  add(R"({"id":"mm","op":"manifold","a":)" + kFloorJson + R"(,"pa":)" + turnJson + R"(,"b":)" +
+          cubeJson + R"(,"pb":{"pos":[0.3,0.2,-0.2]}})",
+      toJson(contacts), "mm");
+  add(R"({"id":"md","op":"distance",)" + floorPair + "}",
+      toJson(computeDistanceMesh(floor, slabPose, makeProxy(cube), cubePose)), "md");
+  add(R"({"id":"mo","op":"overlap",)" + floorPair + "}",
+      json{{"overlap", testOverlapMesh(floor, slabPose, makeProxy(cube), cubePose)}}, "mo");
+  add(R"({"id":"ms","op":"shapecast",)" + floorPair + R"(,"translation":[0,-2,0.1]})",
+      toJson(castShapeMesh(floor, slabPose, makeProxy(cube), cubePose, {0, -2, 0.1f})), "ms");
 
   const std::filesystem::path dir = std::filesystem::temp_directory_path();
   const std::filesystem::path in = dir / ("quack_query3_in_" + std::to_string(::getpid()));

@@ -24,6 +24,7 @@
 #include "quack/collision/gjk.hpp"
 #include "quack/collision/manifold.hpp"
 #include "quack/collision/manifold3.hpp"
+#include "quack/collision/mesh3.hpp"
 #include "quack/collision/shape_cast.hpp"
 #include "quack/collision/toi.hpp"
 #include "quack/collision/toi3.hpp"
@@ -48,5 +49,12 @@ nlohmann::json toJson(const Manifold3& m);
 nlohmann::json toJson(const ShapeCastOutput3& c);
 nlohmann::json toJson(const RayHit3& r);
 nlohmann::json toJson(const ToiOutput3& t);
+/// A mesh's answers: the convex answer with the triangle's index added ("triangle", -1
+/// when there is none), and its contacts as {"manifolds": [{"triangle", "normal",
+/// "points"}, ...]}, one per touching triangle in triangle order.
+nlohmann::json toJson(const MeshRayHit3& r);
+nlohmann::json toJson(const MeshDistanceOutput3& d);
+nlohmann::json toJson(const MeshShapeCastOutput3& c);
+nlohmann::json toJson(const std::vector<MeshContact3>& contacts);
 
 }  // namespace quack

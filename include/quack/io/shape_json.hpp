@@ -20,6 +20,9 @@
 ///        {"type": "hull", "points": [[x, y, z], ...] (4 to 4,096; quickhull keeps at most
 ///         64 vertices), "radius": 0 (rounded hulls are refused: not supported in 3D yet)}
 ///        {"type": "triangle", "points": [[x, y, z], [x, y, z], [x, y, z]]}
+///        {"type": "mesh", "vertices": [[x, y, z], ...] (3 to 1,000,000), "triangles":
+///         [[i, j, k], ...] (vertex indices, counter-clockwise seen from the front)}: a
+///         static one-sided triangle mesh (makeMesh3), read by parseMesh3 only.
 /// 3D pose: {"pos": [x, y, z] (default [0, 0, 0]), "quat": [x, y, z, w] (scalar last,
 ///        default the identity; normalised here, the zero quaternion refused)}.
 /// Unknown keys are errors; every error names the field, e.g. "a.radius: must be > 0".
@@ -31,6 +34,7 @@
 #include <string>
 #include <vector>
 
+#include "quack/collision/mesh3.hpp"
 #include "quack/core/result.hpp"
 #include "quack/geometry/shapes.hpp"
 #include "quack/geometry/shapes3.hpp"
@@ -58,7 +62,7 @@ Result<Vec2> parseVec2(const nlohmann::json& j, const std::string& path);
 /// "path[0]: 2e+19 m is beyond the coordinate limit 1e9 m".
 Result<Vec2> parsePosition(const nlohmann::json& j, const std::string& path);
 
-/// The dimension of a shape object: 3 for "sphere", "hull" and "triangle", and for a
+/// The dimension of a shape object: 3 for "sphere", "hull", "triangle" and "mesh", and for a
 /// "capsule" or "box" whose first vector ("p1", "half") has three components; 2 for the 2D
 /// types and for a capsule or box whose vector has any other form (parseShape then says
 /// what is wrong with it); 0 when `j` is not an object with a known string "type".
@@ -67,6 +71,18 @@ int shapeDimension(const nlohmann::json& j);
 /// parseShape. A 2D type ("circle", "polygon", ...) is refused with a message saying so.
 Result<ShapeGeometry3> parseShape3(const nlohmann::json& j, const std::string& path,
                                    std::initializer_list<const char*> extraKeys = {});
+/// The ops `quack query` answers with a mesh as shape a.
+inline constexpr const char* kMeshQueryOps = "overlap, distance, manifold, raycast, shapecast";
+/// Most vertices of a mesh read from JSON.
+inline constexpr int kMaxMeshVertices3Json = 1000000;
+/// True when `j` is an object of type "mesh".
+bool isMesh3(const nlohmann::json& j);
+/// A static triangle mesh from JSON ({"type": "mesh", "vertices", "triangles"}), mesh
+/// frame, built by makeMesh3. Every error names the field: "a.vertices[2][1]: ...",
+/// "a.triangles[3][0]: vertex index 9 is out of range (0 to 7)", "a.triangles[1]: ... no
+/// area" (makeMesh3's errors about one triangle), "a.triangles: edge (0, 1) is shared by 3
+/// triangles ...".
+Result<Mesh3> parseMesh3(const nlohmann::json& j, const std::string& path);
 /// 3D pose from JSON as worldFromShape; `path` prefixes error messages ("pa"). An "angle"
 /// key is refused with a message that points to "quat".
 Result<Transform3> parsePose3(const nlohmann::json& j, const std::string& path);
