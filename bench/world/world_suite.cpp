@@ -1,5 +1,7 @@
-// The world suite: Box2D v3's benchmark scenes that need no joints, in Quack and (when
-// built with QUACK_BOX2D_V3_DIR) Box2D v3, side by side in one run.
+// The world suite: Box2D v3's benchmark scenes (those without joints, those with them) and a
+// long hanging chain, in Quack and (when built with QUACK_BOX2D_V3_DIR) Box2D v3, side by
+// side in one run. The joint scenes are laid out as Box2D v3's shared/benchmarks.c and
+// shared/human.c (commit 617d32a), read for understanding; the code is ours.
 //
 //   world_suite [--scene NAME[,NAME...]] [--workers 1,2] [--runs 3] [--steps N]
 //               [--only quack|v3]
@@ -8,7 +10,10 @@
 // of the remaining steps (v3's step counts, suite.hpp). Runs alternate between the
 // libraries; the table gives each figure's median over the runs, and the speed ratio
 // v3 time / Quack time (above 1: Quack is faster). Both step at 60 Hz with 4 sub-steps, each
-// with its own thread pool of `workers` threads. For instruction counts run one library
+// with its own thread pool of `workers` threads. After the last step (untimed) each run
+// checks its world: the last column gives the largest distance between a joint's two anchors
+// (mm), and the table warns of any body whose position or velocity is not finite. For
+// instruction counts run one library
 // alone under callgrind: `valgrind --tool=callgrind world_suite --scene large_pyramid
 // --only quack --runs 1 --steps 20`.
 
@@ -18,6 +23,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -29,6 +36,66 @@ namespace suite {
 
 double junkyardTargetX(int step) {
   return 60.0 * std::sin(0.2 * (static_cast<double>(step) / 60.0));
+}
+
+P2 rainGroupOrigin(int row, int column) {
+  const float span = static_cast<float>(kRainGridCount) * kRainGridSize;
+  const float spacing = span / static_cast<float>(kRainColumns);
+  return {-0.5f * span + spacing * (static_cast<float>(column) + 0.5f),
+          40.0f + 45.0f * static_cast<float>(row)};
+}
+
+bool rainSpawn(int step, int& column, bool& replace) {
+  if ((step & 7) != 0) return false;
+  const int event = step >> 3;
+  replace = event >= kRainColumns;
+  column = replace ? (event - kRainColumns) % kRainColumns : event;
+  return true;
+}
+
+namespace {
+P2 turn(float c, float s, P2 v) {
+  return {c * v.x - s * v.y, s * v.x + c * v.y};
+}
+P2 scaled(float k, P2 v) {
+  return {k * v.x, k * v.y};
+}
+}  // namespace
+
+std::array<P2, 360> spinnerRing() {
+  // Clockwise, so that each one-sided segment faces the inside of the ring.
+  const float angle = -2.0f * 3.14159265f / 360.0f;
+  const float c = std::cos(angle), s = std::sin(angle);
+  std::array<P2, 360> points;
+  P2 p{40.0f, 0.0f};
+  for (P2& q : points) {
+    q = {p.x, p.y + 32.0f};
+    p = turn(c, s, p);
+  }
+  return points;
+}
+
+std::array<std::array<P2, 4>, 40> washerPieces() {
+  // 36 rim pieces between radii 16 and 18 m, each 10 degrees less a small gap, and every
+  // 90 degrees a paddle between 14 and 16 m; in the order v3 adds them.
+  const float r0 = 14.0f, r1 = 16.0f, r2 = 18.0f;
+  const float angle = 3.14159265f / 18.0f;
+  const float c = std::cos(angle), s = std::sin(angle);
+  const float co = std::cos(0.1f * angle), so = std::sin(0.1f * angle);
+  std::array<std::array<P2, 4>, 40> pieces;
+  int n = 0;
+  P2 u1{1.0f, 0.0f};
+  for (int i = 0; i < 36; ++i) {
+    const P2 u2 = i == 35 ? P2{1.0f, 0.0f} : turn(c, s, u1);
+    const P2 a1 = turn(co, -so, u1), a2 = turn(co, so, u2);
+    pieces[static_cast<std::size_t>(n++)] = {scaled(r1, a1), scaled(r2, a1), scaled(r1, a2),
+                                             scaled(r2, a2)};
+    if (i % 9 == 0)
+      pieces[static_cast<std::size_t>(n++)] = {scaled(r0, u1), scaled(r1, u1), scaled(r0, u2),
+                                               scaled(r1, u2)};
+    u1 = u2;
+  }
+  return pieces;
 }
 
 namespace quackside {
@@ -137,8 +204,267 @@ void compounds(World& world) {
   }
 }
 
+Vec2 vec(P2 p) {
+  return {p.x, p.y};
+}
+
+JointId revolute(World& world, BodyId a, BodyId b, Vec2 anchor) {
+  return world.createJoint({.type = JointType::revolute, .bodyA = a, .bodyB = b, .anchorA = anchor})
+      .value();
+}
+
+void jointGrid(World& world) {
+  constexpr int n = kJointGridN;
+  // v3's filter: category 2, colliding with every category but 2, so no circle meets another.
+  const ShapeDef sd{.filter = {.category = 2, .mask = ~std::uint64_t{2}}};
+  const Circle circle = makeCircle({}, 0.4f).value();
+  std::vector<BodyId> bodies;
+  bodies.reserve(static_cast<std::size_t>(n * n));
+  for (int k = 0; k < n; ++k) {
+    for (int i = 0; i < n; ++i) {
+      const bool fixed = jointGridStatic(k, i);
+      const BodyId b =
+          world
+              .createBody({.type = fixed ? BodyType::staticBody : BodyType::dynamicBody,
+                           .position = vec(k, -i)})
+              .value();
+      (void)world.createShape(b, sd, circle);
+      const std::size_t at = bodies.size();
+      if (i > 0) (void)revolute(world, bodies[at - 1], b, vec(k, 0.5 - i));
+      // v3 also joins the static neighbours of the top row to each other (6 joints that do
+      // nothing); Quack refuses a joint with no dynamic body, so those are left out.
+      if (k > 0 && !(fixed && jointGridStatic(k - 1, i)))
+        (void)revolute(world, bodies[at - static_cast<std::size_t>(n)], b, vec(k - 0.5, -i));
+      bodies.push_back(b);
+    }
+  }
+}
+
+// One ragdoll of the rain, and what destroying it needs.
+struct Figure {
+  std::array<BodyId, kBones.size()> bodies;
+  std::array<JointId, kBones.size()> joints;  // joints[0], the hip's, is unused
+  bool live = false;
+};
+
+void spawnFigure(World& world, Figure& f, Vec2 origin, int group) {
+  const Filter body{.category = 2, .mask = 1 | 2, .group = -group};
+  const Filter foot{.category = 2, .mask = 1, .group = -group};
+  const std::array<Vec2, 4> footPoints{vec(kFoot[0]), vec(kFoot[1]), vec(kFoot[2]), vec(kFoot[3])};
+  const Polygon footShape = makePolygon(footPoints, kFootRadius).value();
+  for (std::size_t i = 0; i < kBones.size(); ++i) {
+    const Bone& bone = kBones[i];
+    const Vec2 at = origin + Vec2{0.0f, bone.y};
+    const Vec2 pivot = origin + Vec2{0.0f, bone.pivotY};
+    // v3 measures a joint's angle between frames on the bodies, and turns the lower arm's
+    // frame on the upper arm by frameTurn: its rest angle (limits and spring) is then
+    // -frameTurn from the layout. Quack measures from the angle at creation, so the lower
+    // arm is created turned by frameTurn about its pivot, jointed, and set back.
+    const float turnBy = bone.frameTurn * kPi;
+    const Transform turned = makeTransform(pivot, turnBy);
+    const BodyDef def{.position = turnBy != 0.0f ? transformPoint(turned, at - pivot) : at,
+                      .angle = turnBy,
+                      .linearDamping = bone.linearDamping,
+                      .sleepThreshold = kBoneSleepThreshold};
+    const BodyId b = world.createBody(def).value();
+    f.bodies[i] = b;
+    (void)world.createShape(
+        b, {.friction = 0.2f, .filter = body},
+        makeCapsule({0.0f, bone.capsuleLow}, {0.0f, bone.capsuleHigh}, bone.radius).value());
+    if (bone.foot) (void)world.createShape(b, {.friction = 0.05f, .filter = foot}, footShape);
+    if (bone.parent < 0) continue;
+    f.joints[i] = world
+                      .createJoint({.type = JointType::revolute,
+                                    .bodyA = f.bodies[static_cast<std::size_t>(bone.parent)],
+                                    .bodyB = b,
+                                    .anchorA = pivot,
+                                    .enableLimit = true,
+                                    .lower = bone.lower * kPi,
+                                    .upper = bone.upper * kPi,
+                                    .enableMotor = true,
+                                    .motorSpeed = 0.0f,
+                                    .maxMotorTorque = bone.frictionScale * kJointFriction,
+                                    .enableSpring = true,
+                                    .hertz = kBoneHertz,
+                                    .dampingRatio = kBoneDamping})
+                      .value();
+    if (turnBy != 0.0f) (void)world.setTransform(b, at, 0.0f);
+  }
+  f.live = true;
+}
+
+void destroyFigure(World& world, Figure& f) {
+  for (std::size_t i = 1; i < kBones.size(); ++i)
+    (void)world.destroyJoint(f.joints[i]);
+  for (BodyId b : f.bodies)
+    (void)world.destroyBody(b);
+  f.live = false;
+}
+
+struct Rain {
+  std::vector<Figure> figures =
+      std::vector<Figure>(static_cast<std::size_t>(kRainRows * kRainColumns * kRainGroupSize));
+  void spawn(World& world, int row, int column) {
+    const P2 o = rainGroupOrigin(row, column);
+    for (int i = 0; i < kRainGroupSize; ++i) {
+      Figure& f =
+          figures[static_cast<std::size_t>((row * kRainColumns + column) * kRainGroupSize + i)];
+      if (f.live) destroyFigure(world, f);
+      spawnFigure(world, f, {o.x + 0.5f * static_cast<float>(i), o.y}, i + 1);
+    }
+  }
+  void step(World& world, int step) {
+    int column = 0;
+    bool replace = false;
+    if (!rainSpawn(step, column, replace)) return;
+    for (int row = 0; row < kRainRows; ++row)
+      spawn(world, row, column);
+  }
+};
+
+void rainFloors(World& world) {
+  const BodyId ground = world.createBody({.type = BodyType::staticBody}).value();
+  float y = 0.0f;
+  for (int r = 0; r < kRainRows; ++r) {
+    float x = -0.5f * static_cast<float>(kRainGridCount) * kRainGridSize;
+    for (int j = 0; j <= kRainGridCount; ++j) {
+      (void)world.createShape(ground, {},
+                              makeBox(0.5f * kRainGridSize, 0.5f * kRainGridSize, {x, y}).value());
+      x += kRainGridSize;
+    }
+    y += 45.0f;
+  }
+}
+
+void spinner(World& world) {
+  const BodyId ground = world.createBody({.type = BodyType::staticBody}).value();
+  const std::array<P2, 360> ring = spinnerRing();
+  std::array<Vec2, 360> points;
+  for (std::size_t i = 0; i < ring.size(); ++i)
+    points[i] = vec(ring[i]);
+  (void)world.createChain(ground, {.friction = 0.1f}, points, true).value();
+  const BodyId paddle = world.createBody({.position = {0.0f, 12.0f}, .enableSleep = false}).value();
+  (void)world.createShape(paddle, {.friction = 0.0f}, makeBox(0.4f, 20.0f, {}, 0.0f, 0.2f).value());
+  // v3's motor has no torque bound (FLT_MAX): the paddle turns at 5 rad/s whatever it meets.
+  (void)world
+      .createJoint({.type = JointType::revolute,
+                    .bodyA = ground,
+                    .bodyB = paddle,
+                    .anchorA = {0.0f, 12.0f},
+                    .enableMotor = true,
+                    .motorSpeed = 5.0f,
+                    .maxMotorTorque = std::numeric_limits<float>::max()})
+      .value();
+  const Capsule capsule = makeCapsule({-0.25f, 0.0f}, {0.25f, 0.0f}, 0.25f).value();
+  const Circle circle = makeCircle({}, 0.35f).value();
+  const Polygon square = makeBox(0.35f, 0.35f).value();
+  const ShapeDef sd{.density = 0.25f, .friction = 0.1f, .restitution = 0.1f};
+  float x = -23.0f, y = 2.0f;
+  for (int i = 0; i < kSpinnerBodies; ++i) {
+    const BodyId b = world.createBody({.position = {x, y}}).value();
+    if (i % 3 == 0) {
+      (void)world.createShape(b, sd, capsule);
+    } else if (i % 3 == 1) {
+      (void)world.createShape(b, sd, circle);
+    } else {
+      (void)world.createShape(b, sd, square);
+    }
+    x += 0.5f;
+    if (x >= 23.0f) {
+      x = -23.0f;
+      y += 0.5f;
+    }
+  }
+}
+
+void tumbler(World& world) {
+  const BodyId ground = world.createBody({.type = BodyType::staticBody}).value();
+  const BodyId drum = world.createBody({.position = {0.0f, 10.0f}}).value();
+  const ShapeDef heavy{.density = 50.0f};
+  (void)world.createShape(drum, heavy, makeBox(0.5f, 10.0f, {10.0f, 0.0f}).value());
+  (void)world.createShape(drum, heavy, makeBox(0.5f, 10.0f, {-10.0f, 0.0f}).value());
+  (void)world.createShape(drum, heavy, makeBox(10.0f, 0.5f, {0.0f, 10.0f}).value());
+  (void)world.createShape(drum, heavy, makeBox(10.0f, 0.5f, {0.0f, -10.0f}).value());
+  (void)world
+      .createJoint({.type = JointType::revolute,
+                    .bodyA = ground,
+                    .bodyB = drum,
+                    .anchorA = {0.0f, 10.0f},
+                    .enableMotor = true,
+                    .motorSpeed = (kPi / 180.0f) * 25.0f,
+                    .maxMotorTorque = 1.0e8f})
+      .value();
+  constexpr int n = 45;
+  const Polygon box = makeBox(0.125f, 0.125f).value();
+  float y = -0.2f * n + 10.0f;
+  for (int i = 0; i < n; ++i) {
+    float x = -0.2f * n;
+    for (int j = 0; j < n; ++j) {
+      (void)world.createShape(world.createBody({.position = {x, y}}).value(), {}, box);
+      x += 0.4f;
+    }
+    y += 0.4f;
+  }
+}
+
+void washer(World& world) {
+  // v3's washer turns its drum as a kinematic body (its motor-joint variant is switched off
+  // in v3's code), drifting slowly as v3 sets it.
+  const BodyId drum = world
+                          .createBody({.type = BodyType::kinematicBody,
+                                       .position = {0.0f, 10.0f},
+                                       .linearVelocity = {0.001f, -0.002f},
+                                       .angularVelocity = (kPi / 180.0f) * 25.0f})
+                          .value();
+  for (const std::array<P2, 4>& piece : washerPieces()) {
+    const std::array<Vec2, 4> points{vec(piece[0]), vec(piece[1]), vec(piece[2]), vec(piece[3])};
+    (void)world.createShape(drum, {}, makePolygon(points).value());
+  }
+  constexpr int n = 90;
+  const float a = 0.1f;
+  const Polygon box = makeBox(a, a).value();
+  float y = -1.1f * a * n + 10.0f;
+  for (int i = 0; i < n; ++i) {
+    float x = -1.1f * a * n;
+    for (int j = 0; j < n; ++j) {
+      (void)world.createShape(world.createBody({.position = {x, y}}).value(), {}, box);
+      x += 2.1f * a;
+    }
+    y += 2.1f * a;
+  }
+}
+
+void chain(World& world) {
+  BodyId previous = world.createBody({.type = BodyType::staticBody}).value();
+  const Capsule link =
+      makeCapsule({-0.5f * kChainLink, 0.0f}, {0.5f * kChainLink, 0.0f}, kChainRadius).value();
+  for (int i = 0; i < kChainLinks; ++i) {
+    const float x = kChainLink * static_cast<float>(i);
+    const BodyId b = world.createBody({.position = {x + 0.5f * kChainLink, 0.0f}}).value();
+    (void)world.createShape(b, {.friction = 0.2f}, link);
+    (void)revolute(world, previous, b, {x, 0.0f});
+    previous = b;
+  }
+}
+
+// The checks after a run: the largest anchor separation of a live joint, and the bodies
+// whose state is not finite.
+void check(const World& world, Run& out) {
+  for (JointId j : world.joints()) {
+    const auto [a, b] = world.jointAnchors(j);
+    out.jointGap = std::max(out.jointGap, static_cast<double>(length(b - a)));
+  }
+  for (BodyId b : world.bodies()) {
+    const Transform xf = world.transform(b);
+    if (!isFinite(xf.p) || !std::isfinite(world.angle(b)) || !isFinite(world.linearVelocity(b)) ||
+        !std::isfinite(world.angularVelocity(b)))
+      ++out.nonFinite;
+  }
+}
+
 Run run(const std::string& scene, int workers, int steps) {
-  const bool noSleep = scene == "large_pyramid" || scene == "many_pyramids";
+  const bool noSleep =
+      scene == "large_pyramid" || scene == "many_pyramids" || scene == "joint_grid";
   WorldDef def{.enableSleep = !noSleep, .workerCount = workers};
   if (scene == "smash") def.gravity = {0, 0};
   Run out;
@@ -146,6 +472,7 @@ Run run(const std::string& scene, int workers, int steps) {
   World world = World::create(def).value();
   BodyId pusher;
   bool hasPusher = false;
+  std::unique_ptr<Rain> rain;
   if (scene == "large_pyramid") {
     largePyramid(world);
   } else if (scene == "many_pyramids") {
@@ -157,11 +484,25 @@ Run run(const std::string& scene, int workers, int steps) {
     hasPusher = true;
   } else if (scene == "compounds") {
     compounds(world);
+  } else if (scene == "joint_grid") {
+    jointGrid(world);
+  } else if (scene == "rain") {
+    rainFloors(world);
+    rain = std::make_unique<Rain>();
+  } else if (scene == "spinner") {
+    spinner(world);
+  } else if (scene == "tumbler") {
+    tumbler(world);
+  } else if (scene == "washer") {
+    washer(world);
+  } else if (scene == "chain") {
+    chain(world);
   } else {
     throw std::invalid_argument("no scene " + scene);
   }
   out.buildMs = msSince(t0);
   constexpr float dt = 1.0f / 60.0f;
+  // What the scene does before step i (timed with the step, as in v3's benchmark program).
   auto step = [&](int i) {
     if (hasPusher) {
       // What v3's b2Body_SetTargetTransform does: the velocity that reaches the target in dt.
@@ -171,6 +512,7 @@ Run run(const std::string& scene, int workers, int steps) {
                                       static_cast<double>(dt)),
                    0.0f});
     }
+    if (rain) rain->step(world, i);
     world.step(dt, 4);
   };
   t0 = Clock::now();
@@ -182,6 +524,7 @@ Run run(const std::string& scene, int workers, int steps) {
   out.msPerStep = steps > 1 ? msSince(t0) / (steps - 1) : 0.0;
   out.contacts = static_cast<long>(world.contactCount());
   out.awake = static_cast<long>(world.awakeBodyCount());
+  check(world, out);
   return out;
 }
 
@@ -267,9 +610,9 @@ int main(int argc, char** argv) {
   if (scenes.empty())
     for (const suite::SceneInfo& s : suite::kScenes)
       scenes.push_back(s.name);
-  std::printf("%-14s %3s | %9s %9s %6s | %9s %9s %6s | %8s %8s | %8s %8s | %s\n", "scene", "thr",
-              "Quack ms", "v3 ms", "speed", "Q first", "v3 first", "speed", "Q build", "v3 build",
-              "Q cont", "v3 cont", "awake Q/v3");
+  std::printf("%-14s %3s | %9s %9s %6s | %9s %9s %6s | %8s %8s | %8s %8s | %-13s | %s\n", "scene",
+              "thr", "Quack ms", "v3 ms", "speed", "Q first", "v3 first", "speed", "Q build",
+              "v3 build", "Q cont", "v3 cont", "awake Q/v3", "joint gap mm Q/v3");
   for (const std::string& name : scenes) {
     int sceneSteps = 0;
     for (const suite::SceneInfo& s : suite::kScenes)
@@ -295,24 +638,33 @@ int main(int argc, char** argv) {
       }
       const double qs = median(q[0]), vs = median(v[0]), qf = median(q[1]), vf = median(v[1]);
       if (withQuack && withV3) {
+        const std::string awake = std::to_string(lastQ.awake) + "/" + std::to_string(lastV.awake);
         std::printf(
             "%-14s %3d | %9.3f %9.3f %5.2fx | %9.2f %9.2f %5.2fx | %8.1f %8.1f | %8ld %8ld | "
-            "%ld/%ld\n",
+            "%-13s | %.3f/%.3f\n",
             name.c_str(), w, qs, vs, vs / qs, qf, vf, vf / qf, median(q[2]), median(v[2]),
-            lastQ.contacts, lastV.contacts, lastQ.awake, lastV.awake);
+            lastQ.contacts, lastV.contacts, awake.c_str(), 1e3 * lastQ.jointGap,
+            1e3 * lastV.jointGap);
       } else {
         // One library: its figures in its columns, the other's and the ratios left blank.
         const bool q1 = withQuack;
         const suite::Run& last = q1 ? lastQ : lastV;
         const double ms = q1 ? qs : vs, first = q1 ? qf : vf, build = median(q1 ? q[2] : v[2]);
-        std::printf(
-            "%-14s %3d | %9s %9s %6s | %9s %9s %6s | %8s %8s | %8s %8s | %s\n", name.c_str(), w,
-            q1 ? fixed(ms, 3).c_str() : "-", q1 ? "-" : fixed(ms, 3).c_str(), "-",
-            q1 ? fixed(first, 2).c_str() : "-", q1 ? "-" : fixed(first, 2).c_str(), "-",
-            q1 ? fixed(build, 1).c_str() : "-", q1 ? "-" : fixed(build, 1).c_str(),
-            q1 ? std::to_string(last.contacts).c_str() : "-",
-            q1 ? "-" : std::to_string(last.contacts).c_str(), std::to_string(last.awake).c_str());
+        const std::string gap =
+            q1 ? fixed(1e3 * last.jointGap, 3) + "/-" : "-/" + fixed(1e3 * last.jointGap, 3);
+        std::printf("%-14s %3d | %9s %9s %6s | %9s %9s %6s | %8s %8s | %8s %8s | %-13s | %s\n",
+                    name.c_str(), w, q1 ? fixed(ms, 3).c_str() : "-",
+                    q1 ? "-" : fixed(ms, 3).c_str(), "-", q1 ? fixed(first, 2).c_str() : "-",
+                    q1 ? "-" : fixed(first, 2).c_str(), "-", q1 ? fixed(build, 1).c_str() : "-",
+                    q1 ? "-" : fixed(build, 1).c_str(),
+                    q1 ? std::to_string(last.contacts).c_str() : "-",
+                    q1 ? "-" : std::to_string(last.contacts).c_str(),
+                    std::to_string(last.awake).c_str(), gap.c_str());
       }
+      for (const suite::Run* last : {withQuack ? &lastQ : nullptr, withV3 ? &lastV : nullptr})
+        if (last != nullptr && last->nonFinite > 0)
+          std::printf("  warning: %s: %ld bodies with a position or velocity not finite\n",
+                      last == &lastQ ? "Quack" : "v3", last->nonFinite);
       std::fflush(stdout);
     }
   }
