@@ -20,6 +20,7 @@ namespace quack::detail {
 
 class BodyStore;
 class ContactSet;
+class JointSet;
 class EventDispatcher;
 class GhostEdges;
 class TaskRunner;
@@ -109,9 +110,13 @@ class ContinuousPhase {
   void markMoved(std::uint32_t index);
 
   // Two dynamic bodies, neither a bullet, that touch at the start of the step (a manifold
-  // with points, from the contact set): the contact solver holds them (see findImpactWith).
+  // with points, from the contact set), or of which one is anchored by a joint: the
+  // contact solver holds them (see findImpactWith).
   bool heldBySolver(const BodyStore& store, std::uint32_t shapeA, std::uint32_t shapeB) const;
+  // The body has a joint to a static or kinematic body, or a mouse joint.
+  bool anchoredByJoint(const BodyStore& store, std::uint32_t body) const;
   const ContactSet* contacts_ = nullptr;  // during run
+  const JointSet* joints_ = nullptr;      // during run
   std::vector<FastBody> fast_;
   std::vector<std::uint32_t> participantOf_;  // per body index: its FastBody, or kNoParticipant
   // The participants' swept boxes, indexed for overlap queries: sorted by lower x at the

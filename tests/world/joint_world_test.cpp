@@ -601,6 +601,40 @@ TEST(JointScenes, HundredByHundredJointGridHoldsTogether) {
   EXPECT_LT(worst, 1.05f * 0.5913f);
 }
 
+// Continuous collision and joints: a paddle pinned at its centre and turned by a motor at
+// 5 rad/s (its tips at 100 m/s) sweeps into a heavy box. An impact's response knows nothing
+// of joints; were the pair swept, the paddle was knocked off its pivot (the pivot opened by
+// 7 cm). A jointed body meets other dynamic bodies through the solver: the pivot holds as
+// with continuous collision off (within 1.3 cm, measured), and the box is still struck.
+TEST(JointScenes, AMotorPaddleHittingABoxStaysOnItsPivot) {
+  for (bool continuous : {true, false}) {
+    SCOPED_TRACE(continuous ? "continuous" : "discrete");
+    World world = World::create({.gravity = {0.0f, 0.0f}, .enableContinuous = continuous}).value();
+    const BodyId ground = addGround(world);
+    const BodyId paddle = addBox(world, {0.0f, 0.0f}, {0.4f, 20.0f});
+    const JointId j = world
+                          .createJoint({.type = JointType::revolute,
+                                        .bodyA = ground,
+                                        .bodyB = paddle,
+                                        .anchorA = {0.0f, 0.0f},
+                                        .enableMotor = true,
+                                        .motorSpeed = 5.0f,
+                                        .maxMotorTorque = 1e30f})
+                          .value();
+    const BodyId box = addBox(world, {-15.0f, 1.0f}, {0.35f, 0.35f}, 0.0f, {.density = 40.0f});
+    float widest = 0.0f;
+    for (int i = 0; i < 30; ++i) {
+      ASSERT_TRUE(stepAndValidate(world));
+      const auto [a, b] = world.jointAnchors(j);
+      widest = std::max(widest, length(b - a));
+    }
+    std::printf("paddle (%s): widest pivot gap %.4f m\n", continuous ? "continuous" : "discrete",
+                widest);
+    EXPECT_LT(widest, 0.02f);
+    EXPECT_GT(length(world.linearVelocity(box)), 10.0f);  // struck
+  }
+}
+
 // A scene with every joint type, contacts and sleeping, for the bit-for-bit tests.
 void buildJointScene(World& world) {
   addStaticBox(world, {0.0f, -0.5f}, {30.0f, 0.5f});
@@ -707,7 +741,7 @@ TEST(JointDeterminism, SameBitsOnAnyNumberOfWorkersAndLanes) {
 
 // Ties every build (scalar, SSE2, AVX2, NEON, clang, wasm) to the same bits with joints:
 // print it with QUACK_PRINT_GOLDEN=1.
-constexpr std::uint64_t kJointGoldenHash = 0x26e229bb05609e8b;
+constexpr std::uint64_t kJointGoldenHash = 0xdefa0b5a51cda493;
 
 TEST(JointDeterminism, GoldenHashOnEveryBuild) {
   const std::uint64_t hash = hashes({}, 300).back();
