@@ -169,9 +169,9 @@ float axialMass(const JointSim& sim, const AxisFrame& f) {
 }
 
 // Spring, motor and limits along the axis (prismatic; the wheel has no axial motor).
-void solveAxial(const JointSim& sim, Joint& j, Pair& p, const AxisFrame& f,
+void solveAxial(const JointSim& sim, JointRun& j, Pair& p, const AxisFrame& f,
                 const JointStepParams& params, bool useBias, bool motor) {
-  const JointDef& def = j.def;
+  const JointRun::Def& def = j.def;
   const float mass = axialMass(sim, f);
   if (def.enableSpring && def.hertz > 0.0f) {
     const float C = f.translation;
@@ -198,9 +198,9 @@ void solveAxial(const JointSim& sim, Joint& j, Pair& p, const AxisFrame& f,
   }
 }
 
-void solveRevolute(const JointSim& sim, Joint& j, Pair& p, const JointStepParams& params,
+void solveRevolute(const JointSim& sim, JointRun& j, Pair& p, const JointStepParams& params,
                    bool useBias) {
-  const JointDef& def = j.def;
+  const JointRun::Def& def = j.def;
   const float iSum = sim.iA + sim.iB;
   if (iSum > 0.0f) {
     const float axialMass = 1.0f / iSum;
@@ -234,7 +234,7 @@ void solveRevolute(const JointSim& sim, Joint& j, Pair& p, const JointStepParams
   solvePoint(sim, p, rA, rB, sep, useBias ? &params.jointSoft : nullptr, j.linearImpulse);
 }
 
-void solvePrismatic(const JointSim& sim, Joint& j, Pair& p, const JointStepParams& params,
+void solvePrismatic(const JointSim& sim, JointRun& j, Pair& p, const JointStepParams& params,
                     bool useBias) {
   const Vec2 rA = rotate(p.qA, sim.rA), rB = rotate(p.qB, sim.rB);
   AxisFrame f = axisFrame(sim, p, rA, rB);
@@ -261,9 +261,9 @@ void solvePrismatic(const JointSim& sim, Joint& j, Pair& p, const JointStepParam
   p.wB += sim.iB * (impulse.x * f.s2 + impulse.y);
 }
 
-void solveWheel(const JointSim& sim, Joint& j, Pair& p, const JointStepParams& params,
+void solveWheel(const JointSim& sim, JointRun& j, Pair& p, const JointStepParams& params,
                 bool useBias) {
-  const JointDef& def = j.def;
+  const JointRun::Def& def = j.def;
   const float iSum = sim.iA + sim.iB;
   if (def.enableMotor && iSum > 0.0f) {
     const float impulse = -(1.0f / iSum) * ((p.wB - p.wA) - def.motorSpeed);
@@ -290,9 +290,9 @@ void solveWheel(const JointSim& sim, Joint& j, Pair& p, const JointStepParams& p
   p.wB += sim.iB * impulse * f.s2;
 }
 
-void solveDistance(const JointSim& sim, Joint& j, Pair& p, const JointStepParams& params,
+void solveDistance(const JointSim& sim, JointRun& j, Pair& p, const JointStepParams& params,
                    bool useBias) {
-  const JointDef& def = j.def;
+  const JointRun::Def& def = j.def;
   const Vec2 rA = rotate(p.qA, sim.rA), rB = rotate(p.qB, sim.rB);
   const Vec2 d = (p.dpB - p.dpA) + sim.deltaCenter + (rB - rA);
   const float len = length(d);
@@ -329,9 +329,9 @@ void solveDistance(const JointSim& sim, Joint& j, Pair& p, const JointStepParams
   }
 }
 
-void solveWeld(const JointSim& sim, Joint& j, Pair& p, const JointStepParams& params,
+void solveWeld(const JointSim& sim, JointRun& j, Pair& p, const JointStepParams& params,
                bool useBias) {
-  const JointDef& def = j.def;
+  const JointRun::Def& def = j.def;
   const float iSum = sim.iA + sim.iB;
   if (iSum > 0.0f) {
     Row r;
@@ -356,8 +356,8 @@ void solveWeld(const JointSim& sim, Joint& j, Pair& p, const JointStepParams& pa
   solvePoint(sim, p, rA, rB, sep, s, j.linearImpulse);
 }
 
-void solveMotor(const JointSim& sim, Joint& j, Pair& p, const JointStepParams& params) {
-  const JointDef& def = j.def;
+void solveMotor(const JointSim& sim, JointRun& j, Pair& p, const JointStepParams& params) {
+  const JointRun::Def& def = j.def;
   const float correction = def.correctionFactor * params.invH;
   const float iSum = sim.iA + sim.iB;
   if (iSum > 0.0f) {
@@ -384,7 +384,7 @@ void solveMotor(const JointSim& sim, Joint& j, Pair& p, const JointStepParams& p
   p.applyLinear(sim, rA, rB, total - old);
 }
 
-void solveMouse(const JointSim& sim, Joint& j, Pair& p, const JointStepParams& params) {
+void solveMouse(const JointSim& sim, JointRun& j, Pair& p, const JointStepParams& params) {
   // Spin damped softly (no angle to reach): a body held off its centre would otherwise
   // swing about the grabbed point for as long as it is held.
   if (sim.iB > 0.0f) {
@@ -417,6 +417,21 @@ void solveMouse(const JointSim& sim, Joint& j, Pair& p, const JointStepParams& p
 void prepareJoint(JointSim& sim, const Joint& joint, const JointBody& a, const JointBody& b,
                   const JointStepParams& params) {
   const JointDef& def = joint.def;
+  JointRun& run = sim.run;
+  run.def = {
+      def.type,        def.enableLimit,     def.enableMotor,    def.enableSpring,  def.lower,
+      def.upper,       def.motorSpeed,      def.maxMotorTorque, def.maxMotorForce, def.hertz,
+      def.linearHertz, def.angularHertz,    def.minLength,      def.maxLength,     def.maxForce,
+      def.maxTorque,   def.correctionFactor};
+  run.length = joint.length;
+  run.linearImpulse = joint.linearImpulse;
+  run.angularImpulse = joint.angularImpulse;
+  run.perpImpulse = joint.perpImpulse;
+  run.axialImpulse = joint.axialImpulse;
+  run.springImpulse = joint.springImpulse;
+  run.motorImpulse = joint.motorImpulse;
+  run.lowerImpulse = joint.lowerImpulse;
+  run.upperImpulse = joint.upperImpulse;
   sim.mA = a.invMass;
   sim.iA = a.invInertia;
   sim.mB = b.invMass;
@@ -424,8 +439,14 @@ void prepareJoint(JointSim& sim, const Joint& joint, const JointBody& a, const J
   sim.rA = rotate(a.q, joint.localAnchorA - a.localCenter);
   sim.rB = rotate(b.q, joint.localAnchorB - b.localCenter);
   sim.deltaCenter = b.center - a.center;
-  const float relative = invMulRot(a.q, b.q).angle();
-  sim.deltaAngle = wrapAngle(relative - joint.referenceAngle);
+  // The relative angle costs an arctangent: only the rows that read it get it (a revolute
+  // joint without a limit or spring, the bulk of a chain or a grid, does not).
+  const bool angled = def.type == JointType::weld || def.type == JointType::prismatic ||
+                      def.type == JointType::motor ||
+                      (def.type == JointType::revolute &&
+                       (def.enableLimit || (def.enableSpring && def.hertz > 0.0f)));
+  const float relative = angled ? invMulRot(a.q, b.q).angle() : 0.0f;
+  sim.deltaAngle = angled ? wrapAngle(relative - joint.referenceAngle) : 0.0f;
   sim.axis = rotate(a.q, joint.localAxisA);
   sim.spring = makeSoftness(def.hertz, def.dampingRatio, params.h);
   switch (def.type) {
@@ -450,7 +471,8 @@ void prepareJoint(JointSim& sim, const Joint& joint, const JointBody& a, const J
   }
 }
 
-void warmStartJoint(const JointSim& sim, const Joint& j, BodyState* states) {
+void warmStartJoint(const JointSim& sim, BodyState* states) {
+  const JointRun& j = sim.run;
   Pair p(sim, states, nullptr);
   const Vec2 rA = rotate(p.qA, sim.rA), rB = rotate(p.qB, sim.rB);
   switch (j.def.type) {
@@ -496,8 +518,9 @@ void warmStartJoint(const JointSim& sim, const Joint& j, BodyState* states) {
   p.store(sim, states);
 }
 
-void solveJoint(const JointSim& sim, Joint& joint, BodyState* states, const float* turned,
+void solveJoint(JointSim& sim, BodyState* states, const float* turned,
                 const JointStepParams& params, bool useBias) {
+  JointRun& joint = sim.run;
   Pair p(sim, states, turned);
   switch (joint.def.type) {
     case JointType::revolute:
@@ -525,7 +548,16 @@ void solveJoint(const JointSim& sim, Joint& joint, BodyState* states, const floa
   p.store(sim, states);
 }
 
-void finishJoint(const JointSim& sim, Joint& j, float invH) {
+void finishJoint(const JointSim& sim, Joint& joint, float invH) {
+  const JointRun& j = sim.run;
+  joint.linearImpulse = j.linearImpulse;
+  joint.angularImpulse = j.angularImpulse;
+  joint.perpImpulse = j.perpImpulse;
+  joint.axialImpulse = j.axialImpulse;
+  joint.springImpulse = j.springImpulse;
+  joint.motorImpulse = j.motorImpulse;
+  joint.lowerImpulse = j.lowerImpulse;
+  joint.upperImpulse = j.upperImpulse;
   Vec2 P;
   float L = 0.0f;
   switch (j.def.type) {
@@ -560,8 +592,8 @@ void finishJoint(const JointSim& sim, Joint& j, float invH) {
       L = j.angularImpulse;
       break;
   }
-  j.force = invH * P;
-  j.torque = invH * L;
+  joint.force = invH * P;
+  joint.torque = invH * L;
 }
 
 }  // namespace quack::detail

@@ -791,9 +791,9 @@ void runStep(SolverScratch& s, std::vector<ContactBlock<F>>& blocks, const World
   auto runJoints = [&](Kind kind, std::size_t first, std::size_t count) {
     for (std::size_t k = first; k < first + count; ++k) {
       JointSim& sim = jointSims[k];
-      Joint& joint = jointSet.joints[sim.joint];
       switch (kind) {
         case Kind::prepare: {
+          const Joint& joint = jointSet.joints[sim.joint];
           auto body = [&](std::uint32_t index, std::int32_t slot, bool moved) {
             JointBody jb;
             if (index == kNoBody) return jb;
@@ -813,13 +813,13 @@ void runStep(SolverScratch& s, std::vector<ContactBlock<F>>& blocks, const World
           break;
         }
         case Kind::warm:
-          warmStartJoint(sim, joint, states);
+          warmStartJoint(sim, states);
           break;
         case Kind::solve:
-          solveJoint(sim, joint, states, s.turned.data(), params.joint, true);
+          solveJoint(sim, states, s.turned.data(), params.joint, true);
           break;
         case Kind::relax:
-          solveJoint(sim, joint, states, s.turned.data(), params.joint, false);
+          solveJoint(sim, states, s.turned.data(), params.joint, false);
           break;
         default:
           break;
