@@ -95,6 +95,12 @@ Status checkJointDef(const JointDef& d) {
                 number(d.maxLength) + ")");
   if (d.type == JointType::mouse && d.hertz <= 0.0f)
     return fail("JointDef.hertz of a mouse joint must be > 0 (it is a spring)");
+  // Both default to 0, shared with other types: a mouse or motor joint without them would
+  // silently do nothing.
+  if (d.type == JointType::mouse && d.maxForce <= 0.0f)
+    return fail("JointDef.maxForce of a mouse joint must be > 0 (the most it may pull)");
+  if (d.type == JointType::motor && d.maxForce <= 0.0f && d.maxTorque <= 0.0f)
+    return fail("JointDef.maxForce or maxTorque of a motor joint must be > 0");
   return {};
 }
 

@@ -78,11 +78,16 @@ TEST(JointApi, BadDefinitionsAreRefusedByName) {
   dist.minLength = 2.0f;
   dist.maxLength = 1.0f;
   EXPECT_NE(errorOf(world, dist).find("JointDef.minLength"), std::string::npos);
-  JointDef mouse{.type = JointType::mouse, .bodyA = ground, .bodyB = box};
+  JointDef mouse{.type = JointType::mouse, .bodyA = ground, .bodyB = box, .maxForce = 100.0f};
   EXPECT_NE(errorOf(world, mouse).find("must be null"), std::string::npos);
   mouse.bodyA = {};
   mouse.hertz = 0.0f;
   EXPECT_NE(errorOf(world, mouse).find("JointDef.hertz"), std::string::npos);
+  mouse.hertz = 5.0f;
+  mouse.maxForce = 0.0f;
+  EXPECT_NE(errorOf(world, mouse).find("JointDef.maxForce of a mouse joint"), std::string::npos);
+  JointDef motor{.type = JointType::motor, .bodyA = ground, .bodyB = box};
+  EXPECT_NE(errorOf(world, motor).find("maxForce or maxTorque"), std::string::npos);
   // Nothing was created by any of the bad ones.
   EXPECT_EQ(world.jointCount(), 1u);
   EXPECT_TRUE(valid(world));

@@ -667,7 +667,10 @@ EMSCRIPTEN_KEEPALIVE const char* qk_world_grab(double x, double y, double radius
   d.target = at;
   d.hertz = 5.0f;
   d.dampingRatio = 0.7f;
-  d.maxForce = 1000.0f * world.mass(best->body) * length(world.def().gravity);
+  // A thousand times the body's weight (under 10 m/s^2 at least, so that a grab still pulls
+  // in a world without gravity; and never 0, which createJoint refuses).
+  d.maxForce =
+      maxf(1000.0f * world.mass(best->body) * maxf(length(world.def().gravity), 10.0f), 1.0f);
   Result<JointId> j = world.createJoint(d);
   if (!j) return errorAnswer(j.error().message);
   gSandbox.mouse = *j;

@@ -153,8 +153,8 @@ struct JointDef {
   float maxTorque = 0.0f;
   float correctionFactor = 0.3f;
 
-  /// Mouse: where B's grabbed point is pulled (maxForce caps the pull; hertz and
-  /// dampingRatio set the spring).
+  /// Mouse: where B's grabbed point is pulled (maxForce, which must be > 0, caps the pull;
+  /// hertz and dampingRatio set the spring). A motor joint needs maxForce or maxTorque > 0.
   Vec2 target;
 
   /// Whether the two bodies' shapes still collide with each other (false: they pass
