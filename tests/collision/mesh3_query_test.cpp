@@ -175,7 +175,9 @@ TEST(Mesh3Query, RandomRaysAgreeWithEveryTriangle) {
 
 TEST(Mesh3Query, BoxDroppedOntoAFlatGridHitsAtTheGap) {
   const Mesh3 m = heightField(4, 2, [](float, float) { return 0.0f; });
-  const ShapeProxy3 cube = makeProxy(makeBox3({0.5f, 0.5f, 0.5f}).value());
+  // A hull's proxy points into the hull: keep it alive as long as the proxy.
+  const Hull3 hull = makeBox3({0.5f, 0.5f, 0.5f}).value();
+  const ShapeProxy3 cube = makeProxy(hull);
   // The cube's bottom 2 m above the floor, dropped 4 m: touches at half the way.
   const MeshShapeCastOutput3 c =
       castShapeMesh(m, Transform3{}, cube, Transform3{{0.2f, 2.5f, 0.1f}, Quat{}}, {0, -4, 0});
@@ -201,11 +203,14 @@ TEST(Mesh3Query, RandomShapeCastsAgreeWithEveryTriangle) {
   const Mesh3 field =
       heightField(6, 3, [](float x, float z) { return 0.4f * std::sin(1.3f * x + z); });
   const Mesh3 box = closedBox({1.5f, 0.7f, 1.1f});
-  const std::vector<ShapeProxy3> shapes = {
-      makeProxy(makeSphere({0, 0, 0}, 0.3f).value()),
-      makeProxy(makeCapsule3({-0.4f, 0, 0}, {0.4f, 0, 0}, 0.15f).value()),
-      makeProxy(makeBox3({0.3f, 0.2f, 0.25f}).value()),
-      makeProxy(makeTriangle3({-0.4f, 0, -0.4f}, {0.4f, 0, -0.4f}, {0, 0, 0.5f}).value())};
+  // Proxies point into their shapes: the shapes live as long as the proxies.
+  const Sphere sphere = makeSphere({0, 0, 0}, 0.3f).value();
+  const Capsule3 capsule = makeCapsule3({-0.4f, 0, 0}, {0.4f, 0, 0}, 0.15f).value();
+  const Hull3 hull = makeBox3({0.3f, 0.2f, 0.25f}).value();
+  const Triangle3 triangle =
+      makeTriangle3({-0.4f, 0, -0.4f}, {0.4f, 0, -0.4f}, {0, 0, 0.5f}).value();
+  const std::vector<ShapeProxy3> shapes = {makeProxy(sphere), makeProxy(capsule), makeProxy(hull),
+                                           makeProxy(triangle)};
   int hits = 0;
   for (int q = 0; q < 240; ++q) {
     const Mesh3& m = q % 2 == 0 ? field : box;
@@ -237,10 +242,10 @@ TEST(Mesh3Query, RandomOverlapAndDistanceAgreeWithEveryTriangle) {
   const Mesh3 field =
       heightField(6, 3, [](float x, float z) { return 0.4f * std::sin(1.3f * x + z); });
   const Mesh3 box = closedBox({1.5f, 0.7f, 1.1f});
-  const std::vector<ShapeProxy3> shapes = {
-      makeProxy(makeSphere({0, 0, 0}, 0.3f).value()),
-      makeProxy(makeCapsule3({-0.4f, 0, 0}, {0.4f, 0, 0}, 0.15f).value()),
-      makeProxy(makeBox3({0.3f, 0.2f, 0.25f}).value())};
+  const Sphere sphere = makeSphere({0, 0, 0}, 0.3f).value();
+  const Capsule3 capsule = makeCapsule3({-0.4f, 0, 0}, {0.4f, 0, 0}, 0.15f).value();
+  const Hull3 hull = makeBox3({0.3f, 0.2f, 0.25f}).value();
+  const std::vector<ShapeProxy3> shapes = {makeProxy(sphere), makeProxy(capsule), makeProxy(hull)};
   int overlaps = 0;
   for (int q = 0; q < 300; ++q) {
     const Mesh3& m = q % 2 == 0 ? field : box;
