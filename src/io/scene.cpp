@@ -659,92 +659,36 @@ Result<SceneJoint> parseJoint(const json& j, const std::string& path,
   SceneJoint out;
   out.path = path;
   JointDef& d = out.def;
-  std::vector<const char*> keys;
+  // Every type takes "type", "a" (not a mouse joint), "b", "collideConnected", "breakForce"
+  // and "breakTorque"; then its own keys.
+  std::vector<const char*> keys = {"type", "b", "collideConnected", "breakForce", "breakTorque"};
   if (type == "revolute") {
     d.type = JointType::revolute;
-    keys = {"type",
-            "a",
-            "b",
-            "anchor",
-            "lower",
-            "upper",
-            "motorSpeed",
-            "maxMotorTorque",
-            "hertz",
-            "dampingRatio",
-            "collideConnected",
-            "breakForce",
-            "breakTorque"};
+    keys.insert(keys.end(), {"a", "anchor", "lower", "upper", "motorSpeed", "maxMotorTorque",
+                             "hertz", "dampingRatio"});
   } else if (type == "prismatic") {
     d.type = JointType::prismatic;
-    keys = {"type",
-            "a",
-            "b",
-            "anchor",
-            "axis",
-            "lower",
-            "upper",
-            "motorSpeed",
-            "maxMotorForce",
-            "hertz",
-            "dampingRatio",
-            "collideConnected",
-            "breakForce",
-            "breakTorque"};
+    keys.insert(keys.end(), {"a", "anchor", "axis", "lower", "upper", "motorSpeed", "maxMotorForce",
+                             "hertz", "dampingRatio"});
   } else if (type == "wheel") {
     d.type = JointType::wheel;
-    keys = {"type",
-            "a",
-            "b",
-            "anchor",
-            "axis",
-            "lower",
-            "upper",
-            "motorSpeed",
-            "maxMotorTorque",
-            "hertz",
-            "dampingRatio",
-            "collideConnected",
-            "breakForce",
-            "breakTorque"};
+    keys.insert(keys.end(), {"a", "anchor", "axis", "lower", "upper", "motorSpeed",
+                             "maxMotorTorque", "hertz", "dampingRatio"});
   } else if (type == "distance") {
     d.type = JointType::distance;
-    keys = {"type",       "a",          "b",     "anchors",      "length",
-            "minLength",  "maxLength",  "hertz", "dampingRatio", "collideConnected",
-            "breakForce", "breakTorque"};
+    keys.insert(keys.end(),
+                {"a", "anchors", "length", "minLength", "maxLength", "hertz", "dampingRatio"});
   } else if (type == "weld") {
     d.type = JointType::weld;
-    keys = {"type",
-            "a",
-            "b",
-            "anchor",
-            "hertz",
-            "dampingRatio",
-            "linearHertz",
-            "angularHertz",
-            "linearDampingRatio",
-            "angularDampingRatio",
-            "collideConnected",
-            "breakForce",
-            "breakTorque"};
+    keys.insert(keys.end(), {"a", "anchor", "hertz", "dampingRatio", "linearHertz", "angularHertz",
+                             "linearDampingRatio", "angularDampingRatio"});
   } else if (type == "motor") {
     d.type = JointType::motor;
-    keys = {"type",
-            "a",
-            "b",
-            "linearOffset",
-            "angularOffset",
-            "maxForce",
-            "maxTorque",
-            "correctionFactor",
-            "collideConnected",
-            "breakForce",
-            "breakTorque"};
+    keys.insert(keys.end(), {"a", "linearOffset", "angularOffset", "maxForce", "maxTorque",
+                             "correctionFactor"});
   } else if (type == "mouse") {
     d.type = JointType::mouse;
-    keys = {"type",       "b",          "anchor",       "target",
-            "maxForce",   "hertz",      "dampingRatio", "collideConnected",
-            "breakForce", "breakTorque"};
+    keys.insert(keys.end(), {"anchor", "target", "maxForce", "hertz", "dampingRatio"});
   } else {
     return fail(path + ".type: \"" + type +
                 "\" is not a joint type (revolute, prismatic, distance, weld, wheel, motor, "
