@@ -8,6 +8,7 @@
 #include <random>
 #include <vector>
 
+#include "mesh3_test_util.hpp"
 #include "quack/collision/mesh3.hpp"
 #include "quack/collision/proxy3.hpp"
 
@@ -16,34 +17,8 @@ namespace {
 
 using Tri = std::array<std::int32_t, 3>;
 
-// An n x n height field over [-s, s]^2 (fronts up), two triangles a quad, diagonals
-// alternating.
-template <class Height>
-Mesh3 heightField(int n, float s, Height height) {
-  std::vector<Vec3> v;
-  for (int i = 0; i <= n; ++i) {
-    for (int j = 0; j <= n; ++j) {
-      const float x = -s + 2 * s * static_cast<float>(i) / static_cast<float>(n);
-      const float z = -s + 2 * s * static_cast<float>(j) / static_cast<float>(n);
-      v.push_back({x, height(x, z), z});
-    }
-  }
-  std::vector<Tri> t;
-  auto at = [n](int i, int j) { return i * (n + 1) + j; };
-  for (int i = 0; i < n; ++i) {
-    for (int j = 0; j < n; ++j) {
-      const int a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
-      if ((i + j) % 2 == 0) {
-        t.push_back({a, d, c});
-        t.push_back({a, c, b});
-      } else {
-        t.push_back({a, d, b});
-        t.push_back({d, c, b});
-      }
-    }
-  }
-  return makeMesh3(v, t).value();
-}
+// An n x n height field over [-s, s]^2 (fronts up): the mesh tests' grid.
+using testing::grid;
 
 // The closed box [-h, h]^3 as twelve triangles, fronts out.
 Mesh3 closedBox(Vec3 h) {
@@ -102,7 +77,7 @@ MeshShapeCastOutput3 bruteCast(const Mesh3& mesh, Transform3 worldFromMesh, cons
 
 TEST(Mesh3Query, RayStraightDownOntoAFlatGrid) {
   // A 4 x 4 flat grid at y = 0 over [-2, 2]^2; quads are 1 m wide.
-  const Mesh3 m = heightField(4, 2, [](float, float) { return 0.0f; });
+  const Mesh3 m = grid(4, 2, [](float, float) { return 0.0f; });
   const Transform3 worldFromMesh{{0, 1, 0}, Quat{}};  // the grid at y = 1
   const MeshRayHit3 h = rayCastMesh(m, worldFromMesh, {{0.3f, 5, -0.6f}, {0, -10, 0}, 1});
   ASSERT_TRUE(h.hit);
@@ -141,9 +116,9 @@ TEST(Mesh3Query, RandomRaysAgreeWithEveryTriangle) {
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> u(-1, 1);
   const Mesh3 field =
-      heightField(12, 4, [](float x, float z) { return 0.5f * std::sin(1.1f * x) * std::cos(z); });
+      grid(12, 4, [](float x, float z) { return 0.5f * std::sin(1.1f * x) * std::cos(z); });
   const Mesh3 box = closedBox({1.5f, 0.7f, 1.1f});
-  const Mesh3 flat = heightField(6, 3, [](float, float) { return 0.0f; });
+  const Mesh3 flat = grid(6, 3, [](float, float) { return 0.0f; });
   const Mesh3* meshes[3] = {&field, &box, &flat};
   int hits = 0;
   for (int q = 0; q < 3000; ++q) {
@@ -174,7 +149,7 @@ TEST(Mesh3Query, RandomRaysAgreeWithEveryTriangle) {
 }
 
 TEST(Mesh3Query, BoxDroppedOntoAFlatGridHitsAtTheGap) {
-  const Mesh3 m = heightField(4, 2, [](float, float) { return 0.0f; });
+  const Mesh3 m = grid(4, 2, [](float, float) { return 0.0f; });
   // A hull's proxy points into the hull: keep it alive as long as the proxy.
   const Hull3 hull = makeBox3({0.5f, 0.5f, 0.5f}).value();
   const ShapeProxy3 cube = makeProxy(hull);
@@ -200,8 +175,7 @@ TEST(Mesh3Query, BoxDroppedOntoAFlatGridHitsAtTheGap) {
 TEST(Mesh3Query, RandomShapeCastsAgreeWithEveryTriangle) {
   std::mt19937 rng(9);
   std::uniform_real_distribution<float> u(-1, 1);
-  const Mesh3 field =
-      heightField(6, 3, [](float x, float z) { return 0.4f * std::sin(1.3f * x + z); });
+  const Mesh3 field = grid(6, 3, [](float x, float z) { return 0.4f * std::sin(1.3f * x + z); });
   const Mesh3 box = closedBox({1.5f, 0.7f, 1.1f});
   // Proxies point into their shapes: the shapes live as long as the proxies.
   const Sphere sphere = makeSphere({0, 0, 0}, 0.3f).value();
@@ -239,8 +213,7 @@ TEST(Mesh3Query, RandomShapeCastsAgreeWithEveryTriangle) {
 TEST(Mesh3Query, RandomOverlapAndDistanceAgreeWithEveryTriangle) {
   std::mt19937 rng(13);
   std::uniform_real_distribution<float> u(-1, 1);
-  const Mesh3 field =
-      heightField(6, 3, [](float x, float z) { return 0.4f * std::sin(1.3f * x + z); });
+  const Mesh3 field = grid(6, 3, [](float x, float z) { return 0.4f * std::sin(1.3f * x + z); });
   const Mesh3 box = closedBox({1.5f, 0.7f, 1.1f});
   const Sphere sphere = makeSphere({0, 0, 0}, 0.3f).value();
   const Capsule3 capsule = makeCapsule3({-0.4f, 0, 0}, {0.4f, 0, 0}, 0.15f).value();

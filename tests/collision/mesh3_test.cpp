@@ -8,10 +8,13 @@
 #include <random>
 #include <vector>
 
+#include "mesh3_test_util.hpp"
 #include "quack/collision/mesh3.hpp"
 
 namespace quack {
 namespace {
+
+using testing::grid;
 
 using Tri = std::array<std::int32_t, 3>;
 
@@ -19,35 +22,6 @@ using Tri = std::array<std::int32_t, 3>;
 Mesh3 twoTriangleFloor(float h) {
   const std::vector<Vec3> v = {{-h, 0, -h}, {h, 0, -h}, {h, 0, h}, {-h, 0, h}};
   const std::vector<Tri> t = {{0, 3, 2}, {0, 2, 1}};
-  return makeMesh3(v, t).value();
-}
-
-// An n x n grid of quads over [-s, s]^2 at heights height(x, z), two triangles each, with
-// the diagonals alternating.
-template <class Height>
-Mesh3 grid(int n, float s, Height height) {
-  std::vector<Vec3> v;
-  for (int i = 0; i <= n; ++i) {
-    for (int j = 0; j <= n; ++j) {
-      const float x = -s + 2 * s * static_cast<float>(i) / static_cast<float>(n);
-      const float z = -s + 2 * s * static_cast<float>(j) / static_cast<float>(n);
-      v.push_back({x, height(x, z), z});
-    }
-  }
-  std::vector<Tri> t;
-  auto at = [n](int i, int j) { return i * (n + 1) + j; };
-  for (int i = 0; i < n; ++i) {
-    for (int j = 0; j < n; ++j) {
-      const int a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
-      if ((i + j) % 2 == 0) {
-        t.push_back({a, d, c});
-        t.push_back({a, c, b});
-      } else {
-        t.push_back({a, d, b});
-        t.push_back({d, c, b});
-      }
-    }
-  }
   return makeMesh3(v, t).value();
 }
 

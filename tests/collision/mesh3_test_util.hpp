@@ -1,0 +1,41 @@
+#pragma once
+// Meshes shared by the mesh tests.
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "quack/collision/mesh3.hpp"
+
+namespace quack::testing {
+
+// An n x n grid of quads over [-s, s]^2 at heights height(x, z), two triangles each, with
+// the diagonals alternating.
+template <class Height>
+Mesh3 grid(int n, float s, Height height) {
+  std::vector<Vec3> v;
+  for (int i = 0; i <= n; ++i) {
+    for (int j = 0; j <= n; ++j) {
+      const float x = -s + 2 * s * static_cast<float>(i) / static_cast<float>(n);
+      const float z = -s + 2 * s * static_cast<float>(j) / static_cast<float>(n);
+      v.push_back({x, height(x, z), z});
+    }
+  }
+  std::vector<std::array<std::int32_t, 3>> t;
+  auto at = [n](int i, int j) { return i * (n + 1) + j; };
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const int a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
+      if ((i + j) % 2 == 0) {
+        t.push_back({a, d, c});
+        t.push_back({a, c, b});
+      } else {
+        t.push_back({a, d, b});
+        t.push_back({d, c, b});
+      }
+    }
+  }
+  return makeMesh3(v, t).value();
+}
+
+}  // namespace quack::testing
