@@ -98,6 +98,11 @@ int reduceToFour(ManifoldPoint3* pts, int count, Vec3 normal) noexcept {
   return n;
 }
 
+// A hull's core, its radius left out (collideHulls adds it).
+ShapeProxy3 coreProxy(const Hull3& hull) noexcept {
+  return ShapeProxy3::fromPoints(hull.vertices, hull.vertexCount, 0.0f, hull.centroid);
+}
+
 // Closest points of segments p1q1 and p2q2 (Ericson 5.1.9).
 void closestSegmentPoints(Vec3 p1, Vec3 q1, Vec3 p2, Vec3 q2, Vec3& c1, Vec3& c2) noexcept {
   Vec3 d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
@@ -226,7 +231,7 @@ Manifold3 collideHullAndCapsule(const Hull3& a, Transform3 worldFromA, const Cap
   const float ts[2] = {lo, hi};
   for (int k = 0; k < 2; ++k) {
     Vec3 q = p[0] + ts[k] * d;
-    float sep = dot(hf.normal, q) - hf.offset - b.radius;
+    float sep = dot(hf.normal, q) - hf.offset - a.radius - b.radius;
     if (sep > speculativeDistance) continue;
     Vec3 mid = q - (b.radius + 0.5f * sep) * hf.normal;
     std::uint32_t id = (static_cast<std::uint32_t>(face) << 16) | static_cast<std::uint32_t>(k);
@@ -236,8 +241,12 @@ Manifold3 collideHullAndCapsule(const Hull3& a, Transform3 worldFromA, const Cap
   return two.pointCount == 2 ? two : m;
 }
 
-Manifold3 collideHulls(const Hull3& a, Transform3 worldFromA, const Hull3& b, Transform3 worldFromB,
-                       float speculativeDistance) noexcept {
+namespace {
+
+// The hulls' cores (their radii ignored), points whose core separation is at most
+// `speculativeDistance`; collideHulls adds the radii.
+Manifold3 collideHullCores(const Hull3& a, Transform3 worldFromA, const Hull3& b,
+                           Transform3 worldFromB, float speculativeDistance) noexcept {
   Manifold3 m;
   SatOutput3 sat = computeSat(a, worldFromA, b, worldFromB, speculativeDistance);
   if (sat.separation > speculativeDistance) return m;
@@ -246,7 +255,7 @@ Manifold3 collideHulls(const Hull3& a, Transform3 worldFromA, const Hull3& b, Tr
     // Apart on an edge axis: the closest features need not be those edges (the separation
     // is only a lower bound), so GJK gives the one point, exactly.
     Manifold3 g =
-        collideGeneral(makeProxy(a), worldFromA, makeProxy(b), worldFromB, speculativeDistance);
+        collideGeneral(coreProxy(a), worldFromA, coreProxy(b), worldFromB, speculativeDistance);
     for (int i = 0; i < g.pointCount; ++i)
       g.points[i].id = kManifold3IdEdges | (static_cast<std::uint32_t>(sat.edgeA) << 8) |
                        static_cast<std::uint32_t>(sat.edgeB);
@@ -355,13 +364,37 @@ Manifold3 collideHulls(const Hull3& a, Transform3 worldFromA, const Hull3& b, Tr
   for (int i = 0; i < ref.vertexCount; ++i)
     size = maxf(size, length(ref.vertices[i] - ref.centroid));
   if (n2 == 0 || minSep > sat.separation + kClipLostSupportRelative * size) {
-    return collideGeneral(makeProxy(a), worldFromA, makeProxy(b), worldFromB, speculativeDistance);
+    return collideGeneral(coreProxy(a), worldFromA, coreProxy(b), worldFromB, speculativeDistance);
   }
   n2 = reduceToFour(pts, n2, normalWorld);
   m.normal = normalWorld;
   for (int i = 0; i < n2; ++i)
     m.points[i] = pts[i];
   m.pointCount = n2;
+  return m;
+}
+
+}  // namespace
+
+Manifold3 collideHulls(const Hull3& a, Transform3 worldFromA, const Hull3& b, Transform3 worldFromB,
+                       float speculativeDistance) noexcept {
+  const float radii = a.radius + b.radius;
+  if (radii == 0.0f) return collideHullCores(a, worldFromA, b, worldFromB, speculativeDistance);
+  // Rounded hulls: the cores' manifold with the radii added to the speculative distance,
+  // each point's separation less the radii and the point moved from midway between the
+  // cores to midway between the rounded surfaces (A's surface is ra further along the
+  // normal, B's rb back), as the capsules' points are; as Box2D's rounded polygons do.
+  const Manifold3 core =
+      collideHullCores(a, worldFromA, b, worldFromB, speculativeDistance + radii);
+  Manifold3 m;
+  m.normal = core.normal;
+  const Vec3 shift = (0.5f * (a.radius - b.radius)) * core.normal;
+  for (int i = 0; i < core.pointCount; ++i) {
+    const float sep = core.points[i].separation - radii;
+    if (sep > speculativeDistance) continue;
+    m.points[m.pointCount++] =
+        makePoint(core.points[i].point + shift, sep, core.points[i].id, worldFromA, worldFromB);
+  }
   return m;
 }
 

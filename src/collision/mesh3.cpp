@@ -163,6 +163,7 @@ Incident incidentFeature(const ShapeGeometry3& convex, Transform3 meshFromConvex
     for (int i = 1; i < h->faceCount; ++i)
       if (dot(h->faces[i].normal, nLocal) < dot(h->faces[best].normal, nLocal)) best = i;
     const HullFace3& face = h->faces[best];
+    f.radius = h->radius;
     for (int k = 0; k < face.count; ++k) {
       const int v = h->faceVertices[face.first + k];
       f.points[f.count] = transformPoint(meshFromConvex, h->vertices[v]);

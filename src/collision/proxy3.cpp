@@ -39,7 +39,7 @@ ShapeProxy3 makeProxy(const Triangle3& triangle) noexcept {
 }
 
 ShapeProxy3 makeProxy(const Hull3& hull) noexcept {
-  return ShapeProxy3::fromPoints(hull.vertices, hull.vertexCount, 0.0f, hull.centroid);
+  return ShapeProxy3::fromPoints(hull.vertices, hull.vertexCount, hull.radius, hull.centroid);
 }
 
 ShapeProxy3 makeProxy(const ShapeGeometry3& geometry) noexcept {

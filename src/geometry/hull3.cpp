@@ -596,6 +596,10 @@ Status validateHull3(const Hull3& hull) {
                 std::to_string(nv) + ", E " + std::to_string(ne) + ", F " + std::to_string(nf) +
                 ")");
   }
+  if (!std::isfinite(hull.radius) || !(hull.radius >= 0.0f) || hull.radius > kMaxCoordinate) {
+    return fail("hull.radius " + formatNumber(hull.radius) +
+                " is not finite, >= 0 and within the coordinate limit 1e9 m");
+  }
   Vec3 lower = hull.vertices[0], upper = hull.vertices[0];
   for (int i = 0; i < nv; ++i) {
     if (!isFinite(hull.vertices[i]))

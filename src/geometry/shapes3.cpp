@@ -36,6 +36,16 @@ Status checkRadius(float radius, const std::string& shape) {
   return {};
 }
 
+// A hull's rounding radius: finite, >= 0 (0 is the plain hull), within the coordinate limit.
+Status checkRoundingRadius(float radius, const std::string& shape) {
+  if (!std::isfinite(radius)) return fail(shape + " radius is not finite");
+  if (radius < 0.0f) return fail(shape + " radius must be >= 0, got " + formatNumber(radius));
+  if (radius > kMaxCoordinate)
+    return fail(shape + " radius " + formatNumber(radius) +
+                " m is beyond the coordinate limit 1e9 m");
+  return {};
+}
+
 }  // namespace
 
 Result<Sphere> makeSphere(Vec3 center, float radius) {
@@ -70,13 +80,16 @@ Result<Triangle3> makeTriangle3(Vec3 a, Vec3 b, Vec3 c) {
   return Triangle3{{a, b, c}};
 }
 
-Result<Hull3> makeHull3(std::span<const Vec3> points) {
+Result<Hull3> makeHull3(std::span<const Vec3> points, float radius) {
+  if (Status s = checkRoundingRadius(radius, "hull"); !s) return Error{s.message()};
   Result<Hull3Build> build = computeHull3(points);
   if (!build) return build.error();
+  build->hull.radius = radius;
   return build->hull;
 }
 
-Result<Hull3> makeBox3(Vec3 half, Transform3 shapeFromBox) {
+Result<Hull3> makeBox3(Vec3 half, Transform3 shapeFromBox, float radius) {
+  if (Status s = checkRoundingRadius(radius, "box"); !s) return Error{s.message()};
   if (!isFinite(half)) return fail("box half-extents are not finite " + formatVec3(half));
   if (!isFinite(shapeFromBox.p) || !isFinite(shapeFromBox.q))
     return fail("box transform is not finite");
@@ -92,7 +105,7 @@ Result<Hull3> makeBox3(Vec3 half, Transform3 shapeFromBox) {
     Vec3 c{(i & 1) ? half.x : -half.x, (i & 2) ? half.y : -half.y, (i & 4) ? half.z : -half.z};
     corners[i] = transformPoint(t, c);
   }
-  return makeHull3(corners);
+  return makeHull3(corners, radius);
 }
 
 Status validateShape(const ShapeGeometry3& geometry) {

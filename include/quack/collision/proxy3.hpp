@@ -1,7 +1,8 @@
 #pragma once
 /// Support proxies for the 3D shapes: "the convex hull of a few points, grown by a radius",
 /// as in 2D (proxy.hpp). A sphere is one point plus its radius, a capsule two points plus
-/// its radius, a triangle its three points, a hull (a box included) its vertices.
+/// its radius, a triangle its three points, a hull (a box included) its vertices plus its
+/// rounding radius.
 
 #include <cstdint>
 

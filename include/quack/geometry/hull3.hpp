@@ -64,16 +64,21 @@ struct HullFace3 {
   std::uint8_t count = 0;
 };
 
-/// A convex polyhedron with polygonal faces, shape frame. Invariants (validateHull3):
-/// 4 <= vertexCount <= kMaxHullVertices3, V - E + F = 2, every face strictly convex and
-/// planar within the tolerance, every vertex on or inside every face plane within it, every
-/// edge joins two faces of different normals. `centroid` is the centre of volume.
+/// A convex polyhedron with polygonal faces, optionally rounded, shape frame. The solid is
+/// the points within `radius` of the polyhedron (its "core"): the Minkowski sum of the core
+/// and a ball, as a rounded polygon in 2D and Jolt's convex radius. Invariants
+/// (validateHull3): 4 <= vertexCount <= kMaxHullVertices3, V - E + F = 2, every face
+/// strictly convex and planar within the tolerance, every vertex on or inside every face
+/// plane within it, every edge joins two faces of different normals, radius finite and
+/// in [0, kMaxCoordinate]. `centroid` is the core's centre of volume (the rounded solid's
+/// may differ: computeMass).
 struct Hull3 {
   Vec3 vertices[kMaxHullVertices3];
   HullFace3 faces[kMaxHullFaces3];
   HullEdge3 edges[kMaxHullEdges3];
   std::uint8_t faceVertices[2 * kMaxHullEdges3];
   Vec3 centroid;
+  float radius = 0.0f;  ///< rounding radius, metres (0: the plain polyhedron)
   int vertexCount = 0;
   int faceCount = 0;
   int edgeCount = 0;

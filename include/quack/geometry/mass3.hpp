@@ -23,7 +23,12 @@ MassProperties3 computeMass(const Capsule3& capsule, float density);
 /// Exact for the polyhedron: a sum over tetrahedra from one vertex to each face's fan of
 /// their second moments (the canonical tetrahedron's covariance mapped by each one's
 /// affine map; Blow and Binstock, "How to find the inertia tensor (or other mass properties)
-/// of a 3D solid body represented by a triangle mesh", 2004), summed in double.
+/// of a 3D solid body represented by a triangle mesh", 2004), summed in double. A rounded
+/// hull (radius r > 0) adds, in closed form and in double, the pieces that tile the
+/// rounding: a prism on each face, a cylindrical wedge on each edge (its exterior dihedral
+/// angle) and a ball sector on each vertex (its normal cone, whose solid angle is the
+/// vertex's angle defect); the volume is Steiner's V + A r + (sum of edge length x exterior
+/// angle) r^2 / 2 + 4/3 pi r^3. With r = 0 the answer is the plain polyhedron's, to the bit.
 MassProperties3 computeMass(const Hull3& hull, float density);
 /// A triangle has no volume: mass, volume and inertia are 0; the centroid is its centroid.
 MassProperties3 computeMass(const Triangle3& triangle, float density);

@@ -25,7 +25,11 @@ struct RayHit3 {
 /// translation. A triangle is two-sided: the normal faces the ray's origin; a ray in its
 /// plane misses. The hull cast clips the ray against each face plane (Cyrus-Beck; Ericson,
 /// "Real-Time Collision Detection", 5.3.8), the triangle cast is Moller-Trumbore (1997),
-/// the capsule is the nearer of its cylinder and its two end spheres.
+/// the capsule is the nearer of its cylinder and its two end spheres. A rounded hull (radius
+/// > 0) is exact for the rounded solid: the nearest entry among its faces lifted by the
+/// radius (each hit kept when it lies over its face), its edges' cylinders and its vertices'
+/// spheres; a ray from within the radius of the core (found by the distance to each face
+/// and edge) reports no hit. O(faces x face size + edges + vertices).
 RayHit3 rayCast(const Sphere& sphere, const RayCastInput3& ray) noexcept;
 RayHit3 rayCast(const Capsule3& capsule, const RayCastInput3& ray) noexcept;
 RayHit3 rayCast(const Hull3& hull, const RayCastInput3& ray) noexcept;

@@ -43,12 +43,15 @@ Result<Capsule3> makeCapsule3(Vec3 p1, Vec3 p2, float radius);
 /// Errors: non-finite numbers, collinear vertices (zero area, relative to the longest edge
 /// by kHull3RelativeTolerance).
 Result<Triangle3> makeTriangle3(Vec3 a, Vec3 b, Vec3 c);
-/// Convex hull of `points` (see computeHull3, which also reports what was dropped).
-Result<Hull3> makeHull3(std::span<const Vec3> points);
+/// Convex hull of `points` (see computeHull3, which also reports what was dropped), rounded
+/// by `radius` metres (the points within `radius` of the hull). Errors: computeHull3's, a
+/// radius that is not finite, negative or beyond kMaxCoordinate.
+Result<Hull3> makeHull3(std::span<const Vec3> points, float radius = 0.0f);
 /// Box with half-extents `half`, placed in the shape frame by `shapeFromBox` (identity: centred
-/// at the origin, axis-aligned), as a Hull3 of 8 vertices and 6 faces. Errors: non-finite
-/// numbers, a half-extent below kMinShapeSize.
-Result<Hull3> makeBox3(Vec3 half, Transform3 shapeFromBox = {});
+/// at the origin, axis-aligned), as a Hull3 of 8 vertices and 6 faces, rounded by `radius`
+/// (the half-extents are the core's: the rounded box reaches half + radius). Errors:
+/// non-finite numbers, a half-extent below kMinShapeSize, a bad radius (as makeHull3).
+Result<Hull3> makeBox3(Vec3 half, Transform3 shapeFromBox = {}, float radius = 0.0f);
 
 /// The kinds of 3D shape, in the order of ShapeGeometry3's alternatives. A box is a hull.
 enum class ShapeType3 { sphere, capsule, hull, triangle };
