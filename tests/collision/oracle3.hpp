@@ -262,6 +262,7 @@ struct Shape3 {
         f.t = {{0, 1, 2}};
         break;
       default:
+        f.radius = hull.radius;
         for (int i = 0; i < hull.vertexCount; ++i)
           f.v.push_back(transformD(t, hull.vertices[i]));
         for (int i = 0; i < hull.edgeCount; ++i)
