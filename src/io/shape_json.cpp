@@ -362,16 +362,12 @@ Result<std::vector<Vec3>> parsePoints3(const json& j, const char* key, const std
   return points;
 }
 
-// A "radius" key on a 3D shape that has no rounding: absent or 0 only.
-Status noRounding(const json& j, const std::string& path, const char* kind) {
-  if (!j.contains("radius")) return {};
-  Result<float> r = parseLength(j.at("radius"), path + ".radius");
-  if (!r) return fail(r.error().message);
-  if (*r != 0.0f) {
-    return fail(path + ".radius: a rounded " + kind +
-                " is not supported in 3D yet (radius must be 0 or absent)");
-  }
-  return {};
+// A 3D box's or hull's rounding "radius": absent (0) or a length >= 0.
+Result<float> roundingRadius(const json& j, const std::string& path) {
+  Result<float> r = lengthOr(j, "radius", path, 0.0f);
+  if (!r) return r;
+  if (*r < 0.0f) return fail(path + ".radius: must be >= 0");
+  return r;
 }
 
 }  // namespace
@@ -424,9 +420,10 @@ Result<ShapeGeometry3> parseShape3(const json& j, const std::string& path,
     if (j.contains("angle")) {
       return fail(path + ".angle: a 3D box turns by \"quat\": [x, y, z, w], not by an angle");
     }
-    if (Status s = noRounding(j, path, "box"); !s) return fail(s.message());
     if (Status s = checkKeys(j, path, {"type", "half", "center", "quat", "radius"}, extraKeys); !s)
       return fail(s.message());
+    Result<float> radius = roundingRadius(j, path);
+    if (!radius) return radius.error();
     Result<Vec3> half = requiredPosition3(j, "half", path);
     if (!half) return half.error();
     if (!(half->x > 0.0f && half->y > 0.0f && half->z > 0.0f))
@@ -442,17 +439,18 @@ Result<ShapeGeometry3> parseShape3(const json& j, const std::string& path,
       if (!q) return q.error();
       shapeFromBox.q = *q;
     }
-    Result<Hull3> s = makeBox3(*half, shapeFromBox);
+    Result<Hull3> s = makeBox3(*half, shapeFromBox, *radius);
     if (!s) return located(path, s.error());
     return ShapeGeometry3{std::move(*s)};
   }
   if (*type == "hull") {
-    if (Status s = noRounding(j, path, "hull"); !s) return fail(s.message());
     if (Status s = checkKeys(j, path, {"type", "points", "radius"}, extraKeys); !s)
       return fail(s.message());
+    Result<float> radius = roundingRadius(j, path);
+    if (!radius) return radius.error();
     Result<std::vector<Vec3>> points = parsePoints3(j, "points", path, 4, 4096);
     if (!points) return points.error();
-    Result<Hull3> s = makeHull3(std::span<const Vec3>(*points));
+    Result<Hull3> s = makeHull3(std::span<const Vec3>(*points), *radius);
     if (!s) return located(path, s.error());
     return ShapeGeometry3{std::move(*s)};
   }

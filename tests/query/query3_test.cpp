@@ -85,6 +85,18 @@ TEST(ShapeJson3, ShapesAndPosesAreParsed) {
   ASSERT_TRUE(hull.ok()) << hull.error().message;
   EXPECT_EQ(std::get<Hull3>(*hull).vertexCount, 8);
 
+  // Rounded: the radius is kept; a box's too.
+  Result<ShapeGeometry3> rounded = parseShape3(
+      json::parse(R"({"type":"hull","points":[[0,0,0],[1,0,0],[0,1,0],[0,0,1]],"radius":0.25})"),
+      "b");
+  ASSERT_TRUE(rounded.ok()) << rounded.error().message;
+  EXPECT_EQ(std::get<Hull3>(*rounded).radius, 0.25f);
+  EXPECT_EQ(std::get<Hull3>(*hull).radius, 0.0f);
+  Result<ShapeGeometry3> roundedBox =
+      parseShape3(json::parse(R"({"type":"box","half":[1,2,3],"radius":0.5})"), "a");
+  ASSERT_TRUE(roundedBox.ok()) << roundedBox.error().message;
+  EXPECT_EQ(std::get<Hull3>(*roundedBox).radius, 0.5f);
+
   Result<ShapeGeometry3> triangle =
       parseShape3(json::parse(R"({"type":"triangle","points":[[0,0,0],[1,0,0],[0,0,-1]]})"), "b");
   ASSERT_TRUE(triangle.ok()) << triangle.error().message;
@@ -109,7 +121,7 @@ TEST(ShapeJson3, ShapesAndPosesAreParsed) {
 }
 
 TEST(ShapeJson3, ErrorsNameTheField) {
-  auto shapeError = [](const char* text) {
+  auto shapeError = [](const std::string& text) {
     Result<ShapeGeometry3> s = parseShape3(json::parse(text), "a");
     EXPECT_FALSE(s.ok()) << text;
     return s.ok() ? std::string() : s.error().message;
@@ -128,9 +140,14 @@ TEST(ShapeJson3, ErrorsNameTheField) {
             "a.angle: a 3D box turns by \"quat\": [x, y, z, w], not by an angle");
   EXPECT_EQ(shapeError(R"({"type":"hull","points":[[0,0,0],[1,0,0],[0,1,0]]})"),
             "a.points: needs at least 4 points");
-  EXPECT_EQ(
-      shapeError(R"({"type":"hull","points":[[0,0,0],[1,0,0],[0,1,0],[0,0,1]],"radius":0.1})"),
-      "a.radius: a rounded hull is not supported in 3D yet (radius must be 0 or absent)");
+  const std::string tetra = R"("type":"hull","points":[[0,0,0],[1,0,0],[0,1,0],[0,0,1]])";
+  EXPECT_EQ(shapeError("{" + tetra + R"(,"radius":-0.1})"), "a.radius: must be >= 0");
+  EXPECT_EQ(shapeError("{" + tetra + R"(,"radius":1e300})"),
+            "a.radius: must be finite (as a float)");
+  EXPECT_EQ(shapeError("{" + tetra + R"(,"radius":"0.1"})"), "a.radius: must be a number");
+  EXPECT_EQ(shapeError("{" + tetra + R"(,"radius":2e9})"),
+            "a.radius: 2e+09 m is beyond the coordinate limit 1e9 m");
+  EXPECT_EQ(shapeError(R"({"type":"box","half":[1,1,1],"radius":-1})"), "a.radius: must be >= 0");
   EXPECT_EQ(shapeError(R"({"type":"hull","points":[[0,0,0],[1,0,0],[0,1,0],[0,0,1,4]]})"),
             "a.points[3]: must be [x, y, z]");
   // Coplanar points: the quickhull's own message, labelled with the field.
@@ -287,12 +304,42 @@ TEST(Query3, ToiOfASphereFallingOnABox) {
   expectVec3(cast["point"], 0.0, 0.5, 0.0, 2e-3);
 }
 
+// A unit cube [0, 1]^3 rounded by 0.25: a sphere of radius 0.5 centred 2 m above its top
+// face's middle is 2 - 0.25 - 0.5 = 1.25 m away; a ray down its middle enters at
+// y = 1.25; a rounded box resting 0.01 m deep on a rounded slab has four points midway.
+TEST(Query3, RoundedHullHandWorked) {
+  const std::string cube =
+      R"({"type":"hull","points":[[0,0,0],[1,0,0],[0,1,0],[1,1,0],[0,0,1],[1,0,1],[0,1,1],[1,1,1]],"radius":0.25})";
+  json d = answerOk(R"({"op":"distance","a":)" + cube +
+                    R"(,"b":{"type":"sphere","radius":0.5},"pb":{"pos":[0.5,3,0.5]}})");
+  EXPECT_NEAR(d["distance"].get<double>(), 1.25, 1e-6);
+  expectVec3(d["pointA"], 0.5, 1.25, 0.5, 1e-6);
+  expectVec3(d["normal"], 0.0, 1.0, 0.0, 1e-6);
+  json r = answerOk(R"({"op":"raycast","a":)" + cube +
+                    R"(,"ray":{"origin":[0.5,5,0.5],"translation":[0,-10,0]}})");
+  EXPECT_EQ(r["hit"], true);
+  EXPECT_NEAR(r["fraction"].get<double>(), 0.375, 1e-6);
+  json p = answerOk(R"({"op":"penetration","a":)" + cube +
+                    R"(,"b":{"type":"sphere","radius":0.5},"pb":{"pos":[0.5,1.7,0.5]}})");
+  EXPECT_NEAR(p["depth"].get<double>(), 0.05, 1e-6);
+  json m = answerOk(
+      R"({"op":"manifold","a":{"type":"box","half":[2,0.5,2],"radius":0.1},"b":{"type":"box","half":[0.5,0.5,0.5],"radius":0.05},"pb":{"pos":[0.3,1.14,-0.2]}})");
+  expectVec3(m["normal"], 0.0, 1.0, 0.0, 1e-6);
+  ASSERT_EQ(m["points"].size(), 4u);
+  for (const json& q : m["points"]) {
+    EXPECT_NEAR(q["separation"].get<double>(), -0.01, 1e-5);
+    EXPECT_NEAR(q["point"][1].get<double>(), 0.595, 1e-5);
+  }
+}
+
 TEST(Query3, EveryShapeKindAnswersEveryOp) {
   const std::vector<std::string> shapes = {
       R"({"type":"sphere","center":[0.1,0,0],"radius":0.5})",
       R"({"type":"capsule","p1":[0,-0.5,0],"p2":[0,0.5,0],"radius":0.3})",
       R"({"type":"box","half":[0.5,0.4,0.3],"center":[0,0.1,0],"quat":[0,0,0.2,1]})",
+      R"({"type":"box","half":[0.3,0.2,0.3],"radius":0.15})",
       R"({"type":"hull","points":[[0,0,0],[1,0,0],[0,1,0],[0,0,1],[0.2,0.2,0.2]]})",
+      R"({"type":"hull","points":[[0,0,0],[1,0,0],[0,1,0],[0,0,1]],"radius":0.2})",
       R"({"type":"triangle","points":[[-1,0,-1],[1,0,-1],[0,0,1]]})"};
   for (const std::string& a : shapes) {
     for (const std::string& b : shapes) {
@@ -556,6 +603,24 @@ TEST(Query3, ProgramOutputMatchesTheLibrary) {
   add(R"({"id":"r","op":"raycast","a":)" + slabJson + R"(,"pa":)" + turnJson +
           R"(,"ray":{"origin":[0.1,5,0.2],"translation":[0,-10,0]}})",
       toJson(hit), "r");
+
+  // Rounded: the slab rounded by 0.05 (the cube 0.05 deeper), its manifold and a ray.
+  const Hull3 roundSlab = makeBox3({2, 0.5f, 2}, {}, 0.05f).value();
+  const std::string roundSlabJson = R"({"type":"box","half":[2,0.5,2],"radius":0.05})";
+  add(R"({"id":"rm","op":"manifold","a":)" + roundSlabJson + R"(,"pa":)" + turnJson + R"(,"b":)" +
+          cubeJson + R"(,"pb":{"pos":[0.3,0.95,-0.2]}})",
+      toJson(collideHulls(roundSlab, slabPose, cube, cubePose, kSpeculativeDistance)), "rm");
+  add(R"({"id":"rd","op":"distance","a":)" + roundSlabJson + R"(,"pa":)" + turnJson +
+          R"(,"b":{"type":"sphere","radius":0.5},"pb":{"pos":[1,2,3]}})",
+      toJson(computeDistance(makeProxy(roundSlab), slabPose, makeProxy(ball), ballPose)), "rd");
+  RayHit3 roundHit = rayCast(roundSlab, {invTransformPoint(slabPose, {0.1f, 5, 0.2f}),
+                                         invTransformVector(slabPose, {0, -10, 0}), 1.0f});
+  ASSERT_TRUE(roundHit.hit);
+  roundHit.point = transformPoint(slabPose, roundHit.point);
+  roundHit.normal = transformVector(slabPose, roundHit.normal);
+  add(R"({"id":"rr","op":"raycast","a":)" + roundSlabJson + R"(,"pa":)" + turnJson +
+          R"(,"ray":{"origin":[0.1,5,0.2],"translation":[0,-10,0]}})",
+      toJson(roundHit), "rr");
 
   // A mesh as shape a: the floor turned by the same quaternion.
   const std::vector<Vec3> floorVertices = {{-1, 0, -1}, {1, 0, -1}, {1, 0, 1}, {-1, 0, 1}};

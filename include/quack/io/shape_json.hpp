@@ -16,9 +16,11 @@
 /// 3D (the same format with three-component vectors; `quack query` only):
 ///        {"type": "sphere", "center": [x, y, z] (default [0, 0, 0]), "radius": r > 0}
 ///        {"type": "capsule", "p1": [x, y, z], "p2": [x, y, z], "radius": r > 0}
-///        {"type": "box", "half": [hx, hy, hz], "center": [0, 0, 0], "quat": [0, 0, 0, 1]}
+///        {"type": "box", "half": [hx, hy, hz], "center": [0, 0, 0], "quat": [0, 0, 0, 1],
+///         "radius": 0}
 ///        {"type": "hull", "points": [[x, y, z], ...] (4 to 4,096; quickhull keeps at most
-///         64 vertices), "radius": 0 (rounded hulls are refused: not supported in 3D yet)}
+///         64 vertices), "radius": 0}
+///        (a box's or hull's "radius" >= 0 rounds it: the points within it of the core)
 ///        {"type": "triangle", "points": [[x, y, z], [x, y, z], [x, y, z]]}
 ///        {"type": "mesh", "vertices": [[x, y, z], ...] (3 to 1,000,000), "triangles":
 ///         [[i, j, k], ...] (vertex indices, counter-clockwise seen from the front)}: a
