@@ -500,21 +500,26 @@ void registerD3(py::module_& root) {
       "Capsule: the points within radius > 0 of the segment p1-p2 (each (x, y, z)).");
   m.def(
       "box",
-      [](py::handle half, py::handle center, py::handle quat) {
-        return makeShape3(shapeJson("box", {{"half", half}, {"center", center}, {"quat", quat}}),
-                          "box");
+      [](py::handle half, py::handle center, py::handle quat, py::handle radius) {
+        return makeShape3(
+            shapeJson("box",
+                      {{"half", half}, {"center", center}, {"quat", quat}, {"radius", radius}}),
+            "box");
       },
       py::arg("half"), py::arg("center") = py::none(), py::arg("quat") = py::none(),
+      py::arg("radius") = py::none(),
       "Box with half-extents half (hx, hy, hz) > 0, centred at center (default (0, 0, 0)), "
-      "turned by quat (qx, qy, qz, qw) (default the identity); a hull of 8 vertices.");
+      "turned by quat (qx, qy, qz, qw) (default the identity), rounded by radius >= 0 "
+      "(default 0: the points within it of the box); a hull of 8 vertices.");
   m.def(
       "hull",
-      [](py::handle points) {
-        return makeShape3(shapeJson("hull", {{"points", points}}), "hull");
+      [](py::handle points, py::handle radius) {
+        return makeShape3(shapeJson("hull", {{"points", points}, {"radius", radius}}), "hull");
       },
-      py::arg("points"),
+      py::arg("points"), py::arg("radius") = py::none(),
       "Convex hull (quickhull) of 4 to 4,096 points [(x, y, z), ...] or an array (N, 3); at "
-      "most 64 vertices.");
+      "most 64 vertices; rounded by radius >= 0 (default 0: the points within it of the "
+      "hull).");
   m.def(
       "triangle",
       [](py::handle points) {

@@ -43,6 +43,17 @@ def test_shapes_by_hand():
     assert t.type == "triangle" and t.volume() == 0.0
     assert d3.shape(CUBE.to_dict()).to_dict() == {"type": "box", "half": [0.5, 0.5, 0.5]}
     assert "quack.d3.shape(" in repr(BALL)
+    # Rounded: a 2 x 1 x 1 box rounded by 0.1, Steiner's V + A r + (edges x angle) r^2 / 2
+    # + 4/3 pi r^3: 2 + 10 * 0.1 + 16 * (pi / 2) * 0.01 / 2 + 4/3 pi 0.001.
+    rounded = d3.box(half=(1, 0.5, 0.5), radius=0.1)
+    assert rounded.to_dict() == {"type": "box", "half": [1, 0.5, 0.5], "radius": 0.1}
+    assert rounded.volume() == pytest.approx(
+        2 + 10 * 0.1 + 16 * math.pi / 2 * 0.01 / 2 + 4 / 3 * math.pi * 0.001, rel=1e-6)
+    rh = d3.hull(corners, radius=0.25)
+    assert rh.vertex_count == 8 and rh.to_dict()["radius"] == 0.25
+    assert rh.volume() == pytest.approx(
+        1 + 6 * 0.25 + 12 * math.pi / 2 * 0.25**2 / 2 + 4 / 3 * math.pi * 0.25**3, rel=1e-6)
+    assert d3.shape(rh.to_dict()).volume() == rh.volume()
 
 
 def test_shape_errors_name_the_field():
@@ -56,6 +67,12 @@ def test_shape_errors_name_the_field():
         d3.hull([(0, 0, 0), (1, 0, 0), (0, 1, 0)])
     with pytest.raises(ValueError, match=r"^hull: "):  # coplanar: quickhull's message
         d3.hull([(0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0)])
+    with pytest.raises(ValueError, match=r"^hull.radius: must be >= 0$"):
+        d3.hull([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)], radius=-0.1)
+    with pytest.raises(ValueError, match=r"^hull.radius: must be finite"):
+        d3.hull([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)], radius=float("nan"))
+    with pytest.raises(ValueError, match=r"^box.radius: must be >= 0$"):
+        d3.box(half=(1, 1, 1), radius=-1)
     with pytest.raises(ValueError, match=r"^triangle.points: needs exactly 3 points$"):
         d3.triangle([(0, 0, 0), (1, 0, 0)])
     with pytest.raises(ValueError, match=r"is a 2D shape"):
@@ -158,11 +175,18 @@ def _random_shape(rng):
     if kind == "capsule":
         return {"type": "capsule", "p1": [0, -s, 0], "p2": [0, s, rng.uniform(-0.3, 0.3)],
                 "radius": rng.uniform(0.1, 0.5)}
+    # Boxes and hulls are rounded half the time.
     if kind == "box":
-        return {"type": "box", "half": [s, rng.uniform(0.2, 1.0), rng.uniform(0.2, 1.0)]}
+        box = {"type": "box", "half": [s, rng.uniform(0.2, 1.0), rng.uniform(0.2, 1.0)]}
+        if rng.random() < 0.5:
+            box["radius"] = rng.uniform(0.01, 0.3)
+        return box
     if kind == "hull":
-        return {"type": "hull", "points": [[rng.uniform(-s, s) for _ in range(3)]
+        hull = {"type": "hull", "points": [[rng.uniform(-s, s) for _ in range(3)]
                                            for _ in range(rng.randint(6, 20))]}
+        if rng.random() < 0.5:
+            hull["radius"] = rng.uniform(0.01, 0.3)
+        return hull
     return {"type": "triangle", "points": [[-s, 0, -s], [s, 0, -s], [0, rng.uniform(-0.5, 0.5), s]]}
 
 
