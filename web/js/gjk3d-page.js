@@ -174,7 +174,25 @@ function shapeObject(outline, color) {
     // A hull: its faces are polygons of vertex indices; fan them into triangles.
     const faces = [];
     for (const f of outline.faces) for (let k = 1; k + 1 < f.length; ++k) faces.push([f[0], f[k], f[k + 1]]);
-    triangles(group, pts, faces, color, 0.5);
+    if (outline.radius > 0) {
+      // Rounded: the core, faint, inside the hull of a ball about each core vertex (that hull
+      // is the rounded solid, the core's Minkowski sum with the ball; here each ball is 64
+      // points on its sphere, spread by the golden angle).
+      triangles(group, pts, faces, color, 0.2);
+      const around = [];
+      for (const p of pts) {
+        for (let k = 0; k < 64; ++k) {
+          const y = 1 - (2 * k + 1) / 64;
+          const s = Math.sqrt(1 - y * y);
+          const a = k * Math.PI * (3 - Math.sqrt(5));
+          const r = outline.radius;
+          around.push(new THREE.Vector3(p[0] + r * s * Math.cos(a), p[1] + r * y, p[2] + r * s * Math.sin(a)));
+        }
+      }
+      group.add(new THREE.Mesh(new ConvexGeometry(around), material(color, 0.5)));
+    } else {
+      triangles(group, pts, faces, color, 0.5);
+    }
   }
   group.userData.pickable = true;
   return group;
