@@ -598,7 +598,7 @@ Status validateHull3(const Hull3& hull) {
   }
   if (!std::isfinite(hull.radius) || !(hull.radius >= 0.0f) || hull.radius > kMaxCoordinate) {
     return fail("hull.radius " + formatNumber(hull.radius) +
-                " is not finite, >= 0 and within the coordinate limit 1e9 m");
+                " must be finite, >= 0 and at most the coordinate limit 1e9 m");
   }
   Vec3 lower = hull.vertices[0], upper = hull.vertices[0];
   for (int i = 0; i < nv; ++i) {

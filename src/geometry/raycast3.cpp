@@ -97,13 +97,12 @@ float coreDistanceSquared(const Hull3& hull, Vec3 p) {
 // lifted by the radius, each edge's cylinder, each vertex's sphere. Every point of those
 // patches is within the radius of the core, and the surface is their union, so from an
 // origin outside the solid the first patch hit is where the ray enters.
-RayHit3 rayCastRounded(const Hull3& hull, const RayCastInput3& ray) {
-  const float r = hull.radius;
+RayHit3 rayCastRounded(const Hull3& h, const RayCastInput3& ray) {
+  const float r = h.radius;
   // Relative to the centroid, as the plain cast.
-  const Vec3 c = hull.centroid;
+  const Vec3 c = h.centroid;
   const Vec3 o = ray.origin - c;
   const Vec3 d = ray.translation;
-  const Hull3& h = hull;
   if (coreDistanceSquared(h, ray.origin) <= r * r) return {};
   float best = -1.0f;
   Vec3 bestNormal;
