@@ -410,20 +410,31 @@ int reduceManifoldPoints3(ManifoldPoint3* points, int count, Vec3 normal) noexce
 
 }  // namespace detail
 
+namespace {
+
+// B-versus-A's manifold as A-versus-B's: the normal flipped, the anchors swapped, ids kept.
+Manifold3 swapped(Manifold3 m) noexcept {
+  m.normal = -m.normal;
+  for (int i = 0; i < m.pointCount; ++i) {
+    const Vec3 t = m.points[i].anchorA;
+    m.points[i].anchorA = m.points[i].anchorB;
+    m.points[i].anchorB = t;
+  }
+  return m;
+}
+
+}  // namespace
+
 Manifold3 collide(const ShapeGeometry3& a, Transform3 worldFromA, const ShapeGeometry3& b,
                   Transform3 worldFromB, float speculativeDistance) noexcept {
   Manifold3 m;
   if (collideOrdered(a, worldFromA, b, worldFromB, speculativeDistance, m)) return m;
-  if (collideOrdered(b, worldFromB, a, worldFromA, speculativeDistance, m)) {
-    m.normal = -m.normal;
-    for (int i = 0; i < m.pointCount; ++i) {
-      Vec3 t = m.points[i].anchorA;
-      m.points[i].anchorA = m.points[i].anchorB;
-      m.points[i].anchorB = t;
-    }
-    return m;
-  }
-  // Triangles: the general path, one point.
+  if (collideOrdered(b, worldFromB, a, worldFromA, speculativeDistance, m)) return swapped(m);
+  // Triangles (mesh3.cpp): a lone triangle is a two-sided mesh triangle.
+  if (const Triangle3* t = std::get_if<Triangle3>(&a))
+    return collideTriangle(*t, worldFromA, b, worldFromB, speculativeDistance);
+  if (const Triangle3* t = std::get_if<Triangle3>(&b))
+    return swapped(collideTriangle(*t, worldFromB, a, worldFromA, speculativeDistance));
   return collideGeneral(makeProxy(a), worldFromA, makeProxy(b), worldFromB, speculativeDistance);
 }
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <unordered_map>
 
@@ -186,14 +187,13 @@ struct ClipPoint {
 
 constexpr int kMeshClipCapacity = kMaxHullVertices3 + 8;
 
-// The contact along the face normal: the incident feature clipped to the triangle's prism.
-Manifold3 faceContact(const Mesh3& mesh, int triangle, Transform3 worldFromMesh,
+// The contact along a face normal: the incident feature clipped to the triangle's prism.
+// `front` is the triangle's unit normal (counter-clockwise winding); `n` is the contact
+// normal, front or -front (a lone triangle has two sides). Triangle frame.
+Manifold3 faceContact(const Triangle3& tri, Vec3 front, Vec3 n, Transform3 worldFromMesh,
                       const ShapeGeometry3& convex, Transform3 worldFromConvex,
                       float speculativeDistance) noexcept {
   Manifold3 m;
-  const MeshTriangle3& t = mesh.triangles()[static_cast<std::size_t>(triangle)];
-  const Triangle3 tri = mesh.triangle(triangle);
-  const Vec3 n = t.normal;
   const Transform3 meshFromConvex = invMul(worldFromMesh, worldFromConvex);
   const Incident f = incidentFeature(convex, meshFromConvex, n);
 
@@ -203,11 +203,12 @@ Manifold3 faceContact(const Mesh3& mesh, int triangle, Transform3 worldFromMesh,
   int count = f.count;
   for (int i = 0; i < f.count; ++i)
     poly[i] = {f.points[i], f.ids[i]};
-  // Sutherland-Hodgman against the three side planes (outward normal cross(edge, n)). A
-  // segment (two points) and a point clip the same way: a closed polygon of 2 or 1.
+  // Sutherland-Hodgman against the three side planes (outward normal cross(edge, front),
+  // whichever side the contact is on). A segment (two points) and a point clip the same
+  // way: a closed polygon of 2 or 1.
   for (int k = 0; k < 3 && count > 0; ++k) {
     const Vec3 v0 = tri.v[k];
-    const Vec3 side = cross(tri.v[(k + 1) % 3] - v0, n);
+    const Vec3 side = cross(tri.v[(k + 1) % 3] - v0, front);
     int out = 0;
     if (count == 1) {
       if (dot(side, poly[0].p - v0) <= 0.0f) next[out++] = poly[0];
@@ -292,7 +293,34 @@ Manifold3 collideMeshTriangle(const Mesh3& mesh, int triangle, Transform3 worldF
     const Vec3 onTriangle = invTransformPoint(worldFromMesh, p.point) - (0.5f * p.separation) * n;
     if (along > 0.0f && featureAllowsEdgeNormal(t, tri, onTriangle)) return g;
   }
-  return faceContact(mesh, triangle, worldFromMesh, convex, worldFromConvex, speculativeDistance);
+  return faceContact(tri, t.normal, t.normal, worldFromMesh, convex, worldFromConvex,
+                     speculativeDistance);
+}
+
+Manifold3 collideTriangle(const Triangle3& triangle, Transform3 worldFromTriangle,
+                          const ShapeGeometry3& convex, Transform3 worldFromConvex,
+                          float speculativeDistance) noexcept {
+  Manifold3 g = collideGeneral(makeProxy(triangle), worldFromTriangle, makeProxy(convex),
+                               worldFromConvex, speculativeDistance);
+  if (g.pointCount == 0) return g;
+  // A face normal (on either side) gets the face's points; any other normal is an edge's, a
+  // corner's, or, deep inside, the other shape's own face: all edges of a lone triangle are
+  // boundaries, so unlike a mesh triangle there is no neighbour's edge to guard against, and
+  // the general contact (the least push out) stands.
+  const Vec3 front = normalize(cross(triangle.v[1] - triangle.v[0], triangle.v[2] - triangle.v[0]));
+  const float along = dot(invTransformVector(worldFromTriangle, g.normal), front);
+  if (absf(along) < kMeshFaceNormalCosine3) return g;
+  const Manifold3 face =
+      faceContact(triangle, front, along < 0.0f ? -front : front, worldFromTriangle, convex,
+                  worldFromConvex, speculativeDistance);
+  // The clipped feature must hold the deepest point. A shape that reaches over an edge with
+  // its deepest part outside the triangle's prism (a ball whose centre is past the edge, a
+  // thin slab crossing the edge) clips to nothing or to points shallower than the shapes
+  // are: a lone triangle has no neighbour to take the contact, so the general one stands.
+  float deepest = std::numeric_limits<float>::infinity();
+  for (int i = 0; i < face.pointCount; ++i)
+    deepest = std::min(deepest, face.points[i].separation);
+  return deepest <= g.points[0].separation + kLinearSlop ? face : g;
 }
 
 int collideMesh(const Mesh3& mesh, Transform3 worldFromMesh, const ShapeGeometry3& convex,
