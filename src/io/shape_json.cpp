@@ -466,7 +466,8 @@ Result<ShapeGeometry3> parseShape3(const json& j, const std::string& path,
   }
   if (*type == "mesh") {
     return fail(path + ".type: \"mesh\" is a static triangle mesh, not a convex shape: " +
-                "a query takes it as shape a only (ops " + kMeshQueryOps + ")");
+                "a query takes it as shape a (ops " + kMeshQueryOps + ") or as shape b (ops " +
+                kMeshQueryOpsAsB + ")");
   }
   if (*type == "circle" || *type == "segment" || *type == "polygon" || *type == "concave") {
     return fail(path + ".type: \"" + *type + "\" is a 2D shape (in 3D: sphere, capsule, box, " +

@@ -72,7 +72,10 @@ int shapeDimension(const nlohmann::json& j);
 Result<ShapeGeometry3> parseShape3(const nlohmann::json& j, const std::string& path,
                                    std::initializer_list<const char*> extraKeys = {});
 /// The ops `quack query` answers with a mesh as shape a.
-inline constexpr const char* kMeshQueryOps = "overlap, distance, manifold, raycast, shapecast";
+inline constexpr const char* kMeshQueryOps =
+    "overlap, distance, penetration, manifold, raycast, shapecast, toi";
+/// The ops `quack query` answers with a mesh as shape b (the answer turned round).
+inline constexpr const char* kMeshQueryOpsAsB = "overlap, distance, penetration, toi";
 /// Most vertices of a mesh read from JSON.
 inline constexpr int kMaxMeshVertices3Json = 1000000;
 /// True when `j` is an object of type "mesh".
