@@ -91,6 +91,15 @@ float arcMax(Vec3 n1, Vec3 n2, Vec3 w) noexcept {
   return maxf(p1, p2);
 }
 
+// Least distance from the centroid to a face plane: the radius of the ball about the
+// centroid inside the hull.
+float inradius(const Hull3& h) noexcept {
+  float r = std::numeric_limits<float>::infinity();
+  for (int f = 0; f < h.faceCount; ++f)
+    r = minf(r, h.faces[f].offset - dot(h.faces[f].normal, h.centroid));
+  return maxf(r, 0.0f);
+}
+
 // B's edges that the bounds keep, in A's frame, as columns for the Gauss-map test: the arc
 // of the edge's two face normals, negated (c, d, with the arc's plane normal
 // dxc = cross(d, c), parallel to the edge), padded to a multiple of kLanes with zeros
@@ -169,10 +178,12 @@ SatOutput3 computeSat(const Hull3& a, Transform3 worldFromA, const Hull3& b, Tra
   for (int i = 0; i < b.vertexCount; ++i)
     size2 = maxf(size2, lengthSquared(b.vertices[i] - b.centroid));
   const float size = std::sqrt(size2);
-  // Each centroid in the other's frame, for the bounds: a hull's least projection on a
-  // direction is at most its centroid's.
+  // Each centroid in the other's frame, and the ball about it inside its hull (its radius
+  // the least distance to a face plane), for the bounds: a hull's least projection on a
+  // unit direction is at most its centroid's less that radius.
   const Vec3 centroidBInA = transformPoint(aFromB, b.centroid);
   const Vec3 centroidAInB = transformPoint(bFromA, a.centroid);
+  const float inradiusA = inradius(a), inradiusB = inradius(b);
   const float slack = kBoundSlackRelative *
                       (2.0f * size + length(a.centroid) + length(b.centroid) + length(aFromB.p));
 
@@ -195,11 +206,11 @@ SatOutput3 computeSat(const Hull3& a, Transform3 worldFromA, const Hull3& b, Tra
   float boundA[kMaxHullFaces3], boundB[kMaxHullFaces3];
   int seedA = 0, seedB = 0;
   for (int f = 0; f < a.faceCount; ++f) {
-    boundA[f] = dot(a.faces[f].normal, centroidBInA) - a.faces[f].offset;
+    boundA[f] = dot(a.faces[f].normal, centroidBInA) - inradiusB - a.faces[f].offset;
     if (boundA[f] > boundA[seedA]) seedA = f;
   }
   for (int f = 0; f < b.faceCount; ++f) {
-    boundB[f] = dot(b.faces[f].normal, centroidAInB) - b.faces[f].offset;
+    boundB[f] = dot(b.faces[f].normal, centroidAInB) - inradiusA - b.faces[f].offset;
     if (boundB[f] > boundB[seedB]) seedB = f;
   }
   // The faces with the largest bounds give a separation the best face reaches at least;
@@ -263,10 +274,14 @@ SatOutput3 computeSat(const Hull3& a, Transform3 worldFromA, const Hull3& b, Tra
   int kept = 0;
   for (int j = 0; j < b.edgeCount; ++j) {
     const HullEdge3& eb = b.edges[j];
+    if (arcMax(b.faces[eb.faceLeft].normal, b.faces[eb.faceRight].normal,
+               centroidAInB - b.vertices[eb.v0]) -
+            inradiusA <
+        edgeNeeds)
+      continue;
     const Vec3 n1 = rotate(aFromB.q, b.faces[eb.faceLeft].normal);
     const Vec3 n2 = rotate(aFromB.q, b.faces[eb.faceRight].normal);
     const Vec3 p = transformPoint(aFromB, b.vertices[eb.v0]);
-    if (arcMax(n1, n2, a.centroid - p) < edgeNeeds) continue;
     const Vec3 c = -n1, d = -n2, dxc = cross(d, c);
     const Vec3 direction = transformPoint(aFromB, b.vertices[eb.v1]) - p;
     arcs.cx[kept] = c.x;
@@ -303,7 +318,7 @@ SatOutput3 computeSat(const Hull3& a, Transform3 worldFromA, const Hull3& b, Tra
     arc.a = a.faces[ea.faceLeft].normal;
     arc.b = a.faces[ea.faceRight].normal;
     const Vec3 pa = a.vertices[ea.v0];
-    if (arcMax(arc.a, arc.b, centroidBInA - pa) < edgeNeeds) continue;
+    if (arcMax(arc.a, arc.b, centroidBInA - pa) - inradiusB < edgeNeeds) continue;
     arc.bxa = cross(arc.b, arc.a);
     const Vec3 da = a.vertices[ea.v1] - pa;
     for (int first = 0; first < kept && !stop; first += kLanes) {
