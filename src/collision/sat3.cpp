@@ -77,18 +77,20 @@ float minProjection(const VertexColumns& c, Vec3 direction) noexcept {
 #endif
 }
 
-// Greatest dot(n, w) over the unit vectors n on the shorter great arc from n1 to n2 (unit,
-// not opposite): at an end, or where w's projection on the arc's plane falls between the
-// ends, that projection's length. A thin arc (its ends' cross product squared below 0.01,
-// where the projection's length loses its digits) takes |w|, a looser bound.
-float arcMax(Vec3 n1, Vec3 n2, Vec3 w) noexcept {
-  const float p1 = dot(w, n1), p2 = dot(w, n2), k = dot(n1, n2);
-  if (p2 - k * p1 > 0.0f && p1 - k * p2 > 0.0f) {
-    const float sine2 = 1.0f - k * k;
-    if (sine2 < 0.01f) return length(w);
-    return std::sqrt(maxf(0.0f, (p1 * p1 + p2 * p2 - 2.0f * k * p1 * p2) / sine2));
-  }
-  return maxf(p1, p2);
+// Whether an edge of a hull, between its faces f1 and f2 (unit normals n1, n2), can give a
+// separation of at least `needs`, given its faces' bounds (faceBounds[f] = dot(n_f, x) -
+// radius - offset_f, x the other hull's centroid in this hull's frame). On the arc from n1
+// to n2 (angle t from n1, arc angle theta), dot(n, x - p) for the edge's point p is
+// (sin(theta - t) p1 + sin(t) p2) / sin(theta), where p_i = dot(n_i, x - p) = faceBounds +
+// radius; the weights add up to between 1 and 1 / cos(theta / 2). So the greatest is at
+// most P / cos(theta / 2) when P = max(p1, p2) is positive, else P; compared squared,
+// with cos^2(theta / 2) = (1 + dot(n1, n2)) / 2, without a root.
+bool edgeCanReach(const float* faceBounds, int f1, int f2, Vec3 n1, Vec3 n2, float radius,
+                  float needs) noexcept {
+  const float p = maxf(faceBounds[f1], faceBounds[f2]) + radius;
+  const float target = needs + radius;
+  if (p <= 0.0f) return p >= target;
+  return target <= 0.0f || 2.0f * p * p >= target * target * (1.0f + dot(n1, n2));
 }
 
 // Least distance from the centroid to a face plane: the radius of the ball about the
@@ -274,10 +276,8 @@ SatOutput3 computeSat(const Hull3& a, Transform3 worldFromA, const Hull3& b, Tra
   int kept = 0;
   for (int j = 0; j < b.edgeCount; ++j) {
     const HullEdge3& eb = b.edges[j];
-    if (arcMax(b.faces[eb.faceLeft].normal, b.faces[eb.faceRight].normal,
-               centroidAInB - b.vertices[eb.v0]) -
-            inradiusA <
-        edgeNeeds)
+    if (!edgeCanReach(boundB, eb.faceLeft, eb.faceRight, b.faces[eb.faceLeft].normal,
+                      b.faces[eb.faceRight].normal, inradiusA, edgeNeeds))
       continue;
     const Vec3 n1 = rotate(aFromB.q, b.faces[eb.faceLeft].normal);
     const Vec3 n2 = rotate(aFromB.q, b.faces[eb.faceRight].normal);
@@ -312,13 +312,21 @@ SatOutput3 computeSat(const Hull3& a, Transform3 worldFromA, const Hull3& b, Tra
   Vec3 bestEdgeNormal;
   int bestEdgeA = 0, bestEdgeB = 0;
   bool stop = false;
-  for (int i = 0; i < a.edgeCount && kept > 0 && !stop; ++i) {
+  std::uint8_t keptA[kMaxHullEdges3];
+  int keptACount = 0;
+  for (int i = 0; i < a.edgeCount && kept > 0; ++i) {
+    const HullEdge3& ea = a.edges[i];
+    keptA[keptACount] = static_cast<std::uint8_t>(i);
+    keptACount += edgeCanReach(boundA, ea.faceLeft, ea.faceRight, a.faces[ea.faceLeft].normal,
+                               a.faces[ea.faceRight].normal, inradiusB, edgeNeeds);
+  }
+  for (int n = 0; n < keptACount && !stop; ++n) {
+    const int i = keptA[n];
     const HullEdge3& ea = a.edges[i];
     EdgeArcA arc;
     arc.a = a.faces[ea.faceLeft].normal;
     arc.b = a.faces[ea.faceRight].normal;
     const Vec3 pa = a.vertices[ea.v0];
-    if (arcMax(arc.a, arc.b, centroidBInA - pa) - inradiusB < edgeNeeds) continue;
     arc.bxa = cross(arc.b, arc.a);
     const Vec3 da = a.vertices[ea.v1] - pa;
     for (int first = 0; first < kept && !stop; first += kLanes) {
