@@ -24,6 +24,15 @@ constexpr float kClipLostSupportRelative = 1e-5f;
 // most 64 side planes gains at most one vertex per plane.
 constexpr int kClipCapacity = 2 * kMaxHullVertices3 + 2;
 
+// Room for N values of T, left uninitialised: T's zeroing default members would cost a
+// memset of the whole buffer (about 10 kB for the clipping's three) on every call. Every
+// element is assigned before it is read.
+template <class T, int N>
+union Uninitialized {
+  Uninitialized() noexcept {}
+  T items[N];
+};
+
 struct ClipVertex {
   Vec3 p;
   std::uint32_t id = 0;      // the point's feature id (without the reference face)
@@ -297,9 +306,9 @@ Manifold3 collideHulls(const Hull3& a, Transform3 worldFromA, const Hull3& b, Tr
   }
   const HullFace3& ifc = inc.faces[incFace];
 
-  ClipVertex bufA[kClipCapacity], bufB[kClipCapacity];
-  ClipVertex* poly = bufA;
-  ClipVertex* next = bufB;
+  Uninitialized<ClipVertex, kClipCapacity> bufA, bufB;
+  ClipVertex* poly = bufA.items;
+  ClipVertex* next = bufB.items;
   int count = ifc.count;
   for (int k = 0; k < ifc.count; ++k) {
     std::uint32_t v = inc.faceVertices[ifc.first + k];
@@ -332,7 +341,8 @@ Manifold3 collideHulls(const Hull3& a, Transform3 worldFromA, const Hull3& b, Tr
     count = out;
   }
 
-  ManifoldPoint3 pts[kClipCapacity];
+  Uninitialized<ManifoldPoint3, kClipCapacity> kept;
+  ManifoldPoint3* pts = kept.items;
   int n2 = 0;
   const Vec3 normalWorld =
       refOnB ? -transformVector(worldFromRef, n) : transformVector(worldFromRef, n);
