@@ -89,8 +89,11 @@ bool edgeCanReach(const float* faceBounds, int f1, int f2, Vec3 n1, Vec3 n2, flo
                   float needs) noexcept {
   const float p = maxf(faceBounds[f1], faceBounds[f2]) + radius;
   const float target = needs + radius;
-  if (p <= 0.0f) return p >= target;
-  return target <= 0.0f || 2.0f * p * p >= target * target * (1.0f + dot(n1, n2));
+  // Joined with & and |, not && and ||: the outcome is close to a coin toss, a branch on
+  // it mispredicted half the time.
+  const bool positive = p > 0.0f;
+  return (!positive & (p >= target)) |
+         (positive & ((target <= 0.0f) | (2.0f * p * p >= target * target * (1.0f + dot(n1, n2)))));
 }
 
 // Least distance from the centroid to a face plane: the radius of the ball about the
@@ -233,10 +236,21 @@ SatOutput3 computeSat(const Hull3& a, Transform3 worldFromA, const Hull3& b, Tra
 
   // The passes in index order, so that ties go to the first face as before the bounds:
   // a skipped face is below the seed, so neither the best nor first to pass stopAbove.
+  std::uint8_t facesA[kMaxHullFaces3], facesB[kMaxHullFaces3];
+  int facesACount = 0, facesBCount = 0;
+  for (int f = 0; f < a.faceCount; ++f) {
+    facesA[facesACount] = static_cast<std::uint8_t>(f);
+    facesACount += boundA[f] + slack >= seed;
+  }
+  for (int f = 0; f < b.faceCount; ++f) {
+    facesB[facesBCount] = static_cast<std::uint8_t>(f);
+    facesBCount += boundB[f] + slack >= seed;
+  }
   float bestFace = -std::numeric_limits<float>::infinity();
   Vec3 bestNormal;
-  for (int f = 0; f < a.faceCount; ++f) {
-    if (boundA[f] + slack < maxf(seed, bestFace)) continue;
+  for (int n = 0; n < facesACount; ++n) {
+    const int f = facesA[n];
+    if (boundA[f] + slack < bestFace) continue;
     const float s = separationA(f);
     if (s > bestFace) {
       bestFace = s;
@@ -246,8 +260,9 @@ SatOutput3 computeSat(const Hull3& a, Transform3 worldFromA, const Hull3& b, Tra
       if (s > stopAbove) break;
     }
   }
-  for (int f = 0; f < b.faceCount && !(bestFace > stopAbove); ++f) {
-    if (boundB[f] + slack < maxf(seed, bestFace)) continue;
+  for (int n = 0; n < facesBCount && !(bestFace > stopAbove); ++n) {
+    const int f = facesB[n];
+    if (boundB[f] + slack < bestFace) continue;
     const float s = separationB(f);
     if (s > bestFace) {
       bestFace = s;
@@ -272,13 +287,19 @@ SatOutput3 computeSat(const Hull3& a, Transform3 worldFromA, const Hull3& b, Tra
   // n on A's arc, and n . (B's edge point - A's centroid) for -n on B's: an edge whose
   // greatest over its arc cannot beat the best face (by the bias an edge needs) is skipped.
   const float edgeNeeds = bestFace + kSat3FaceBiasRelative * size - slack;
-  ArcColumns arcs;
-  int kept = 0;
+  std::uint8_t keptB[kMaxHullEdges3];
+  int keptBCount = 0;
   for (int j = 0; j < b.edgeCount; ++j) {
     const HullEdge3& eb = b.edges[j];
-    if (!edgeCanReach(boundB, eb.faceLeft, eb.faceRight, b.faces[eb.faceLeft].normal,
-                      b.faces[eb.faceRight].normal, inradiusA, edgeNeeds))
-      continue;
+    keptB[keptBCount] = static_cast<std::uint8_t>(j);
+    keptBCount += edgeCanReach(boundB, eb.faceLeft, eb.faceRight, b.faces[eb.faceLeft].normal,
+                               b.faces[eb.faceRight].normal, inradiusA, edgeNeeds);
+  }
+  ArcColumns arcs;
+  int kept = 0;
+  for (int n = 0; n < keptBCount; ++n) {
+    const int j = keptB[n];
+    const HullEdge3& eb = b.edges[j];
     const Vec3 n1 = rotate(aFromB.q, b.faces[eb.faceLeft].normal);
     const Vec3 n2 = rotate(aFromB.q, b.faces[eb.faceRight].normal);
     const Vec3 p = transformPoint(aFromB, b.vertices[eb.v0]);
