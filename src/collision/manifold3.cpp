@@ -317,12 +317,12 @@ Manifold3 collideHulls(const Hull3& a, Transform3 worldFromA, const Hull3& b, Tr
   // Sutherland-Hodgman against each side plane of the reference face.
   for (int k = 0; k < rf.count && count > 0; ++k) {
     Vec3 v0 = ref.vertices[ref.faceVertices[rf.first + k]];
-    Vec3 v1 = ref.vertices[ref.faceVertices[rf.first + (k + 1) % rf.count]];
+    Vec3 v1 = ref.vertices[ref.faceVertices[rf.first + (k + 1 == rf.count ? 0 : k + 1)]];
     Vec3 side = cross(v1 - v0, n);
     int out = 0;
     for (int i = 0; i < count && out + 2 <= kClipCapacity; ++i) {
       const ClipVertex& p = poly[i];
-      const ClipVertex& q = poly[(i + 1) % count];
+      const ClipVertex& q = poly[i + 1 == count ? 0 : i + 1];
       float dp = dot(side, p.p - v0), dq = dot(side, q.p - v0);
       if (dp <= 0.0f) next[out++] = p;
       if ((dp <= 0.0f) != (dq <= 0.0f)) {
@@ -361,9 +361,11 @@ Manifold3 collideHulls(const Hull3& a, Transform3 worldFromA, const Hull3& b, Tr
   float minSep = std::numeric_limits<float>::infinity();
   for (int i = 0; i < n2; ++i)
     minSep = minf(minSep, pts[i].separation);
-  float size = 0.0f;
+  // The root of the largest square is the largest root (sqrt is monotonic), one root.
+  float size2 = 0.0f;
   for (int i = 0; i < ref.vertexCount; ++i)
-    size = maxf(size, length(ref.vertices[i] - ref.centroid));
+    size2 = maxf(size2, lengthSquared(ref.vertices[i] - ref.centroid));
+  const float size = std::sqrt(size2);
   if (n2 == 0 || minSep > sat.separation + kClipLostSupportRelative * size) {
     return collideGeneral(makeProxy(a), worldFromA, makeProxy(b), worldFromB, speculativeDistance);
   }

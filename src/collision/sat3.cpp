@@ -251,7 +251,7 @@ SatOutput3 computeSat(const Hull3& a, Transform3 worldFromA, const Hull3& b, Tra
   for (int n = 0; n < facesACount; ++n) {
     const int f = facesA[n];
     if (boundA[f] + slack < bestFace) continue;
-    const float s = separationA(f);
+    const float s = f == seedA ? seedSeparationA : separationA(f);
     if (s > bestFace) {
       bestFace = s;
       bestNormal = a.faces[f].normal;
@@ -263,7 +263,7 @@ SatOutput3 computeSat(const Hull3& a, Transform3 worldFromA, const Hull3& b, Tra
   for (int n = 0; n < facesBCount && !(bestFace > stopAbove); ++n) {
     const int f = facesB[n];
     if (boundB[f] + slack < bestFace) continue;
-    const float s = separationB(f);
+    const float s = f == seedB ? seedSeparationB : separationB(f);
     if (s > bestFace) {
       bestFace = s;
       bestNormal = -rotate(aFromB.q, b.faces[f].normal);
