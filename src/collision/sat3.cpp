@@ -21,11 +21,13 @@ constexpr float kParallelEdgesRelative = 1e-6f;
 
 // A face or an edge is skipped when an upper bound on every separation it can give is
 // below the best already known by more than this fraction of the pair's scale (the hulls'
-// size and their centroids' distance from A's origin). The bound and the separation are
-// rounded differently, each within about 1e-6 of the scale; an edge pair that passes the
-// Gauss-map test only by rounding (arcs crossing within 1e-6 of an end) can exceed its
-// bound by about as much. A hundred times that still skips nearly every feature the
-// bound rules out, whose bounds fall short by a good part of the size.
+// size and their centroids' distance from A's origin). What the bounds assume holds only
+// within the hull's tolerance (a vertex may stand kHull3RelativeTolerance, 1e-5 of the
+// size, outside a face plane), the bound and the separation are rounded differently
+// (about 1e-6 of the scale each), and an edge pair that passes the Gauss-map test only by
+// rounding (arcs crossing within 1e-6 of an end) exceeds its bound by about as much. Ten
+// times the sum still skips nearly every feature the bounds rule out, whose bounds fall
+// short by a good part of the size.
 constexpr float kBoundSlackRelative = 1e-4f;
 
 // Four lanes: SSE2's, or four scalars that compute the same bits.
@@ -283,9 +285,10 @@ SatOutput3 computeSat(const Hull3& a, Transform3 worldFromA, const Hull3& b, Tra
   // Edge pairs that are faces of the Minkowski difference: arcs ab (an edge of A: its two
   // face normals) and cd (an edge of B: its normals negated) that cross on the unit sphere
   // (Gregorius 2013). On such a pair's axis n (away from A), A's edge is A's support and
-  // B's is B's least, so its separation is at most n . (B's centroid - A's edge point) for
-  // n on A's arc, and n . (B's edge point - A's centroid) for -n on B's: an edge whose
-  // greatest over its arc cannot beat the best face (by the bias an edge needs) is skipped.
+  // B's is B's least, so its separation is at most n . (B's centroid - A's edge point) -
+  // B's inradius for n on A's arc, and n . (A's centroid - B's edge point) - A's inradius
+  // for -n on B's arc: an edge whose greatest over its arc cannot beat the best face (by
+  // the bias an edge needs) is dropped (edgeCanReach), and the pairs are the kept edges'.
   const float edgeNeeds = bestFace + kSat3FaceBiasRelative * size - slack;
   std::uint8_t keptB[kMaxHullEdges3];
   int keptBCount = 0;
