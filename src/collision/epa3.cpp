@@ -122,7 +122,8 @@ PenetrationOutput3 penetration3(const ShapeProxy3& a, Transform3 worldFromA, con
                                 Transform3 worldFromB, GjkCache3* cache, Gjk3Trace* gjkTrace,
                                 Epa3Trace* epaTrace) noexcept {
   Transform3 aFromB = invMul(worldFromA, worldFromB);
-  detail::GjkCore3 gjk = detail::runGjk3(a, b, aFromB, cache, -1.0f, gjkTrace);
+  const detail::MinkowskiPair3 pair(a, b, aFromB);
+  detail::GjkCore3 gjk = detail::runGjk3(pair, cache, -1.0f, gjkTrace);
   PenetrationOutput3 out;
   out.iterations = gjk.iterations;
   const float ra = a.radius(), rb = b.radius();
@@ -195,7 +196,7 @@ PenetrationOutput3 penetration3(const ShapeProxy3& a, Transform3 worldFromA, con
     }
     bool grown = false;
     for (int k = 0; k < dirCount && !grown; ++k) {
-      SupportPoint3 s = detail::support3(a, b, aFromB, dirs[k]);
+      SupportPoint3 s = pair.support(dirs[k]);
       ++out.iterations;
       if (sameIndices(s)) continue;
       // Accept it only if it leaves the current affine hull by more than rounding.
@@ -287,7 +288,7 @@ PenetrationOutput3 penetration3(const ShapeProxy3& a, Transform3 worldFromA, con
           best = f;
       }
       const Face nearest = poly.faces[best];
-      SupportPoint3 s = detail::support3(a, b, aFromB, nearest.normal);
+      SupportPoint3 s = pair.support(nearest.normal);
       ++out.iterations;
       if (epaTrace != nullptr && epaTrace->capacity > 0) recordPass(*epaTrace, poly, best, s);
       bool repeated = false;

@@ -139,27 +139,9 @@ Solution solveTetrahedron(const D3 p[4]) {
   return best;
 }
 
-}  // namespace
-
-SupportPoint3 makeSupport3(const ShapeProxy3& a, const ShapeProxy3& b, Transform3 aFromB,
-                           int indexA, int indexB) noexcept {
-  SupportPoint3 s;
-  s.indexA = indexA;
-  s.indexB = indexB;
-  s.pointA = a.points()[indexA];
-  s.pointB = transformPoint(aFromB, b.points()[indexB]);
-  s.w = s.pointB - s.pointA;
-  return s;
-}
-
-SupportPoint3 support3(const ShapeProxy3& a, const ShapeProxy3& b, Transform3 aFromB,
-                       Vec3 direction) noexcept {
-  int ia = findSupport(a, -direction);
-  int ib = findSupport(b, invRotate(aFromB.q, direction));
-  return makeSupport3(a, b, aFromB, ia, ib);
-}
-
-bool solveSimplex3(Simplex3& s, Vec3& closest, double* distanceSquared) noexcept {
+// The simplex's point nearest the origin: which vertices carry it, their weights, the
+// point and its squared length, in double. The simplex is left as it is.
+Solution solveSimplex(const Simplex3& s, D3& closest) noexcept {
   D3 p[4];
   for (int i = 0; i < s.count; ++i)
     p[i] = toDouble(s.v[i].w);
@@ -178,22 +160,47 @@ bool solveSimplex3(Simplex3& s, Vec3& closest, double* distanceSquared) noexcept
       sol = solveTetrahedron(p);
       break;
   }
-  Simplex3 reduced;
-  reduced.count = sol.count;
   D3 q{};
-  for (int i = 0; i < sol.count; ++i) {
-    reduced.v[i] = s.v[sol.index[i]];
-    reduced.weights[i] = static_cast<float>(sol.weight[i]);
+  for (int i = 0; i < sol.count; ++i)
     q = q + sol.weight[i] * p[sol.index[i]];
-  }
-  s = reduced;
-  closest = {static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z)};
-  if (distanceSquared != nullptr) *distanceSquared = sol.count == 4 ? 0.0 : detail::dot(q, q);
-  return sol.count == 4;
+  closest = q;
+  sol.distanceSquared = sol.count == 4 ? 0.0 : detail::dot(q, q);
+  return sol;
 }
 
-GjkCore3 runGjk3(const ShapeProxy3& a, const ShapeProxy3& b, Transform3 aFromB, GjkCache3* cache,
-                 float separationRadius, Gjk3Trace* trace) noexcept {
+// Keeps the vertices that carry the solution, in its order, with their weights. In place
+// when its indices ascend (a segment's or a triangle's always do; a tetrahedron's face may
+// not), else through a copy.
+void reduceSimplex(Simplex3& s, const Solution& sol) noexcept {
+  bool ascending = true;
+  for (int i = 1; i < sol.count; ++i)
+    ascending = ascending && sol.index[i - 1] < sol.index[i];
+  if (ascending) {
+    for (int i = 0; i < sol.count; ++i) {
+      if (sol.index[i] != i) s.v[i] = s.v[sol.index[i]];
+    }
+  } else {
+    SupportPoint3 kept[4];
+    for (int i = 0; i < sol.count; ++i)
+      kept[i] = s.v[sol.index[i]];
+    for (int i = 0; i < sol.count; ++i)
+      s.v[i] = kept[i];
+  }
+  for (int i = 0; i < sol.count; ++i)
+    s.weights[i] = static_cast<float>(sol.weight[i]);
+  s.count = sol.count;
+}
+
+Vec3 toFloat(D3 q) noexcept {
+  return {static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z)};
+}
+
+}  // namespace
+
+GjkCore3 runGjk3(const MinkowskiPair3& pair, GjkCache3* cache, float separationRadius,
+                 Gjk3Trace* trace) noexcept {
+  const ShapeProxy3& a = pair.a;
+  const ShapeProxy3& b = pair.b;
   GjkCore3 out;
   // The pass's record (null when not tracing): the simplex and v after the solve, then the
   // support point if one is taken.
@@ -207,60 +214,62 @@ GjkCore3 runGjk3(const ShapeProxy3& a, const ShapeProxy3& b, Transform3 aFromB, 
     }
     if (warm) {
       for (int i = 0; i < cache->count; ++i)
-        s.v[i] = makeSupport3(a, b, aFromB, cache->indexA[i], cache->indexB[i]);
+        s.v[i] = pair.make(cache->indexA[i], cache->indexB[i]);
       s.count = cache->count;
     }
   }
   if (!warm) {
-    Vec3 d = transformPoint(aFromB, b.center()) - a.center();
+    Vec3 d = pair.rotation * b.center() + pair.translation - a.center();
     if (lengthSquared(d) == 0.0f) d = {1, 0, 0};
-    s.v[0] = support3(a, b, aFromB, -d);
+    s.v[0] = pair.support(-d);
     s.count = 1;
     out.iterations = 1;
   }
 
   double previous = std::numeric_limits<double>::infinity();
-  Simplex3 saved = s;
   Vec3 v;
   GjkStatus status = GjkStatus::maxIterations;
   for (int iter = 0; iter < kGjk3MaxIterations; ++iter) {
-    double vvD = 0.0;
-    bool inside = solveSimplex3(s, v, &vvD);
+    D3 q;
+    const Solution sol = solveSimplex(s, q);
+    float scale = 0.0f;
+    for (int i = 0; i < sol.count; ++i)
+      scale = maxf(scale, lengthSquared(s.v[sol.index[i]].w));
+    const Vec3 closest = toFloat(q);
+    const float contact = kGjk3ContactRelativeTolerance * kGjk3ContactRelativeTolerance * scale;
+    const bool overlap = sol.count == 4 || lengthSquared(closest) <= contact;
+    // Progress is judged on |v|^2 in double: the last steps turn v by angles whose effect
+    // on |v|^2 (the square of the angle) is far below float's resolution, and stopping
+    // there would leave the normal off by ~1e-4 (found by the brute-force oracle).
+    const double vvD = sol.distanceSquared;
+    const bool stalled =
+        !overlap && vvD >= previous - kGjk3StallRelativeTolerance * static_cast<double>(scale);
+    if (stalled && vvD > previous) {
+      // Worse than before: keep the simplex that gave v, the last pass's, which is this one
+      // without the new support point (the last vertex); its weights are still in place.
+      --s.count;
+    } else {
+      reduceSimplex(s, sol);
+      v = closest;
+    }
+    if (overlap) v = {};
     if (trace != nullptr && trace->capacity > 0) {
       record = claimTraceRecord3(*trace);
       *record = {};
       record->simplex = s;
       record->closest = v;
     }
-    float vv = lengthSquared(v);
-    float scale = 0.0f;
-    for (int i = 0; i < s.count; ++i)
-      scale = maxf(scale, lengthSquared(s.v[i].w));
-    float contact = kGjk3ContactRelativeTolerance * kGjk3ContactRelativeTolerance * scale;
-    if (inside || vv <= contact) {
+    if (overlap) {
       status = GjkStatus::overlap;
-      v = {};
-      if (record != nullptr) record->closest = v;
       break;
     }
-    // Progress is judged on |v|^2 in double: the last steps turn v by angles whose effect
-    // on |v|^2 (the square of the angle) is far below float's resolution, and stopping
-    // there would leave the normal off by ~1e-4 (found by the brute-force oracle).
-    if (vvD >= previous - kGjk3StallRelativeTolerance * static_cast<double>(scale)) {
-      if (vvD > previous) {
-        s = saved;
-        solveSimplex3(s, v, nullptr);
-        if (record != nullptr) {
-          record->simplex = s;
-          record->closest = v;
-        }
-      }
+    if (stalled) {
       status = GjkStatus::stalled;
       break;
     }
     previous = vvD;
-    saved = s;
-    SupportPoint3 w = support3(a, b, aFromB, -v);
+    const float vv = lengthSquared(v);
+    SupportPoint3 w = pair.support(-v);
     ++out.iterations;
     if (record != nullptr) {
       record->hasSupport = true;
@@ -317,8 +326,8 @@ namespace {
 
 DistanceOutput3 distance3(const ShapeProxy3& a, Transform3 worldFromA, const ShapeProxy3& b,
                           Transform3 worldFromB, GjkCache3* cache, Gjk3Trace* trace) noexcept {
-  Transform3 aFromB = invMul(worldFromA, worldFromB);
-  detail::GjkCore3 core = detail::runGjk3(a, b, aFromB, cache, -1.0f, trace);
+  const detail::MinkowskiPair3 pair(a, b, invMul(worldFromA, worldFromB));
+  detail::GjkCore3 core = detail::runGjk3(pair, cache, -1.0f, trace);
   DistanceOutput3 out;
   out.iterations = core.iterations;
   out.status = core.status;
@@ -366,9 +375,9 @@ DistanceOutput3 computeDistance(const ShapeProxy3& a, Transform3 worldFromA, con
 
 bool testOverlap(const ShapeProxy3& a, Transform3 worldFromA, const ShapeProxy3& b,
                  Transform3 worldFromB, GjkCache3* cache) noexcept {
-  Transform3 aFromB = invMul(worldFromA, worldFromB);
+  const detail::MinkowskiPair3 pair(a, b, invMul(worldFromA, worldFromB));
   float radii = a.radius() + b.radius();
-  detail::GjkCore3 core = detail::runGjk3(a, b, aFromB, cache, radii);
+  detail::GjkCore3 core = detail::runGjk3(pair, cache, radii);
   if (core.separated) return false;
   if (core.status == GjkStatus::overlap) return true;
   return length(core.closest) <= radii;
