@@ -142,9 +142,9 @@ Solution solveTetrahedron(const D3 p[4]) {
 // The simplex's point nearest the origin: which vertices carry it, their weights, the
 // point and its squared length, in double. The simplex is left as it is.
 Solution solveSimplex(const Simplex3& s, D3& closest) noexcept {
-  D3 p[4];
-  for (int i = 0; i < s.count; ++i)
-    p[i] = toDouble(s.v[i].w);
+  // All four slots, used or not (they always hold finite points or zeros): a loop of fixed
+  // length has no branch to mispredict.
+  const D3 p[4] = {toDouble(s.v[0].w), toDouble(s.v[1].w), toDouble(s.v[2].w), toDouble(s.v[3].w)};
   Solution sol;
   switch (s.count) {
     case 1:
@@ -276,10 +276,10 @@ GjkCore3 runGjk3(const MinkowskiPair3& pair, GjkCache3* cache, float separationR
       record->direction = normalize(v);
       record->support = w;
     }
+    // Every slot compared, the unused ones masked out: no branch per vertex.
     bool repeated = false;
-    for (int i = 0; i < s.count; ++i) {
-      if (s.v[i].indexA == w.indexA && s.v[i].indexB == w.indexB) repeated = true;
-    }
+    for (int i = 0; i < 4; ++i)
+      repeated |= (i < s.count) & (s.v[i].indexA == w.indexA) & (s.v[i].indexB == w.indexB);
     if (repeated) {
       status = GjkStatus::repeatedSupport;
       break;
