@@ -153,7 +153,8 @@ PenetrationOutput3 penetration3(const ShapeProxy3& a, Transform3 worldFromA, con
                                 Epa3Trace* epaTrace) noexcept {
   Transform3 aFromB = invMul(worldFromA, worldFromB);
   const detail::MinkowskiPair3 pair(a, b, aFromB);
-  detail::GjkCore3 gjk = detail::runGjk3(pair, cache, -1.0f, gjkTrace);
+  Simplex3 simplex;
+  detail::GjkCore3 gjk = detail::runGjk3(pair, cache, -1.0f, simplex, gjkTrace);
   PenetrationOutput3 out;
   out.iterations = gjk.iterations;
   const float ra = a.radius(), rb = b.radius();
@@ -167,7 +168,7 @@ PenetrationOutput3 penetration3(const ShapeProxy3& a, Transform3 worldFromA, con
 
   if (gjk.status != GjkStatus::overlap) {
     Vec3 pA, pB;
-    detail::closestPoints3(gjk.simplex, pA, pB);
+    detail::closestPoints3(simplex, pA, pB);
     float len = length(gjk.closest);
     Vec3 n = (1.0f / len) * gjk.closest;
     if (len > ra + rb) {
@@ -188,8 +189,8 @@ PenetrationOutput3 penetration3(const ShapeProxy3& a, Transform3 worldFromA, con
     poly.vertices[poly.vertexCount++] = s;
     size2 = maxf(size2, lengthSquared(s.w));
   };
-  for (int i = 0; i < gjk.simplex.count; ++i)
-    addVertex(gjk.simplex.v[i]);
+  for (int i = 0; i < simplex.count; ++i)
+    addVertex(simplex.v[i]);
 
   // Grow GJK's simplex to a tetrahedron by support points along directions that leave the
   // current point, line or plane.
@@ -258,7 +259,7 @@ PenetrationOutput3 penetration3(const ShapeProxy3& a, Transform3 worldFromA, con
       if (lengthSquared(fn) > 0.0f) n = dot(fn, n) >= 0.0f ? fn : -fn;
     }
     Vec3 pA, pB;
-    detail::closestPoints3(gjk.simplex, pA, pB);
+    detail::closestPoints3(simplex, pA, pB);
     out.status = Epa3Status::degenerate;
     finish(pA, pB, n, ra + rb);
     return out;
@@ -424,7 +425,7 @@ PenetrationOutput3 penetration3(const ShapeProxy3& a, Transform3 worldFromA, con
   const int best = poly.nearestFace();
   if (best < 0) {
     Vec3 pA, pB;
-    detail::closestPoints3(gjk.simplex, pA, pB);
+    detail::closestPoints3(simplex, pA, pB);
     finish(pA, pB, centreDirection(a, b, aFromB), ra + rb);
     return out;
   }

@@ -198,14 +198,15 @@ Vec3 toFloat(D3 q) noexcept {
 }  // namespace
 
 GjkCore3 runGjk3(const MinkowskiPair3& pair, GjkCache3* cache, float separationRadius,
-                 Gjk3Trace* trace) noexcept {
+                 Simplex3& simplex, Gjk3Trace* trace) noexcept {
   const ShapeProxy3& a = pair.a;
   const ShapeProxy3& b = pair.b;
   GjkCore3 out;
   // The pass's record (null when not tracing): the simplex and v after the solve, then the
   // support point if one is taken.
   Gjk3IterationRecord* record = nullptr;
-  Simplex3& s = out.simplex;
+  Simplex3& s = simplex;
+  s.count = 0;
   bool warm = false;
   if (cache != nullptr && cache->count >= 1 && cache->count <= 4) {
     warm = true;
@@ -326,18 +327,23 @@ namespace {
 
 DistanceOutput3 distance3(const ShapeProxy3& a, Transform3 worldFromA, const ShapeProxy3& b,
                           Transform3 worldFromB, GjkCache3* cache, Gjk3Trace* trace) noexcept {
-  const detail::MinkowskiPair3 pair(a, b, invMul(worldFromA, worldFromB));
-  detail::GjkCore3 core = detail::runGjk3(pair, cache, -1.0f, trace);
+  // A's rotation as a matrix: four rotations below (B's offset into A's frame, the normal
+  // and the two points out of it) cost less so than by the quaternion.
+  const Mat3 worldFromARotation = toMat3(worldFromA.q);
+  auto toWorld = [&](Vec3 p) { return worldFromARotation * p + worldFromA.p; };
+  const Transform3 aFromB{mulTranspose(worldFromARotation, worldFromB.p - worldFromA.p),
+                          invMul(worldFromA.q, worldFromB.q)};
+  const detail::MinkowskiPair3 pair(a, b, aFromB);
   DistanceOutput3 out;
+  detail::GjkCore3 core = detail::runGjk3(pair, cache, -1.0f, out.simplex, trace);
   out.iterations = core.iterations;
   out.status = core.status;
-  out.simplex = core.simplex;
   Vec3 pA, pB;
-  detail::closestPoints3(core.simplex, pA, pB);
+  detail::closestPoints3(out.simplex, pA, pB);
   float ra = a.radius(), rb = b.radius();
   if (core.status == GjkStatus::overlap) {
     // The cores share a point: report it (the weights place it on both cores).
-    Vec3 p = transformPoint(worldFromA, 0.5f * (pA + pB));
+    Vec3 p = toWorld(0.5f * (pA + pB));
     out.pointA = out.pointB = p;
     return out;
   }
@@ -346,15 +352,15 @@ DistanceOutput3 distance3(const ShapeProxy3& a, Transform3 worldFromA, const Sha
   float len = length(core.closest);
   Vec3 n = (1.0f / len) * core.closest;
   out.coreDistance = len;
-  out.normal = transformVector(worldFromA, n);
+  out.normal = worldFromARotation * n;
   if (len > ra + rb) {
     out.distance = len - ra - rb;
-    out.pointA = transformPoint(worldFromA, pA + ra * n);
-    out.pointB = transformPoint(worldFromA, pB - rb * n);
+    out.pointA = toWorld(pA + ra * n);
+    out.pointB = toWorld(pB - rb * n);
   } else {
     // Only the radii overlap: the shared point halfway between the surfaces.
     Vec3 p = 0.5f * ((pA + ra * n) + (pB - rb * n));
-    out.pointA = out.pointB = transformPoint(worldFromA, p);
+    out.pointA = out.pointB = toWorld(p);
   }
   return out;
 }
@@ -377,7 +383,8 @@ bool testOverlap(const ShapeProxy3& a, Transform3 worldFromA, const ShapeProxy3&
                  Transform3 worldFromB, GjkCache3* cache) noexcept {
   const detail::MinkowskiPair3 pair(a, b, invMul(worldFromA, worldFromB));
   float radii = a.radius() + b.radius();
-  detail::GjkCore3 core = detail::runGjk3(pair, cache, radii);
+  Simplex3 simplex;
+  detail::GjkCore3 core = detail::runGjk3(pair, cache, radii, simplex);
   if (core.separated) return false;
   if (core.status == GjkStatus::overlap) return true;
   return length(core.closest) <= radii;

@@ -8,8 +8,7 @@
 namespace quack::detail {
 
 struct GjkCore3 {
-  Simplex3 simplex;  // final simplex, A frame, weights set
-  Vec3 closest;      // its point nearest the origin (zero on overlap), A frame
+  Vec3 closest;  // the final simplex's point nearest the origin (zero on overlap), A frame
   int iterations = 0;
   GjkStatus status = GjkStatus::converged;
   bool separated = false;  // the overlap test's early out fired
@@ -45,9 +44,11 @@ struct MinkowskiPair3 {
 };
 
 // GJK on the cores in A's frame. separationRadius >= 0 enables the overlap test's early out.
+// `simplex` receives the final simplex (A frame, weights set): the caller's own, such as
+// DistanceOutput3's, so that the simplex is neither zeroed nor copied twice per query.
 // `trace` (may be null) records every pass (Gjk3Trace); it changes nothing else.
 GjkCore3 runGjk3(const MinkowskiPair3& pair, GjkCache3* cache, float separationRadius,
-                 Gjk3Trace* trace = nullptr) noexcept;
+                 Simplex3& simplex, Gjk3Trace* trace = nullptr) noexcept;
 
 // The record slot for the next pass of a trace (the contract of Gjk3Trace and Epa3Trace):
 // the first capacity - 1 passes keep their slots, later ones share the last.
