@@ -108,24 +108,29 @@ Solution solveTriangle(int i, int j, int k, D3 a, D3 b, D3 c) {
 // vertex is (nearly) on its plane is also tried, so a flat tetrahedron still gives its
 // nearest face rather than a false "inside".
 Solution solveTetrahedron(const D3 p[4]) {
-  static constexpr int kFaces[4][4] = {{0, 1, 2, 3}, {0, 2, 3, 1}, {0, 3, 1, 2}, {1, 3, 2, 0}};
   double scale = 0;
   for (int i = 1; i < 4; ++i)
     scale = std::max(scale, detail::dot(p[i] - p[0], p[i] - p[0]));
   Solution best;
   bool inside = true;
-  for (const auto& f : kFaces) {
-    D3 a = p[f[0]], b = p[f[1]], c = p[f[2]], d = p[f[3]];
-    D3 n = detail::cross(b - a, c - a);
-    double signO = -detail::dot(n, a);  // origin's side
-    double signD = detail::dot(n, d - a);
+  // Face i, j, k with opposite vertex l; written out per face (constant indices) so that
+  // the points stay in registers.
+  auto tryFace = [&](int i, int j, int k, int l) {
+    const D3 a = p[i], b = p[j], c = p[k];
+    const D3 n = detail::cross(b - a, c - a);
+    const double signO = -detail::dot(n, a);  // origin's side
+    const double signD = detail::dot(n, p[l] - a);
     // Flat when the opposite vertex's height is within double rounding of the face.
-    bool flat = signD * signD <= 1e-24 * detail::dot(n, n) * scale;
-    if (!flat && signO * signD >= 0) continue;  // origin on the inner side of this face
+    const bool flat = signD * signD <= 1e-24 * detail::dot(n, n) * scale;
+    if (!flat && signO * signD >= 0) return;  // origin on the inner side of this face
     inside = false;
-    Solution s = solveTriangle(f[0], f[1], f[2], a, b, c);
+    Solution s = solveTriangle(i, j, k, a, b, c);
     if (s.distanceSquared < best.distanceSquared) best = s;
-  }
+  };
+  tryFace(0, 1, 2, 3);
+  tryFace(0, 2, 3, 1);
+  tryFace(0, 3, 1, 2);
+  tryFace(1, 3, 2, 0);
   if (inside) {
     Solution s;
     s.count = 4;
