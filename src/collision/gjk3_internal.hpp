@@ -16,8 +16,8 @@ struct GjkCore3 {
 
 // B - A in A's frame: the two proxies and B's pose in A's frame, its rotation as a matrix.
 // Every support point rotates twice (the direction into B's frame, B's point out of it);
-// the matrix does each in 9 products where the quaternion takes 18 (and the matrix costs
-// 12 to form, once per query).
+// the matrix does each in 9 products where the quaternion takes 18, and costs 18 to form,
+// once per query.
 struct MinkowskiPair3 {
   MinkowskiPair3(const ShapeProxy3& proxyA, const ShapeProxy3& proxyB, Transform3 aFromB) noexcept
       : a(proxyA), b(proxyB), rotation(toMat3(aFromB.q)), translation(aFromB.p) {}
