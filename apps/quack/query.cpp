@@ -5,6 +5,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -292,20 +293,77 @@ QueryAnswer answerRayCast3(const json& id, const ShapeGeometry3& shape, Transfor
   return finished(id, out);
 }
 
-// A query whose shape a is a static triangle mesh (shape b, when there is one, is convex):
-// the mesh's own queries (collision/mesh3.hpp), each answer the convex one with the
-// triangle's index; manifold gives one manifold per touching triangle.
-QueryAnswer answerMesh3(const json& id, const std::string& op, const json& q, float speculative) {
-  if (op != "overlap" && op != "distance" && op != "manifold" && op != "raycast" &&
-      op != "shapecast") {
-    return rejected(id, "a: a mesh supports ops " + std::string(kMeshQueryOps) + ", not " + op);
+// The sweep {"from": POSE, "to": POSE} under `key` of op toi: the shape turns about
+// `localCenter` (its proxy's centre), the short way round, at a constant rate.
+Result<Sweep3> parseSweep3(const json& q, const char* key, Vec3 localCenter) {
+  if (Status s = checkSweep(q, key); !s) return fail(s.message());
+  const json& j = q.at(key);
+  Result<Transform3> from = parsePose3(j.at("from"), std::string(key) + ".from");
+  if (!from) return from.error();
+  Result<Transform3> to = parsePose3(j.at("to"), std::string(key) + ".to");
+  if (!to) return to.error();
+  return makeSweep3(localCenter, *from, *to);
+}
+
+// The pose of a static mesh in op toi: its sweep's `from` when `key` is given (its `to` must
+// be the same pose), else the origin.
+Result<Transform3> parseStaticSweep3(const json& q, const char* key) {
+  if (!q.contains(key)) return Transform3{};
+  if (Status s = checkSweep(q, key); !s) return fail(s.message());
+  const json& j = q.at(key);
+  Result<Transform3> from = parsePose3(j.at("from"), std::string(key) + ".from");
+  if (!from) return from.error();
+  Result<Transform3> to = parsePose3(j.at("to"), std::string(key) + ".to");
+  if (!to) return to.error();
+  if (!(to->p == from->p && to->q == from->q)) {
+    return fail(std::string(key) + ".to: a mesh is static: its pose must be " + key +
+                ".from's (or leave " + key + " out: the mesh at the origin)");
   }
-  Result<Mesh3> mesh = parseMesh3(q.at("a"), "a");
+  return *from;
+}
+
+// A query with a static triangle mesh as shape a, or as shape b of ops overlap, distance,
+// penetration and toi (the other shape convex): the mesh's own queries
+// (collision/mesh3.hpp), each answer the convex one with the triangle's index; manifold
+// gives one manifold per touching triangle. With the mesh as b the answer is turned round
+// to say A to B: points swapped, normal negated.
+QueryAnswer answerMesh3(const json& id, const std::string& op, const json& q, float speculative) {
+  const bool meshIsA = isMesh3(q.at("a"));
+  if (meshIsA && op != "raycast" && isMesh3(q.at("b")))
+    return rejected(id, "b: a mesh against a mesh is not supported (shape b must be convex)");
+  if (!meshIsA && op != "overlap" && op != "distance" && op != "penetration" && op != "toi") {
+    return rejected(id, "b: a mesh must be shape a for op " + op + " (as shape b it supports ops " +
+                            kMeshQueryOpsAsB + ")");
+  }
+  const char* meshKey = meshIsA ? "a" : "b";
+  const char* convexKey = meshIsA ? "b" : "a";
+  Result<Mesh3> mesh = parseMesh3(q.at(meshKey), meshKey);
   if (!mesh) return rejected(id, mesh.error().message);
-  Result<Transform3> pa =
-      q.contains("pa") ? parsePose3(q.at("pa"), "pa") : Result<Transform3>(Transform3{});
-  if (!pa) return rejected(id, pa.error().message);
   json out = {{"id", id}};
+  if (op == "toi") {
+    Result<ShapeGeometry3> convex = parseShape3(q.at(convexKey), convexKey);
+    if (!convex) return rejected(id, convex.error().message);
+    const ShapeProxy3 proxy = makeProxy(*convex);
+    Result<Transform3> worldFromMesh = parseStaticSweep3(q, meshIsA ? "sweepA" : "sweepB");
+    if (!worldFromMesh) return rejected(id, worldFromMesh.error().message);
+    Result<Sweep3> sweep = parseSweep3(q, meshIsA ? "sweepB" : "sweepA", proxy.center());
+    if (!sweep) return rejected(id, sweep.error().message);
+    float target = kToiTargetSeparation;
+    if (q.contains("target")) {
+      const json& v = q.at("target");
+      if (!isLengthOption(v)) {
+        return rejected(id, "target: must be a number >= 0 within the coordinate limit 1e9 m");
+      }
+      target = v.get<float>();
+    }
+    // The answer (status, t, triangle) reads the same either way round.
+    out.update(toJson(computeToiMesh(*mesh, *worldFromMesh, proxy, *sweep, 1.0f, target)));
+    return finished(id, out);
+  }
+  const char* meshPoseKey = meshIsA ? "pa" : "pb";
+  Result<Transform3> pm = q.contains(meshPoseKey) ? parsePose3(q.at(meshPoseKey), meshPoseKey)
+                                                  : Result<Transform3>(Transform3{});
+  if (!pm) return rejected(id, pm.error().message);
   if (op == "raycast") {
     if (Status s = checkRay(q); !s) return rejected(id, s.message());
     const json& ray = q.at("ray");
@@ -313,27 +371,40 @@ QueryAnswer answerMesh3(const json& id, const std::string& op, const json& q, fl
     if (!origin) return rejected(id, origin.error().message);
     Result<Vec3> translation = parsePosition3(ray.at("translation"), "ray.translation");
     if (!translation) return rejected(id, translation.error().message);
-    out.update(toJson(rayCastMesh(*mesh, *pa, {*origin, *translation, 1.0f})));
+    out.update(toJson(rayCastMesh(*mesh, *pm, {*origin, *translation, 1.0f})));
     return finished(id, out);
   }
-  Result<ShapeGeometry3> b = parseShape3(q.at("b"), "b");
-  if (!b) return rejected(id, b.error().message);
-  Result<Transform3> pb =
-      q.contains("pb") ? parsePose3(q.at("pb"), "pb") : Result<Transform3>(Transform3{});
-  if (!pb) return rejected(id, pb.error().message);
-  const ShapeProxy3 proxyB = makeProxy(*b);
+  Result<ShapeGeometry3> convex = parseShape3(q.at(convexKey), convexKey);
+  if (!convex) return rejected(id, convex.error().message);
+  const char* convexPoseKey = meshIsA ? "pb" : "pa";
+  Result<Transform3> pc = q.contains(convexPoseKey) ? parsePose3(q.at(convexPoseKey), convexPoseKey)
+                                                    : Result<Transform3>(Transform3{});
+  if (!pc) return rejected(id, pc.error().message);
+  const ShapeProxy3 proxy = makeProxy(*convex);
   if (op == "shapecast") {
     if (!q.contains("translation")) return rejected(id, "translation: missing");
     Result<Vec3> translation = parsePosition3(q.at("translation"), "translation");
     if (!translation) return rejected(id, translation.error().message);
-    out.update(toJson(castShapeMesh(*mesh, *pa, proxyB, *pb, *translation)));
+    out.update(toJson(castShapeMesh(*mesh, *pm, proxy, *pc, *translation)));
   } else if (op == "overlap") {
-    out["overlap"] = testOverlapMesh(*mesh, *pa, proxyB, *pb);
+    out["overlap"] = testOverlapMesh(*mesh, *pm, proxy, *pc);
   } else if (op == "distance") {
-    out.update(toJson(computeDistanceMesh(*mesh, *pa, proxyB, *pb)));
+    MeshDistanceOutput3 d = computeDistanceMesh(*mesh, *pm, proxy, *pc);
+    if (!meshIsA) {
+      std::swap(d.pointA, d.pointB);
+      d.normal = -d.normal;
+    }
+    out.update(toJson(d));
+  } else if (op == "penetration") {
+    MeshPenetrationOutput3 p = computePenetrationMesh(*mesh, *pm, proxy, *pc);
+    if (!meshIsA) {
+      std::swap(p.pointA, p.pointB);
+      p.normal = -p.normal;
+    }
+    out.update(toJson(p));
   } else {
     std::vector<MeshContact3> contacts;
-    collideMesh(*mesh, *pa, *b, *pb, contacts, speculative);
+    collideMesh(*mesh, *pm, *convex, *pc, contacts, speculative);
     out.update(toJson(contacts));
   }
   return finished(id, out);
@@ -347,7 +418,8 @@ QueryAnswer answerParsed3(const json& id, const std::string& op, const json& q, 
     if (!q.contains(key)) return Transform3{};
     return parsePose3(q.at(key), key);
   };
-  if (isMesh3(q.at("a"))) return answerMesh3(id, op, q, speculative);
+  if (isMesh3(q.at("a")) || (op != "raycast" && isMesh3(q.at("b"))))
+    return answerMesh3(id, op, q, speculative);
   Result<ShapeGeometry3> a = parseShape3(q.at("a"), "a");
   if (!a) return rejected(id, a.error().message);
   if (op == "raycast") {
@@ -373,20 +445,10 @@ QueryAnswer answerParsed3(const json& id, const std::string& op, const json& q, 
     return finished(id, out);
   }
   if (op == "toi") {
-    // A sweep is {"from": POSE, "to": POSE}; the shape turns about its proxy's centre (the
-    // centre of its core), the short way round, at a constant rate.
-    auto parseSweep = [&](const char* key, const ShapeProxy3& proxy) -> Result<Sweep3> {
-      if (Status s = checkSweep(q, key); !s) return fail(s.message());
-      const json& j = q.at(key);
-      Result<Transform3> from = parsePose3(j.at("from"), std::string(key) + ".from");
-      if (!from) return from.error();
-      Result<Transform3> to = parsePose3(j.at("to"), std::string(key) + ".to");
-      if (!to) return to.error();
-      return makeSweep3(proxy.center(), *from, *to);
-    };
-    Result<Sweep3> sweepA = parseSweep("sweepA", proxyA);
+    // The shapes turn about their proxies' centres (the centres of their cores).
+    Result<Sweep3> sweepA = parseSweep3(q, "sweepA", proxyA.center());
     if (!sweepA) return rejected(id, sweepA.error().message);
-    Result<Sweep3> sweepB = parseSweep("sweepB", proxyB);
+    Result<Sweep3> sweepB = parseSweep3(q, "sweepB", proxyB.center());
     if (!sweepB) return rejected(id, sweepB.error().message);
     float target = kToiTargetSeparation;
     if (q.contains("target")) {

@@ -17,10 +17,13 @@
 // every query, so each query is cold; the speculative distance is 0.02 m for both
 // (Quack's kSpeculativeDistance, Bullet's contact breaking threshold).
 //
-// `narrowphase3d_bench --count KERNEL SET ROUNDS` runs one kernel (quack, bullet-sat,
-// bullet-gjk; quack-hash also prints a hash of Quack's answers, to show that a change left
-// them alone) over the 256 pairs of SET (random8, random16, random32, resting) ROUNDS
-// times and nothing else, for instruction counts under callgrind (docs/3d.md).
+// `narrowphase3d_bench --count KERNEL SET ROUNDS` runs one kernel over the 256 pairs of SET
+// (random8, random16, random32, resting) ROUNDS times and nothing else, for instruction
+// counts under callgrind (docs/3d.md). Manifolds: quack, bullet-sat, bullet-gjk; GJK and EPA
+// (random sets only): quack-distance, bullet-distance (apart pairs), quack-overlap,
+// ccd-overlap, quack-penetration, bullet-penetration, ccd-penetration (half-overlapping
+// pairs). A Quack kernel with -hash appended (quack-hash, quack-distance-hash, ...) also
+// prints a hash of its answers, to show that a change left them alone.
 
 #include <benchmark/benchmark.h>
 
@@ -98,35 +101,67 @@ const std::vector<Case>& cases(int n, bool apart) {
   return c;
 }
 
+// FNV-1a over the answers of a --count run: the same number before and after a change
+// that must not change any answer.
+std::uint64_t g_quackHash = 1469598103934665603ull;
+
+void hashBytes(const void* data, std::size_t n) {
+  const unsigned char* p = static_cast<const unsigned char*>(data);
+  for (std::size_t i = 0; i < n; ++i)
+    g_quackHash = (g_quackHash ^ p[i]) * 1099511628211ull;
+}
+
+// One query of each kind, shared by the timed loops and --count.
+void quackDistance(const Case& c, bool hash = false) {
+  DistanceOutput3 d = computeDistance(makeProxy(c.a), c.ta, makeProxy(c.b), c.tb);
+  if (hash) {
+    hashBytes(&d.distance, sizeof d.distance);
+    hashBytes(&d.normal, sizeof d.normal);
+    hashBytes(&d.pointA, sizeof d.pointA);
+    hashBytes(&d.pointB, sizeof d.pointB);
+  }
+  benchmark::DoNotOptimize(d.distance);
+}
+
+void quackOverlap(const Case& c, bool hash = false) {
+  bool hit = testOverlap(makeProxy(c.a), c.ta, makeProxy(c.b), c.tb);
+  if (hash) hashBytes(&hit, sizeof hit);
+  benchmark::DoNotOptimize(hit);
+}
+
+void quackPenetration(const Case& c, bool hash = false) {
+  PenetrationOutput3 p = computePenetration(makeProxy(c.a), c.ta, makeProxy(c.b), c.tb);
+  if (hash) {
+    hashBytes(&p.overlap, sizeof p.overlap);
+    hashBytes(&p.depth, sizeof p.depth);
+    hashBytes(&p.normal, sizeof p.normal);
+    hashBytes(&p.pointA, sizeof p.pointA);
+    hashBytes(&p.pointB, sizeof p.pointB);
+  }
+  benchmark::DoNotOptimize(p.depth);
+}
+
 void BM_QuackDistance(benchmark::State& state) {
   const std::vector<Case>& cs = cases(static_cast<int>(state.range(0)), true);
   std::size_t i = 0;
-  for (auto _ : state) {
-    const Case& c = cs[i++ & 255];
-    DistanceOutput3 d = computeDistance(makeProxy(c.a), c.ta, makeProxy(c.b), c.tb);
-    benchmark::DoNotOptimize(d.distance);
-  }
+  for (auto _ : state)
+    quackDistance(cs[i++ & 255]);
 }
 BENCHMARK(BM_QuackDistance)->Arg(8)->Arg(16)->Arg(32);
 
 void BM_QuackOverlap(benchmark::State& state) {
   const std::vector<Case>& cs = cases(static_cast<int>(state.range(0)), false);
   std::size_t i = 0;
-  for (auto _ : state) {
-    const Case& c = cs[i++ & 255];
-    benchmark::DoNotOptimize(testOverlap(makeProxy(c.a), c.ta, makeProxy(c.b), c.tb));
-  }
+  for (auto _ : state)
+    quackOverlap(cs[i++ & 255]);
 }
 BENCHMARK(BM_QuackOverlap)->Arg(8)->Arg(16)->Arg(32);
 
 void BM_QuackPenetration(benchmark::State& state) {
   const std::vector<Case>& cs = cases(static_cast<int>(state.range(0)), false);
   std::size_t i = 0;
-  for (auto _ : state) {
-    const Case& c = cs[i++ & 255];
-    PenetrationOutput3 p = computePenetration(makeProxy(c.a), c.ta, makeProxy(c.b), c.tb);
-    benchmark::DoNotOptimize(p.depth);
-  }
+  for (auto _ : state)
+    quackPenetration(cs[i++ & 255]);
 }
 BENCHMARK(BM_QuackPenetration)->Arg(8)->Arg(16)->Arg(32);
 
@@ -166,29 +201,33 @@ std::vector<BulletCase>& bulletCases(int n, bool apart) {
   return out;
 }
 
+void bulletDistance(BulletCase& c) {
+  btGjkEpaSolver2::sResults r;
+  btGjkEpaSolver2::Distance(&c.a, c.ta, &c.b, c.tb, c.tb.getOrigin() - c.ta.getOrigin(), r);
+  benchmark::DoNotOptimize(r.distance);
+}
+
+void bulletPenetration(BulletCase& c) {
+  btGjkEpaSolver2::sResults r;
+  bool hit =
+      btGjkEpaSolver2::Penetration(&c.a, c.ta, &c.b, c.tb, c.tb.getOrigin() - c.ta.getOrigin(), r);
+  benchmark::DoNotOptimize(hit);
+  benchmark::DoNotOptimize(r.distance);
+}
+
 void BM_BulletDistance(benchmark::State& state) {
   std::vector<BulletCase>& cs = bulletCases(static_cast<int>(state.range(0)), true);
   std::size_t i = 0;
-  for (auto _ : state) {
-    BulletCase& c = cs[i++ & 255];
-    btGjkEpaSolver2::sResults r;
-    btGjkEpaSolver2::Distance(&c.a, c.ta, &c.b, c.tb, c.tb.getOrigin() - c.ta.getOrigin(), r);
-    benchmark::DoNotOptimize(r.distance);
-  }
+  for (auto _ : state)
+    bulletDistance(cs[i++ & 255]);
 }
 BENCHMARK(BM_BulletDistance)->Arg(8)->Arg(16)->Arg(32);
 
 void BM_BulletPenetration(benchmark::State& state) {
   std::vector<BulletCase>& cs = bulletCases(static_cast<int>(state.range(0)), false);
   std::size_t i = 0;
-  for (auto _ : state) {
-    BulletCase& c = cs[i++ & 255];
-    btGjkEpaSolver2::sResults r;
-    bool hit = btGjkEpaSolver2::Penetration(&c.a, c.ta, &c.b, c.tb,
-                                            c.tb.getOrigin() - c.ta.getOrigin(), r);
-    benchmark::DoNotOptimize(hit);
-    benchmark::DoNotOptimize(r.distance);
-  }
+  for (auto _ : state)
+    bulletPenetration(cs[i++ & 255]);
 }
 BENCHMARK(BM_BulletPenetration)->Arg(8)->Arg(16)->Arg(32);
 #endif
@@ -264,14 +303,23 @@ ccd_t makeCcd() {
   return ccd;
 }
 
+void ccdOverlap(CcdCase& c, const ccd_t& ccd) {
+  benchmark::DoNotOptimize(ccdGJKIntersect(&c.a, &c.b, &ccd));
+}
+
+void ccdPenetration(CcdCase& c, const ccd_t& ccd) {
+  ccd_real_t depth;
+  ccd_vec3_t dir, pos;
+  benchmark::DoNotOptimize(ccdGJKPenetration(&c.a, &c.b, &ccd, &depth, &dir, &pos));
+  benchmark::DoNotOptimize(depth);
+}
+
 void BM_CcdIntersect(benchmark::State& state) {
   std::vector<CcdCase>& cs = ccdCases(static_cast<int>(state.range(0)));
   ccd_t ccd = makeCcd();
   std::size_t i = 0;
-  for (auto _ : state) {
-    CcdCase& c = cs[i++ & 255];
-    benchmark::DoNotOptimize(ccdGJKIntersect(&c.a, &c.b, &ccd));
-  }
+  for (auto _ : state)
+    ccdOverlap(cs[i++ & 255], ccd);
 }
 BENCHMARK(BM_CcdIntersect)->Arg(8)->Arg(16)->Arg(32);
 
@@ -279,13 +327,8 @@ void BM_CcdPenetration(benchmark::State& state) {
   std::vector<CcdCase>& cs = ccdCases(static_cast<int>(state.range(0)));
   ccd_t ccd = makeCcd();
   std::size_t i = 0;
-  for (auto _ : state) {
-    CcdCase& c = cs[i++ & 255];
-    ccd_real_t depth;
-    ccd_vec3_t dir, pos;
-    benchmark::DoNotOptimize(ccdGJKPenetration(&c.a, &c.b, &ccd, &depth, &dir, &pos));
-    benchmark::DoNotOptimize(depth);
-  }
+  for (auto _ : state)
+    ccdPenetration(cs[i++ & 255], ccd);
 }
 BENCHMARK(BM_CcdPenetration)->Arg(8)->Arg(16)->Arg(32);
 #endif
@@ -327,15 +370,6 @@ const std::vector<Case>& manifoldCases(int n) {
 }
 
 int g_quackPoints = 0;
-// FNV-1a over the manifolds of a --count run: the same number before and after a change
-// that must not change any answer.
-std::uint64_t g_quackHash = 1469598103934665603ull;
-
-void hashBytes(const void* data, std::size_t n) {
-  const unsigned char* p = static_cast<const unsigned char*>(data);
-  for (std::size_t i = 0; i < n; ++i)
-    g_quackHash = (g_quackHash ^ p[i]) * 1099511628211ull;
-}
 
 void quackManifold(const Case& c, bool hash = false) {
   Manifold3 m = collideHulls(c.a, c.ta, c.b, c.tb, kSpeculativeDistance);
@@ -457,11 +491,66 @@ BENCHMARK(BM_BulletManifoldGjk)->ArgName("verts")->Arg(8)->Arg(16)->Arg(32)->Arg
 
 // --count KERNEL SET ROUNDS: the kernel over SET's 256 pairs, ROUNDS times; the setup is
 // the same for every ROUNDS, so the instruction counts of two runs differ by the queries.
+// The GJK and EPA kernels of --count (random sets only): distance on the apart pairs,
+// overlap and penetration on the half-overlapping ones; true when `kernel` is one of them.
+bool countQuery(const std::string& kernel, int n, int rounds, int& status) {
+  status = 0;
+  const bool hash = kernel.size() > 5 && kernel.compare(kernel.size() - 5, 5, "-hash") == 0;
+  const std::string name = hash ? kernel.substr(0, kernel.size() - 5) : kernel;
+  auto run = [&](auto&& cases, auto&& query) {
+    if (n == 0) {
+      std::fprintf(stderr, "%s runs on the random sets only\n", kernel.c_str());
+      status = 2;
+      return true;
+    }
+    auto& set = cases();  // built even for 0 rounds, so that the setup is the same
+    for (int r = 0; r < rounds; ++r)
+      for (auto& c : set)
+        query(c);
+    std::printf("%s random%d: %d rounds", kernel.c_str(), n, rounds);
+    if (hash) std::printf(", answers' hash %016llx", static_cast<unsigned long long>(g_quackHash));
+    std::printf("\n");
+    return true;
+  };
+  if (name == "quack-distance")
+    return run([&]() -> const std::vector<Case>& { return cases(n, true); },
+               [&](const Case& c) { quackDistance(c, hash); });
+  if (name == "quack-overlap")
+    return run([&]() -> const std::vector<Case>& { return cases(n, false); },
+               [&](const Case& c) { quackOverlap(c, hash); });
+  if (name == "quack-penetration")
+    return run([&]() -> const std::vector<Case>& { return cases(n, false); },
+               [&](const Case& c) { quackPenetration(c, hash); });
+  if (hash) return false;
+#if QUACK_HAVE_BULLET
+  if (name == "bullet-distance")
+    return run([&]() -> std::vector<BulletCase>& { return bulletCases(n, true); },
+               [](BulletCase& c) { bulletDistance(c); });
+  if (name == "bullet-penetration")
+    return run([&]() -> std::vector<BulletCase>& { return bulletCases(n, false); },
+               [](BulletCase& c) { bulletPenetration(c); });
+#endif
+#if QUACK_HAVE_CCD
+  const ccd_t ccd = makeCcd();
+  if (name == "ccd-overlap")
+    return run([&]() -> std::vector<CcdCase>& { return ccdCases(n); },
+               [&](CcdCase& c) { ccdOverlap(c, ccd); });
+  if (name == "ccd-penetration")
+    return run([&]() -> std::vector<CcdCase>& { return ccdCases(n); },
+               [&](CcdCase& c) { ccdPenetration(c, ccd); });
+#endif
+  return false;
+}
+
 int countMode(int argc, char** argv) {
   if (argc != 5) {
     std::fprintf(stderr,
-                 "usage: %s --count quack|quack-hash|bullet-sat|bullet-gjk "
-                 "random8|random16|random32|resting ROUNDS\n",
+                 "usage: %s --count KERNEL SET ROUNDS\n"
+                 "  manifolds: quack|quack-hash|bullet-sat|bullet-gjk, "
+                 "SET random8|random16|random32|resting\n"
+                 "  GJK/EPA: quack-distance|quack-overlap|quack-penetration (each also "
+                 "-hash)|bullet-distance|bullet-penetration|ccd-overlap|ccd-penetration, "
+                 "SET random8|random16|random32\n",
                  argv[0]);
     return 2;
   }
@@ -476,6 +565,8 @@ int countMode(int argc, char** argv) {
     std::fprintf(stderr, "unknown set %s or negative rounds\n", set.c_str());
     return 2;
   }
+  int status = 0;
+  if (countQuery(kernel, n, rounds, status)) return status;
   if (kernel == "quack" || kernel == "quack-hash") {
     // quack-hash also hashes every answer (not for instruction counts).
     const bool hash = kernel == "quack-hash";

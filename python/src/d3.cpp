@@ -3,16 +3,19 @@
 // through its toJson (quack/io/shape_json.hpp, answer_json.hpp), so a 3D query in Python
 // is checked and answered exactly as a `quack query` line is.
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bindings.hpp"
 #include "quack/collision/epa3.hpp"
 #include "quack/collision/gjk3.hpp"
 #include "quack/collision/manifold3.hpp"
+#include "quack/collision/mesh3.hpp"
 #include "quack/collision/toi3.hpp"
 #include "quack/geometry/mass3.hpp"
 #include "quack/geometry/raycast3.hpp"
@@ -29,6 +32,11 @@ using nlohmann::json;
 struct PyShape3 {
   nlohmann::json json;
   ShapeGeometry3 geometry;
+};
+
+/// quack.d3.Mesh: a static triangle mesh (mesh frame), made by quack.d3.mesh.
+struct PyMesh3 {
+  Mesh3 mesh;
 };
 
 PyShape3 makeShape3(nlohmann::json j, const std::string& path) {
@@ -51,6 +59,11 @@ const PyShape3& toShape3(py::handle value, const std::string& path) {
   if (py::isinstance<PyShape>(value)) {
     raiseValue(path + ": a 2D quack.Shape in a 3D query (quack.d3 takes quack.d3.sphere, " +
                "capsule, box, hull, triangle)");
+  }
+  if (py::isinstance<PyMesh3>(value)) {
+    raiseValue(path + ": a quack.d3.Mesh is not a convex shape (a mesh is shape a of overlap, " +
+               "distance, penetration, manifold, raycast, shapecast, toi and raycast_many, " +
+               "or shape b of overlap, distance, penetration and toi)");
   }
   if (!py::isinstance<PyShape3>(value)) {
     raiseValue(path +
@@ -196,6 +209,10 @@ ShapeSide3 toShapeSide3(py::handle value, const std::string& name) {
     add(value, name);
     return side;
   }
+  if (py::isinstance<PyMesh3>(value)) {
+    raiseValue(name + ": a quack.d3.Mesh is taken by raycast_many only among the batch " +
+               "queries (the pair queries take it one pair at a time)");
+  }
   if (py::isinstance<py::str>(value) || !py::isinstance<py::sequence>(value)) {
     raiseValue(name + ": must be a quack.d3.Shape or a list of N quack.d3.Shape, not " +
                std::string(py::str(value.get_type().attr("__name__"))));
@@ -319,6 +336,215 @@ void put(double* out, std::size_t i, Vec3 v) {
   out[3 * i + 2] = static_cast<double>(v.z);
 }
 
+// ---- meshes ----
+
+// A mesh from vertices (N, 3) and triangles (M, 3) of vertex indices, counter-clockwise
+// seen from the front; errors name the field as parseMesh3's do ("triangles[1][2]: ...").
+PyMesh3 makePyMesh3(py::handle vertices, py::handle triangles) {
+  const std::string expectedV = "vertices: must be a numpy array (N, 3) of x, y, z";
+  Doubles v = toDoubleArray(vertices, "vertices", expectedV);
+  if (v.ndim() != 2 || v.shape(1) != 3) raiseValue(expectedV);
+  const auto n = static_cast<std::size_t>(v.shape(0));
+  std::vector<Vec3> points(n);
+  const double* vd = v.data();
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::string bad = checkCoordinate(
+          vd[3 * i + k], "vertices[" + std::to_string(i) + "][" + std::to_string(k) + "]");
+      if (!bad.empty()) raiseValue(bad);
+    }
+    points[i] = {static_cast<float>(vd[3 * i]), static_cast<float>(vd[3 * i + 1]),
+                 static_cast<float>(vd[3 * i + 2])};
+  }
+  const std::string expectedT = "triangles: must be a numpy array (M, 3) of integer vertex indices";
+  py::array t = py::module_::import("numpy").attr("asarray")(triangles);
+  const char kind = t.dtype().kind();
+  if (kind != 'i' && kind != 'u') {
+    raiseValue(expectedT + ", not of dtype " + std::string(py::str(t.dtype())));
+  }
+  if (t.ndim() != 2 || t.shape(1) != 3) {
+    std::string got = "(";
+    for (py::ssize_t i = 0; i < t.ndim(); ++i)
+      got += (i > 0 ? ", " : "") + std::to_string(t.shape(i));
+    raiseValue(expectedT + ", not " + got + (t.ndim() == 1 ? ",)" : ")"));
+  }
+  // Unsigned indices beyond int64 stay unsigned, so they are out of range, not negative.
+  using Indices = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
+  using Unsigned = py::array_t<std::uint64_t, py::array::c_style | py::array::forcecast>;
+  const auto m = static_cast<std::size_t>(t.shape(0));
+  std::vector<std::array<std::int32_t, 3>> tris(m);
+  Indices signedIndices;
+  Unsigned unsignedIndices;
+  if (kind == 'u') {
+    unsignedIndices = Unsigned::ensure(t);
+  } else {
+    signedIndices = Indices::ensure(t);
+  }
+  for (std::size_t i = 0; i < m; ++i) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::size_t at = 3 * i + k;
+      const bool negative = kind != 'u' && signedIndices.data()[at] < 0;
+      const bool beyond = kind == 'u' ? unsignedIndices.data()[at] >= n
+                                      : static_cast<std::uint64_t>(signedIndices.data()[at]) >= n;
+      if (negative || beyond) {
+        const std::string index = kind == 'u' ? std::to_string(unsignedIndices.data()[at])
+                                              : std::to_string(signedIndices.data()[at]);
+        raiseValue("triangles[" + std::to_string(i) + "][" + std::to_string(k) +
+                   "]: vertex index " + index + " is out of range (0 to " +
+                   std::to_string(static_cast<long long>(n) - 1) + ")");
+      }
+      tris[i][k] = static_cast<std::int32_t>(kind == 'u' ? unsignedIndices.data()[at]
+                                                         : signedIndices.data()[at]);
+    }
+  }
+  return {valueOrRaise(makeMesh3At(points, tris, ""))};
+}
+
+bool isMesh(py::handle value) {
+  return py::isinstance<PyMesh3>(value);
+}
+
+// The pose of a static mesh in toi: None (the origin) or (pose, pose), the same pose twice.
+Transform3 toStaticSweep3(py::handle sweep, const std::string& path) {
+  if (sweep.is_none()) return Transform3{};
+  if (!py::isinstance<py::sequence>(sweep) || py::isinstance<py::str>(sweep) ||
+      py::len(sweep) != 2) {
+    raiseValue(path +
+               ": must be None (the mesh at the origin) or (pose, pose), a static mesh's "
+               "pose twice");
+  }
+  py::sequence s = py::reinterpret_borrow<py::sequence>(sweep);
+  const Transform3 from = toTransform3(s[0], path + "[0]");
+  const Transform3 to = toTransform3(s[1], path + "[1]");
+  if (!(from.p == to.p && from.q == to.q)) {
+    raiseValue(path + "[1]: a mesh is static: its pose must be " + path +
+               "[0]'s (or give None: the mesh at the origin)");
+  }
+  return from;
+}
+
+// A pair query with a mesh as a (any op) or as b (overlap, distance, penetration, toi), as
+// `quack query` answers it: the mesh's own query (collision/mesh3.hpp), the answer with the
+// triangle's index, turned round (points swapped, normal negated) when the mesh is b.
+// `pa`, `pb` are the poses (the sweeps for toi); `extra` the translation (shapecast), the
+// speculative distance (manifold) or the target (toi).
+py::object answerMesh(const py::module_& m, const std::string& op, py::handle a, py::handle pa,
+                      py::handle b, py::handle pb, py::handle extra) {
+  const bool meshIsA = isMesh(a);
+  if (meshIsA && isMesh(b))
+    raiseValue("b: a mesh against a mesh is not supported (b must be convex)");
+  if (!meshIsA && op != "overlap" && op != "distance" && op != "penetration" && op != "toi") {
+    raiseValue("b: a quack.d3.Mesh must be shape a for " + op +
+               " (as shape b it serves overlap, distance, penetration, toi)");
+  }
+  const Mesh3& mesh = (meshIsA ? a : b).cast<const PyMesh3&>().mesh;
+  const char* convexKey = meshIsA ? "b" : "a";
+  const PyShape3& convex = toShape3(meshIsA ? b : a, convexKey);
+  const ShapeProxy3 proxy = makeProxy(convex.geometry);
+  if (op == "toi") {
+    const Transform3 worldFromMesh =
+        toStaticSweep3(meshIsA ? pa : pb, meshIsA ? "sweepA" : "sweepB");
+    const Sweep3 sweep = toSweep3(meshIsA ? pb : pa, proxy, meshIsA ? "sweepB" : "sweepA");
+    const float target = extra.is_none() ? kToiTargetSeparation : toLength(extra, "target");
+    return answer(m, "MeshToiResult",
+                  quack::toJson(computeToiMesh(mesh, worldFromMesh, proxy, sweep, 1.0f, target)));
+  }
+  const Transform3 worldFromMesh = toTransform3(meshIsA ? pa : pb, meshIsA ? "pa" : "pb");
+  const Transform3 worldFromConvex = toTransform3(meshIsA ? pb : pa, meshIsA ? "pb" : "pa");
+  if (op == "overlap") {
+    return answer(m, "OverlapResult",
+                  json{{"overlap", testOverlapMesh(mesh, worldFromMesh, proxy, worldFromConvex)}});
+  }
+  if (op == "distance") {
+    MeshDistanceOutput3 d = computeDistanceMesh(mesh, worldFromMesh, proxy, worldFromConvex);
+    if (!meshIsA) {
+      std::swap(d.pointA, d.pointB);
+      d.normal = -d.normal;
+    }
+    return answer(m, "MeshDistanceResult", quack::toJson(d));
+  }
+  if (op == "penetration") {
+    MeshPenetrationOutput3 p = computePenetrationMesh(mesh, worldFromMesh, proxy, worldFromConvex);
+    if (!meshIsA) {
+      std::swap(p.pointA, p.pointB);
+      p.normal = -p.normal;
+    }
+    return answer(m, "MeshPenetrationResult", quack::toJson(p));
+  }
+  if (op == "shapecast") {
+    const Vec3 t = toPosition3(extra, "translation");
+    return answer(m, "MeshShapeCastResult",
+                  quack::toJson(castShapeMesh(mesh, worldFromMesh, proxy, worldFromConvex, t)));
+  }
+  const float s = extra.is_none() ? kSpeculativeDistance : toLength(extra, "speculative");
+  std::vector<MeshContact3> contacts;
+  collideMesh(mesh, worldFromMesh, convex.geometry, worldFromConvex, contacts, s);
+  return answer(m, "MeshManifoldResult", quack::toJson(contacts));
+}
+
+// Refuses the first ray row (origin, translation) with a number beyond the coordinate limit.
+void checkRayRows(const Rows3& r, std::size_t n) {
+  for (std::size_t i = 0; i < (r.single ? 1 : n); ++i) {
+    const double* ray = r.at(i);
+    bool fine = true;
+    for (int k = 0; k < 6; ++k)
+      fine &= coordinateIsFine(ray[k]);
+    if (fine) continue;
+    const std::string path = r.single ? std::string("rays") : "rays[" + std::to_string(i) + "]";
+    for (int k = 0; k < 6; ++k) {
+      if (std::string bad = checkCoordinate(ray[k], path + "[" + std::to_string(k) + "]");
+          !bad.empty())
+        raiseValue(bad);
+    }
+  }
+}
+
+Vec3 rayOrigin(const double* ray) {
+  return {static_cast<float>(ray[0]), static_cast<float>(ray[1]), static_cast<float>(ray[2])};
+}
+Vec3 rayTranslation(const double* ray) {
+  return {static_cast<float>(ray[3]), static_cast<float>(ray[4]), static_cast<float>(ray[5])};
+}
+
+py::object makeResult(const py::module_& root, const char* kind, py::dict fields);
+
+// raycast_many with a mesh: rayCastMesh per row, and the triangle hit (-1 on a miss).
+py::object rayCastMeshMany(const py::module_& root, py::handle meshValue, py::handle poses,
+                           py::handle rays) {
+  const Mesh3& mesh = meshValue.cast<const PyMesh3&>().mesh;
+  Rows3 pa = toRows3(poses, 7, "poses", kPoseColumns);
+  Rows3 r = toRows3(rays, 6, "rays", "origin x, y, z, translation x, y, z");
+  const std::size_t n = pairCount({{"poses", rowsOf(pa)}, {"rays", rowsOf(r)}});
+  checkPoseRows(pa, "poses", n);
+  checkRayRows(r, n);
+  auto hit = column<bool>(n);
+  auto fraction = column<double>(n);
+  auto point = triples(n), normal = triples(n);
+  auto triangle = column<std::int32_t>(n);
+  bool* h = hit.mutable_data();
+  double* f = fraction.mutable_data();
+  double* pt = point.mutable_data();
+  double* nrm = normal.mutable_data();
+  std::int32_t* tri = triangle.mutable_data();
+  {
+    py::gil_scoped_release release;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double* ray = r.at(i);
+      const MeshRayHit3 rh =
+          rayCastMesh(mesh, poseFromNumbers(pa.at(i)), {rayOrigin(ray), rayTranslation(ray), 1.0f});
+      h[i] = rh.hit;
+      f[i] = static_cast<double>(rh.fraction);
+      put(pt, i, rh.point);
+      put(nrm, i, rh.normal);
+      tri[i] = rh.triangle;
+    }
+  }
+  return makeResult(
+      root, "raycast",
+      py::dict(py::arg("hit") = hit, py::arg("fraction") = fraction, py::arg("point") = point,
+               py::arg("normal") = normal, py::arg("triangle") = triangle));
+}
+
 py::object makeResult(const py::module_& root, const char* kind, py::dict fields) {
   py::object r = root.attr("BatchResult")();
   r.attr("kind") = kind;
@@ -425,8 +651,54 @@ class ToiResult(_Answer):
     status = _field("status", "Time of impact status, as `quack query` answers it.")
     t = _field("t", "Fraction of the sweep in [0, 1] at the impact (1 when none).")
 
+_TRIANGLE = "The mesh's triangle (an index into its triangles), -1 when there is none."
+
+class MeshRayCastResult(RayCastResult):
+    """Answer of quack.d3.raycast against a quack.d3.Mesh: RayCastResult and the triangle."""
+    __slots__ = ()
+    triangle = _field("triangle", _TRIANGLE)
+
+class MeshShapeCastResult(ShapeCastResult):
+    """Answer of quack.d3.shapecast against a quack.d3.Mesh: ShapeCastResult and the
+    triangle hit."""
+    __slots__ = ()
+    triangle = _field("triangle", _TRIANGLE)
+
+class MeshDistanceResult(DistanceResult):
+    """Answer of quack.d3.distance with a quack.d3.Mesh: DistanceResult of the closest
+    triangle, and the triangle."""
+    __slots__ = ()
+    triangle = _field("triangle", _TRIANGLE)
+
+class MeshPenetrationResult(PenetrationResult):
+    """Answer of quack.d3.penetration with a quack.d3.Mesh: PenetrationResult of the deepest
+    triangle (the closest when none overlaps), and the triangle."""
+    __slots__ = ()
+    triangle = _field("triangle", _TRIANGLE)
+
+class MeshToiResult(ToiResult):
+    """Answer of quack.d3.toi with a quack.d3.Mesh: ToiResult and the triangle hit."""
+    __slots__ = ()
+    triangle = _field("triangle", _TRIANGLE)
+
+class MeshContact(ManifoldResult):
+    """One triangle's manifold in a MeshManifoldResult (normal from the mesh to b)."""
+    __slots__ = ()
+    triangle = _field("triangle", "The mesh's triangle (an index into its triangles).")
+
+class MeshManifoldResult(_Answer):
+    """Answer of quack.d3.manifold against a quack.d3.Mesh: one manifold per touching
+    triangle, in triangle order."""
+    __slots__ = ()
+    @property
+    def manifolds(self):
+        """The touching triangles' manifolds, as MeshContact."""
+        return [MeshContact(c) for c in self._d["manifolds"]]
+
 for _c in (OverlapResult, DistanceResult, PenetrationResult, ManifoldPoint, ManifoldResult,
-           RayCastResult, ShapeCastResult, ToiResult):
+           RayCastResult, ShapeCastResult, ToiResult, MeshRayCastResult, MeshShapeCastResult,
+           MeshDistanceResult, MeshPenetrationResult, MeshToiResult, MeshContact,
+           MeshManifoldResult):
     _c.__module__ = "quack.d3"
 del _c
 )py";
@@ -439,7 +711,9 @@ void registerD3(py::module_& root) {
       "Quack in 3D: shapes (quack.d3.sphere, capsule, box, hull, triangle, shape), the pair "
       "queries of `quack query` on 3D lines (overlap, distance, penetration, manifold, "
       "raycast, shapecast, toi) and batch queries over numpy arrays (overlap_many, "
-      "distance_many, penetration_many, raycast_many). Poses are (x, y, z) or (x, y, z, qx, "
+      "distance_many, penetration_many, raycast_many), static triangle meshes "
+      "(quack.d3.mesh) as shape a of every pair query and raycast_many, or as shape b of "
+      "overlap, distance, penetration and toi. Poses are (x, y, z) or (x, y, z, qx, "
       "qy, qz, qw), the quaternion scalar last and normalised (a zero one is refused); batch "
       "poses are arrays (N, 7). Constant: EPA_STATUSES (the status codes of "
       "penetration_many; distance_many's are quack.GJK_STATUSES). docs/python.md, \"3D\".");
@@ -529,9 +803,62 @@ void registerD3(py::module_& root) {
       "Triangle of three points [(x, y, z)] x 3 (no volume; its normal by the right-hand "
       "rule).");
 
+  py::class_<PyMesh3>(m, "Mesh",
+                      "A static triangle mesh in its own frame (mesh frame), one-sided (fronts "
+                      "counter-clockwise), with its tree and edge adjacency: made by "
+                      "quack.d3.mesh.")
+      .def_property_readonly(
+          "vertex_count", [](const PyMesh3& s) { return s.mesh.vertices().size(); },
+          "Number of vertices.")
+      .def_property_readonly(
+          "triangle_count", [](const PyMesh3& s) { return s.mesh.triangleCount(); },
+          "Number of triangles.")
+      .def_property_readonly(
+          "vertices",
+          [](const PyMesh3& s) {
+            const auto v = s.mesh.vertices();
+            auto out = triples(v.size());
+            for (std::size_t i = 0; i < v.size(); ++i)
+              put(out.mutable_data(), i, v[i]);
+            return out;
+          },
+          "The vertices, an array (N, 3) (float32 values as float64), mesh frame.")
+      .def_property_readonly(
+          "triangles",
+          [](const PyMesh3& s) {
+            const auto t = s.mesh.triangles();
+            py::array_t<std::int32_t> out({static_cast<py::ssize_t>(t.size()), py::ssize_t{3}});
+            for (std::size_t i = 0; i < t.size(); ++i)
+              for (std::size_t k = 0; k < 3; ++k)
+                out.mutable_data()[3 * i + k] = t[i].v[k];
+            return out;
+          },
+          "The triangles, an int32 array (M, 3) of vertex indices.")
+      .def_property_readonly(
+          "normals",
+          [](const PyMesh3& s) {
+            const auto t = s.mesh.triangles();
+            auto out = triples(t.size());
+            for (std::size_t i = 0; i < t.size(); ++i)
+              put(out.mutable_data(), i, t[i].normal);
+            return out;
+          },
+          "Each triangle's unit front normal, an array (M, 3), mesh frame.")
+      .def("__repr__", [](const PyMesh3& s) {
+        return "quack.d3.Mesh(" + std::to_string(s.mesh.vertices().size()) + " vertices, " +
+               std::to_string(s.mesh.triangleCount()) + " triangles)";
+      });
+  m.def("mesh", &makePyMesh3, py::arg("vertices"), py::arg("triangles"),
+        "A static triangle mesh from vertices, an array (N, 3) of x, y, z (mesh frame), and "
+        "triangles, an integer array (M, 3) of vertex indices counter-clockwise seen from the "
+        "front. Refused, naming the field: a vertex not finite or beyond the coordinate "
+        "limit, an index out of range, no triangles, a triangle without area or with a "
+        "repeated index, an edge of three triangles, neighbours whose fronts disagree.");
+
   m.def(
       "overlap",
       [m](py::handle a, py::handle pa, py::handle b, py::handle pb) {
+        if (isMesh(a) || isMesh(b)) return answerMesh(m, "overlap", a, pa, b, pb, py::none());
         const PyShape3& sa = toShape3(a, "a");
         const PyShape3& sb = toShape3(b, "b");
         const bool overlap = testOverlap(makeProxy(sa.geometry), toTransform3(pa, "pa"),
@@ -543,6 +870,7 @@ void registerD3(py::module_& root) {
   m.def(
       "distance",
       [m](py::handle a, py::handle pa, py::handle b, py::handle pb) {
+        if (isMesh(a) || isMesh(b)) return answerMesh(m, "distance", a, pa, b, pb, py::none());
         const PyShape3& sa = toShape3(a, "a");
         const PyShape3& sb = toShape3(b, "b");
         return answer(
@@ -555,6 +883,7 @@ void registerD3(py::module_& root) {
   m.def(
       "penetration",
       [m](py::handle a, py::handle pa, py::handle b, py::handle pb) {
+        if (isMesh(a) || isMesh(b)) return answerMesh(m, "penetration", a, pa, b, pb, py::none());
         const PyShape3& sa = toShape3(a, "a");
         const PyShape3& sb = toShape3(b, "b");
         return answer(
@@ -567,6 +896,7 @@ void registerD3(py::module_& root) {
   m.def(
       "manifold",
       [m](py::handle a, py::handle pa, py::handle b, py::handle pb, py::handle speculative) {
+        if (isMesh(a) || isMesh(b)) return answerMesh(m, "manifold", a, pa, b, pb, speculative);
         const PyShape3& sa = toShape3(a, "a");
         const PyShape3& sb = toShape3(b, "b");
         const Transform3 ta = toTransform3(pa, "pa");
@@ -582,6 +912,14 @@ void registerD3(py::module_& root) {
   m.def(
       "raycast",
       [m](py::handle a, py::handle pa, py::handle origin, py::handle translation) {
+        if (isMesh(a)) {
+          const Transform3 worldFromMesh = toTransform3(pa, "pa");
+          const Vec3 o = toPosition3(origin, "origin");
+          const Vec3 t = toPosition3(translation, "translation");
+          return answer(m, "MeshRayCastResult",
+                        quack::toJson(rayCastMesh(a.cast<const PyMesh3&>().mesh, worldFromMesh,
+                                                  {o, t, 1.0f})));
+        }
         const PyShape3& sa = toShape3(a, "a");
         const Transform3 worldFromA = toTransform3(pa, "pa");
         const Vec3 o = toPosition3(origin, "origin");
@@ -600,6 +938,7 @@ void registerD3(py::module_& root) {
   m.def(
       "shapecast",
       [m](py::handle a, py::handle pa, py::handle b, py::handle pb, py::handle translation) {
+        if (isMesh(a) || isMesh(b)) return answerMesh(m, "shapecast", a, pa, b, pb, translation);
         const PyShape3& sa = toShape3(a, "a");
         const PyShape3& sb = toShape3(b, "b");
         const Transform3 ta = toTransform3(pa, "pa");
@@ -614,6 +953,7 @@ void registerD3(py::module_& root) {
   m.def(
       "toi",
       [m](py::handle a, py::handle sweepA, py::handle b, py::handle sweepB, py::handle target) {
+        if (isMesh(a) || isMesh(b)) return answerMesh(m, "toi", a, sweepA, b, sweepB, target);
         const PyShape3& sa = toShape3(a, "a");
         const PyShape3& sb = toShape3(b, "b");
         const ShapeProxy3 proxyA = makeProxy(sa.geometry);
@@ -727,26 +1067,14 @@ void registerD3(py::module_& root) {
   m.def(
       "raycast_many",
       [root](py::handle shapes, py::handle poses, py::handle rays) {
+        if (isMesh(shapes)) return rayCastMeshMany(root, shapes, poses, rays);
         ShapeSide3 a = toShapeSide3(shapes, "shapes");
         Rows3 pa = toRows3(poses, 7, "poses", kPoseColumns);
         Rows3 r = toRows3(rays, 6, "rays", "origin x, y, z, translation x, y, z");
         const std::size_t n =
             pairCount({{"shapes", rowsOf(a)}, {"poses", rowsOf(pa)}, {"rays", rowsOf(r)}});
         checkPoseRows(pa, "poses", n);
-        for (std::size_t i = 0; i < (r.single ? 1 : n); ++i) {
-          const double* ray = r.at(i);
-          bool fine = true;
-          for (int k = 0; k < 6; ++k)
-            fine &= coordinateIsFine(ray[k]);
-          if (fine) continue;
-          const std::string path =
-              r.single ? std::string("rays") : "rays[" + std::to_string(i) + "]";
-          for (int k = 0; k < 6; ++k) {
-            if (std::string bad = checkCoordinate(ray[k], path + "[" + std::to_string(k) + "]");
-                !bad.empty())
-              raiseValue(bad);
-          }
-        }
+        checkRayRows(r, n);
         auto hit = column<bool>(n);
         auto fraction = column<double>(n);
         auto point = triples(n), normal = triples(n);
@@ -759,10 +1087,7 @@ void registerD3(py::module_& root) {
           for (std::size_t i = 0; i < n; ++i) {
             const double* ray = r.at(i);
             const Transform3 worldFromA = poseFromNumbers(pa.at(i));
-            const Vec3 o{static_cast<float>(ray[0]), static_cast<float>(ray[1]),
-                         static_cast<float>(ray[2])};
-            const Vec3 t{static_cast<float>(ray[3]), static_cast<float>(ray[4]),
-                         static_cast<float>(ray[5])};
+            const Vec3 o = rayOrigin(ray), t = rayTranslation(ray);
             RayHit3 rh = rayCast(*a.shapes[a.at(i)], {invTransformPoint(worldFromA, o),
                                                       invTransformVector(worldFromA, t), 1.0f});
             if (rh.hit) {
@@ -783,7 +1108,8 @@ void registerD3(py::module_& root) {
       "quack.d3.raycast over N rays: shapes a quack.d3.Shape or a list of N; poses (N, 7) or "
       "(7,); rays (N, 6) or (6,), each row origin x, y, z and translation x, y, z (world "
       "frame). Returns a quack.BatchResult with hit (N,), fraction (N,), point and normal "
-      "(N, 3).");
+      "(N, 3). With a quack.d3.Mesh as shapes (one mesh for every ray), rayCastMesh per "
+      "row and a triangle column (N,) int32 (-1 on a miss).");
 }
 
 }  // namespace quack::python

@@ -108,24 +108,29 @@ Solution solveTriangle(int i, int j, int k, D3 a, D3 b, D3 c) {
 // vertex is (nearly) on its plane is also tried, so a flat tetrahedron still gives its
 // nearest face rather than a false "inside".
 Solution solveTetrahedron(const D3 p[4]) {
-  static constexpr int kFaces[4][4] = {{0, 1, 2, 3}, {0, 2, 3, 1}, {0, 3, 1, 2}, {1, 3, 2, 0}};
   double scale = 0;
   for (int i = 1; i < 4; ++i)
     scale = std::max(scale, detail::dot(p[i] - p[0], p[i] - p[0]));
   Solution best;
   bool inside = true;
-  for (const auto& f : kFaces) {
-    D3 a = p[f[0]], b = p[f[1]], c = p[f[2]], d = p[f[3]];
-    D3 n = detail::cross(b - a, c - a);
-    double signO = -detail::dot(n, a);  // origin's side
-    double signD = detail::dot(n, d - a);
+  // Face i, j, k with opposite vertex l; written out per face (constant indices) so that
+  // the points stay in registers.
+  auto tryFace = [&](int i, int j, int k, int l) {
+    const D3 a = p[i], b = p[j], c = p[k];
+    const D3 n = detail::cross(b - a, c - a);
+    const double signO = -detail::dot(n, a);  // origin's side
+    const double signD = detail::dot(n, p[l] - a);
     // Flat when the opposite vertex's height is within double rounding of the face.
-    bool flat = signD * signD <= 1e-24 * detail::dot(n, n) * scale;
-    if (!flat && signO * signD >= 0) continue;  // origin on the inner side of this face
+    const bool flat = signD * signD <= 1e-24 * detail::dot(n, n) * scale;
+    if (!flat && signO * signD >= 0) return;  // origin on the inner side of this face
     inside = false;
-    Solution s = solveTriangle(f[0], f[1], f[2], a, b, c);
+    Solution s = solveTriangle(i, j, k, a, b, c);
     if (s.distanceSquared < best.distanceSquared) best = s;
-  }
+  };
+  tryFace(0, 1, 2, 3);
+  tryFace(0, 2, 3, 1);
+  tryFace(0, 3, 1, 2);
+  tryFace(1, 3, 2, 0);
   if (inside) {
     Solution s;
     s.count = 4;
@@ -139,30 +144,12 @@ Solution solveTetrahedron(const D3 p[4]) {
   return best;
 }
 
-}  // namespace
-
-SupportPoint3 makeSupport3(const ShapeProxy3& a, const ShapeProxy3& b, Transform3 aFromB,
-                           int indexA, int indexB) noexcept {
-  SupportPoint3 s;
-  s.indexA = indexA;
-  s.indexB = indexB;
-  s.pointA = a.points()[indexA];
-  s.pointB = transformPoint(aFromB, b.points()[indexB]);
-  s.w = s.pointB - s.pointA;
-  return s;
-}
-
-SupportPoint3 support3(const ShapeProxy3& a, const ShapeProxy3& b, Transform3 aFromB,
-                       Vec3 direction) noexcept {
-  int ia = findSupport(a, -direction);
-  int ib = findSupport(b, invRotate(aFromB.q, direction));
-  return makeSupport3(a, b, aFromB, ia, ib);
-}
-
-bool solveSimplex3(Simplex3& s, Vec3& closest, double* distanceSquared) noexcept {
-  D3 p[4];
-  for (int i = 0; i < s.count; ++i)
-    p[i] = toDouble(s.v[i].w);
+// The simplex's point nearest the origin: which vertices carry it, their weights, the
+// point and its squared length, in double. The simplex is left as it is.
+Solution solveSimplex(const Simplex3& s, D3& closest) noexcept {
+  // All four slots, used or not (they always hold finite points or zeros): a loop of fixed
+  // length has no branch to mispredict.
+  const D3 p[4] = {toDouble(s.v[0].w), toDouble(s.v[1].w), toDouble(s.v[2].w), toDouble(s.v[3].w)};
   Solution sol;
   switch (s.count) {
     case 1:
@@ -178,27 +165,53 @@ bool solveSimplex3(Simplex3& s, Vec3& closest, double* distanceSquared) noexcept
       sol = solveTetrahedron(p);
       break;
   }
-  Simplex3 reduced;
-  reduced.count = sol.count;
   D3 q{};
-  for (int i = 0; i < sol.count; ++i) {
-    reduced.v[i] = s.v[sol.index[i]];
-    reduced.weights[i] = static_cast<float>(sol.weight[i]);
+  for (int i = 0; i < sol.count; ++i)
     q = q + sol.weight[i] * p[sol.index[i]];
-  }
-  s = reduced;
-  closest = {static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z)};
-  if (distanceSquared != nullptr) *distanceSquared = sol.count == 4 ? 0.0 : detail::dot(q, q);
-  return sol.count == 4;
+  closest = q;
+  sol.distanceSquared = sol.count == 4 ? 0.0 : detail::dot(q, q);
+  return sol;
 }
 
-GjkCore3 runGjk3(const ShapeProxy3& a, const ShapeProxy3& b, Transform3 aFromB, GjkCache3* cache,
-                 float separationRadius, Gjk3Trace* trace) noexcept {
+// Keeps the vertices that carry the solution, in its order, with their weights. In place
+// when its indices ascend (a segment's or a triangle's always do; a tetrahedron's face may
+// not), else through a copy.
+void reduceSimplex(Simplex3& s, const Solution& sol) noexcept {
+  bool ascending = true;
+  for (int i = 1; i < sol.count; ++i)
+    ascending = ascending && sol.index[i - 1] < sol.index[i];
+  if (ascending) {
+    for (int i = 0; i < sol.count; ++i) {
+      if (sol.index[i] != i) s.v[i] = s.v[sol.index[i]];
+    }
+  } else {
+    SupportPoint3 kept[4];
+    for (int i = 0; i < sol.count; ++i)
+      kept[i] = s.v[sol.index[i]];
+    for (int i = 0; i < sol.count; ++i)
+      s.v[i] = kept[i];
+  }
+  for (int i = 0; i < sol.count; ++i)
+    s.weights[i] = static_cast<float>(sol.weight[i]);
+  s.count = sol.count;
+}
+
+Vec3 toFloat(D3 q) noexcept {
+  return {static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z)};
+}
+
+}  // namespace
+
+GjkCore3 runGjk3(const MinkowskiPair3& pair, GjkCache3* cache, float separationRadius,
+                 Simplex3& simplex, Gjk3Trace* trace) noexcept {
+  const ShapeProxy3& a = pair.a;
+  const ShapeProxy3& b = pair.b;
   GjkCore3 out;
   // The pass's record (null when not tracing): the simplex and v after the solve, then the
   // support point if one is taken.
   Gjk3IterationRecord* record = nullptr;
-  Simplex3& s = out.simplex;
+  Simplex3& s = simplex;
+  s.count = 0;
   bool warm = false;
   if (cache != nullptr && cache->count >= 1 && cache->count <= 4) {
     warm = true;
@@ -207,70 +220,72 @@ GjkCore3 runGjk3(const ShapeProxy3& a, const ShapeProxy3& b, Transform3 aFromB, 
     }
     if (warm) {
       for (int i = 0; i < cache->count; ++i)
-        s.v[i] = makeSupport3(a, b, aFromB, cache->indexA[i], cache->indexB[i]);
+        s.v[i] = pair.make(cache->indexA[i], cache->indexB[i]);
       s.count = cache->count;
     }
   }
   if (!warm) {
-    Vec3 d = transformPoint(aFromB, b.center()) - a.center();
+    Vec3 d = pair.rotation * b.center() + pair.translation - a.center();
     if (lengthSquared(d) == 0.0f) d = {1, 0, 0};
-    s.v[0] = support3(a, b, aFromB, -d);
+    s.v[0] = pair.support(-d);
     s.count = 1;
     out.iterations = 1;
   }
 
   double previous = std::numeric_limits<double>::infinity();
-  Simplex3 saved = s;
   Vec3 v;
   GjkStatus status = GjkStatus::maxIterations;
   for (int iter = 0; iter < kGjk3MaxIterations; ++iter) {
-    double vvD = 0.0;
-    bool inside = solveSimplex3(s, v, &vvD);
+    D3 q;
+    const Solution sol = solveSimplex(s, q);
+    float scale = 0.0f;
+    for (int i = 0; i < sol.count; ++i)
+      scale = maxf(scale, lengthSquared(s.v[sol.index[i]].w));
+    const Vec3 closest = toFloat(q);
+    const float contact = kGjk3ContactRelativeTolerance * kGjk3ContactRelativeTolerance * scale;
+    const bool overlap = sol.count == 4 || lengthSquared(closest) <= contact;
+    // Progress is judged on |v|^2 in double: the last steps turn v by angles whose effect
+    // on |v|^2 (the square of the angle) is far below float's resolution, and stopping
+    // there would leave the normal off by ~1e-4 (found by the brute-force oracle).
+    const double vvD = sol.distanceSquared;
+    const bool stalled =
+        !overlap && vvD >= previous - kGjk3StallRelativeTolerance * static_cast<double>(scale);
+    if (stalled && vvD > previous) {
+      // Worse than before: keep the simplex that gave v, the last pass's, which is this one
+      // without the new support point (the last vertex); its weights are still in place.
+      --s.count;
+    } else {
+      reduceSimplex(s, sol);
+      v = closest;
+    }
+    if (overlap) v = {};
     if (trace != nullptr && trace->capacity > 0) {
       record = claimTraceRecord3(*trace);
       *record = {};
       record->simplex = s;
       record->closest = v;
     }
-    float vv = lengthSquared(v);
-    float scale = 0.0f;
-    for (int i = 0; i < s.count; ++i)
-      scale = maxf(scale, lengthSquared(s.v[i].w));
-    float contact = kGjk3ContactRelativeTolerance * kGjk3ContactRelativeTolerance * scale;
-    if (inside || vv <= contact) {
+    if (overlap) {
       status = GjkStatus::overlap;
-      v = {};
-      if (record != nullptr) record->closest = v;
       break;
     }
-    // Progress is judged on |v|^2 in double: the last steps turn v by angles whose effect
-    // on |v|^2 (the square of the angle) is far below float's resolution, and stopping
-    // there would leave the normal off by ~1e-4 (found by the brute-force oracle).
-    if (vvD >= previous - kGjk3StallRelativeTolerance * static_cast<double>(scale)) {
-      if (vvD > previous) {
-        s = saved;
-        solveSimplex3(s, v, nullptr);
-        if (record != nullptr) {
-          record->simplex = s;
-          record->closest = v;
-        }
-      }
+    if (stalled) {
       status = GjkStatus::stalled;
       break;
     }
     previous = vvD;
-    saved = s;
-    SupportPoint3 w = support3(a, b, aFromB, -v);
+    const float vv = lengthSquared(v);
+    SupportPoint3 w = pair.support(-v);
     ++out.iterations;
     if (record != nullptr) {
       record->hasSupport = true;
       record->direction = normalize(v);
       record->support = w;
     }
+    // Every slot compared, the unused ones masked out: no branch per vertex.
     bool repeated = false;
-    for (int i = 0; i < s.count; ++i) {
-      if (s.v[i].indexA == w.indexA && s.v[i].indexB == w.indexB) repeated = true;
-    }
+    for (int i = 0; i < 4; ++i)
+      repeated |= (i < s.count) & (s.v[i].indexA == w.indexA) & (s.v[i].indexB == w.indexB);
     if (repeated) {
       status = GjkStatus::repeatedSupport;
       break;
@@ -317,18 +332,23 @@ namespace {
 
 DistanceOutput3 distance3(const ShapeProxy3& a, Transform3 worldFromA, const ShapeProxy3& b,
                           Transform3 worldFromB, GjkCache3* cache, Gjk3Trace* trace) noexcept {
-  Transform3 aFromB = invMul(worldFromA, worldFromB);
-  detail::GjkCore3 core = detail::runGjk3(a, b, aFromB, cache, -1.0f, trace);
+  // A's rotation as a matrix: four rotations below (B's offset into A's frame, the normal
+  // and the two points out of it) cost less so than by the quaternion.
+  const Mat3 worldFromARotation = toMat3(worldFromA.q);
+  auto toWorld = [&](Vec3 p) { return worldFromARotation * p + worldFromA.p; };
+  const Transform3 aFromB{mulTranspose(worldFromARotation, worldFromB.p - worldFromA.p),
+                          invMul(worldFromA.q, worldFromB.q)};
+  const detail::MinkowskiPair3 pair(a, b, aFromB);
   DistanceOutput3 out;
+  detail::GjkCore3 core = detail::runGjk3(pair, cache, -1.0f, out.simplex, trace);
   out.iterations = core.iterations;
   out.status = core.status;
-  out.simplex = core.simplex;
   Vec3 pA, pB;
-  detail::closestPoints3(core.simplex, pA, pB);
+  detail::closestPoints3(out.simplex, pA, pB);
   float ra = a.radius(), rb = b.radius();
   if (core.status == GjkStatus::overlap) {
     // The cores share a point: report it (the weights place it on both cores).
-    Vec3 p = transformPoint(worldFromA, 0.5f * (pA + pB));
+    Vec3 p = toWorld(0.5f * (pA + pB));
     out.pointA = out.pointB = p;
     return out;
   }
@@ -337,15 +357,15 @@ DistanceOutput3 distance3(const ShapeProxy3& a, Transform3 worldFromA, const Sha
   float len = length(core.closest);
   Vec3 n = (1.0f / len) * core.closest;
   out.coreDistance = len;
-  out.normal = transformVector(worldFromA, n);
+  out.normal = worldFromARotation * n;
   if (len > ra + rb) {
     out.distance = len - ra - rb;
-    out.pointA = transformPoint(worldFromA, pA + ra * n);
-    out.pointB = transformPoint(worldFromA, pB - rb * n);
+    out.pointA = toWorld(pA + ra * n);
+    out.pointB = toWorld(pB - rb * n);
   } else {
     // Only the radii overlap: the shared point halfway between the surfaces.
     Vec3 p = 0.5f * ((pA + ra * n) + (pB - rb * n));
-    out.pointA = out.pointB = transformPoint(worldFromA, p);
+    out.pointA = out.pointB = toWorld(p);
   }
   return out;
 }
@@ -366,9 +386,10 @@ DistanceOutput3 computeDistance(const ShapeProxy3& a, Transform3 worldFromA, con
 
 bool testOverlap(const ShapeProxy3& a, Transform3 worldFromA, const ShapeProxy3& b,
                  Transform3 worldFromB, GjkCache3* cache) noexcept {
-  Transform3 aFromB = invMul(worldFromA, worldFromB);
+  const detail::MinkowskiPair3 pair(a, b, invMul(worldFromA, worldFromB));
   float radii = a.radius() + b.radius();
-  detail::GjkCore3 core = detail::runGjk3(a, b, aFromB, cache, radii);
+  Simplex3 simplex;
+  detail::GjkCore3 core = detail::runGjk3(pair, cache, radii, simplex);
   if (core.separated) return false;
   if (core.status == GjkStatus::overlap) return true;
   return length(core.closest) <= radii;

@@ -3,30 +3,52 @@
 // layer).
 
 #include "quack/collision/gjk3.hpp"
+#include "quack/math/mat3.hpp"
 
 namespace quack::detail {
 
 struct GjkCore3 {
-  Simplex3 simplex;  // final simplex, A frame, weights set
-  Vec3 closest;      // its point nearest the origin (zero on overlap), A frame
+  Vec3 closest;  // the final simplex's point nearest the origin (zero on overlap), A frame
   int iterations = 0;
   GjkStatus status = GjkStatus::converged;
   bool separated = false;  // the overlap test's early out fired
 };
 
-// The support point of B - A along `direction` (A frame).
-SupportPoint3 support3(const ShapeProxy3& a, const ShapeProxy3& b, Transform3 aFromB,
-                       Vec3 direction) noexcept;
-SupportPoint3 makeSupport3(const ShapeProxy3& a, const ShapeProxy3& b, Transform3 aFromB,
-                           int indexA, int indexB) noexcept;
-// Reduces the simplex to the vertices that carry its point nearest the origin, sets the
-// weights, `closest` and (when not null) its squared length in double; true when the simplex is a
-// tetrahedron holding the origin.
-bool solveSimplex3(Simplex3& s, Vec3& closest, double* distanceSquared) noexcept;
+// B - A in A's frame: the two proxies and B's pose in A's frame, its rotation as a matrix.
+// Every support point rotates twice (the direction into B's frame, B's point out of it);
+// the matrix does each in 9 products where the quaternion takes 18, and costs 18 to form,
+// once per query.
+struct MinkowskiPair3 {
+  MinkowskiPair3(const ShapeProxy3& proxyA, const ShapeProxy3& proxyB, Transform3 aFromB) noexcept
+      : a(proxyA), b(proxyB), rotation(toMat3(aFromB.q)), translation(aFromB.p) {}
+
+  // The support point along `direction` (A frame, any length).
+  SupportPoint3 support(Vec3 direction) const noexcept {
+    return make(findSupport(a, -direction), findSupport(b, mulTranspose(rotation, direction)));
+  }
+  // The support point of the proxies' points indexA and indexB.
+  SupportPoint3 make(int indexA, int indexB) const noexcept {
+    SupportPoint3 s;
+    s.indexA = indexA;
+    s.indexB = indexB;
+    s.pointA = a.points()[indexA];
+    s.pointB = rotation * b.points()[indexB] + translation;
+    s.w = s.pointB - s.pointA;
+    return s;
+  }
+
+  const ShapeProxy3& a;
+  const ShapeProxy3& b;
+  Mat3 rotation;     // aFromB's
+  Vec3 translation;  // aFromB's
+};
+
 // GJK on the cores in A's frame. separationRadius >= 0 enables the overlap test's early out.
+// `simplex` receives the final simplex (A frame, weights set): the caller's own, such as
+// DistanceOutput3's, so that the simplex is neither zeroed nor copied twice per query.
 // `trace` (may be null) records every pass (Gjk3Trace); it changes nothing else.
-GjkCore3 runGjk3(const ShapeProxy3& a, const ShapeProxy3& b, Transform3 aFromB, GjkCache3* cache,
-                 float separationRadius, Gjk3Trace* trace = nullptr) noexcept;
+GjkCore3 runGjk3(const MinkowskiPair3& pair, GjkCache3* cache, float separationRadius,
+                 Simplex3& simplex, Gjk3Trace* trace = nullptr) noexcept;
 
 // The record slot for the next pass of a trace (the contract of Gjk3Trace and Epa3Trace):
 // the first capacity - 1 passes keep their slots, later ones share the last.

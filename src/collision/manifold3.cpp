@@ -24,6 +24,15 @@ constexpr float kClipLostSupportRelative = 1e-5f;
 // most 64 side planes gains at most one vertex per plane.
 constexpr int kClipCapacity = 2 * kMaxHullVertices3 + 2;
 
+// Room for N values of T, left uninitialised: T's zeroing default members would cost a
+// memset of the whole buffer (about 10 kB for the clipping's three) on every call. Every
+// element is assigned before it is read.
+template <class T, int N>
+union Uninitialized {
+  Uninitialized() noexcept {}
+  T items[N];
+};
+
 struct ClipVertex {
   Vec3 p;
   std::uint32_t id = 0;      // the point's feature id (without the reference face)
@@ -306,9 +315,9 @@ Manifold3 collideHullCores(const Hull3& a, Transform3 worldFromA, const Hull3& b
   }
   const HullFace3& ifc = inc.faces[incFace];
 
-  ClipVertex bufA[kClipCapacity], bufB[kClipCapacity];
-  ClipVertex* poly = bufA;
-  ClipVertex* next = bufB;
+  Uninitialized<ClipVertex, kClipCapacity> bufA, bufB;
+  ClipVertex* poly = bufA.items;
+  ClipVertex* next = bufB.items;
   int count = ifc.count;
   for (int k = 0; k < ifc.count; ++k) {
     std::uint32_t v = inc.faceVertices[ifc.first + k];
@@ -317,12 +326,12 @@ Manifold3 collideHullCores(const Hull3& a, Transform3 worldFromA, const Hull3& b
   // Sutherland-Hodgman against each side plane of the reference face.
   for (int k = 0; k < rf.count && count > 0; ++k) {
     Vec3 v0 = ref.vertices[ref.faceVertices[rf.first + k]];
-    Vec3 v1 = ref.vertices[ref.faceVertices[rf.first + (k + 1) % rf.count]];
+    Vec3 v1 = ref.vertices[ref.faceVertices[rf.first + (k + 1 == rf.count ? 0 : k + 1)]];
     Vec3 side = cross(v1 - v0, n);
     int out = 0;
     for (int i = 0; i < count && out + 2 <= kClipCapacity; ++i) {
       const ClipVertex& p = poly[i];
-      const ClipVertex& q = poly[(i + 1) % count];
+      const ClipVertex& q = poly[i + 1 == count ? 0 : i + 1];
       float dp = dot(side, p.p - v0), dq = dot(side, q.p - v0);
       if (dp <= 0.0f) next[out++] = p;
       if ((dp <= 0.0f) != (dq <= 0.0f)) {
@@ -341,7 +350,8 @@ Manifold3 collideHullCores(const Hull3& a, Transform3 worldFromA, const Hull3& b
     count = out;
   }
 
-  ManifoldPoint3 pts[kClipCapacity];
+  Uninitialized<ManifoldPoint3, kClipCapacity> kept;
+  ManifoldPoint3* pts = kept.items;
   int n2 = 0;
   const Vec3 normalWorld =
       refOnB ? -transformVector(worldFromRef, n) : transformVector(worldFromRef, n);
@@ -360,9 +370,11 @@ Manifold3 collideHullCores(const Hull3& a, Transform3 worldFromA, const Hull3& b
   float minSep = std::numeric_limits<float>::infinity();
   for (int i = 0; i < n2; ++i)
     minSep = minf(minSep, pts[i].separation);
-  float size = 0.0f;
+  // The root of the largest square is the largest root (sqrt is monotonic), one root.
+  float size2 = 0.0f;
   for (int i = 0; i < ref.vertexCount; ++i)
-    size = maxf(size, length(ref.vertices[i] - ref.centroid));
+    size2 = maxf(size2, lengthSquared(ref.vertices[i] - ref.centroid));
+  const float size = std::sqrt(size2);
   if (n2 == 0 || minSep > sat.separation + kClipLostSupportRelative * size) {
     return collideGeneral(coreProxy(a), worldFromA, coreProxy(b), worldFromB, speculativeDistance);
   }
@@ -443,20 +455,31 @@ int reduceManifoldPoints3(ManifoldPoint3* points, int count, Vec3 normal) noexce
 
 }  // namespace detail
 
+namespace {
+
+// B-versus-A's manifold as A-versus-B's: the normal flipped, the anchors swapped, ids kept.
+Manifold3 swapped(Manifold3 m) noexcept {
+  m.normal = -m.normal;
+  for (int i = 0; i < m.pointCount; ++i) {
+    const Vec3 t = m.points[i].anchorA;
+    m.points[i].anchorA = m.points[i].anchorB;
+    m.points[i].anchorB = t;
+  }
+  return m;
+}
+
+}  // namespace
+
 Manifold3 collide(const ShapeGeometry3& a, Transform3 worldFromA, const ShapeGeometry3& b,
                   Transform3 worldFromB, float speculativeDistance) noexcept {
   Manifold3 m;
   if (collideOrdered(a, worldFromA, b, worldFromB, speculativeDistance, m)) return m;
-  if (collideOrdered(b, worldFromB, a, worldFromA, speculativeDistance, m)) {
-    m.normal = -m.normal;
-    for (int i = 0; i < m.pointCount; ++i) {
-      Vec3 t = m.points[i].anchorA;
-      m.points[i].anchorA = m.points[i].anchorB;
-      m.points[i].anchorB = t;
-    }
-    return m;
-  }
-  // Triangles: the general path, one point.
+  if (collideOrdered(b, worldFromB, a, worldFromA, speculativeDistance, m)) return swapped(m);
+  // Triangles (mesh3.cpp): a lone triangle is a two-sided mesh triangle.
+  if (const Triangle3* t = std::get_if<Triangle3>(&a))
+    return collideTriangle(*t, worldFromA, b, worldFromB, speculativeDistance);
+  if (const Triangle3* t = std::get_if<Triangle3>(&b))
+    return swapped(collideTriangle(*t, worldFromB, a, worldFromA, speculativeDistance));
   return collideGeneral(makeProxy(a), worldFromA, makeProxy(b), worldFromB, speculativeDistance);
 }
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <unordered_map>
 
@@ -187,14 +188,13 @@ struct ClipPoint {
 
 constexpr int kMeshClipCapacity = kMaxHullVertices3 + 8;
 
-// The contact along the face normal: the incident feature clipped to the triangle's prism.
-Manifold3 faceContact(const Mesh3& mesh, int triangle, Transform3 worldFromMesh,
+// The contact along a face normal: the incident feature clipped to the triangle's prism.
+// `front` is the triangle's unit normal (counter-clockwise winding); `n` is the contact
+// normal, front or -front (a lone triangle has two sides). Triangle frame.
+Manifold3 faceContact(const Triangle3& tri, Vec3 front, Vec3 n, Transform3 worldFromMesh,
                       const ShapeGeometry3& convex, Transform3 worldFromConvex,
                       float speculativeDistance) noexcept {
   Manifold3 m;
-  const MeshTriangle3& t = mesh.triangles()[static_cast<std::size_t>(triangle)];
-  const Triangle3 tri = mesh.triangle(triangle);
-  const Vec3 n = t.normal;
   const Transform3 meshFromConvex = invMul(worldFromMesh, worldFromConvex);
   const Incident f = incidentFeature(convex, meshFromConvex, n);
 
@@ -204,11 +204,12 @@ Manifold3 faceContact(const Mesh3& mesh, int triangle, Transform3 worldFromMesh,
   int count = f.count;
   for (int i = 0; i < f.count; ++i)
     poly[i] = {f.points[i], f.ids[i]};
-  // Sutherland-Hodgman against the three side planes (outward normal cross(edge, n)). A
-  // segment (two points) and a point clip the same way: a closed polygon of 2 or 1.
+  // Sutherland-Hodgman against the three side planes (outward normal cross(edge, front),
+  // whichever side the contact is on). A segment (two points) and a point clip the same
+  // way: a closed polygon of 2 or 1.
   for (int k = 0; k < 3 && count > 0; ++k) {
     const Vec3 v0 = tri.v[k];
-    const Vec3 side = cross(tri.v[(k + 1) % 3] - v0, n);
+    const Vec3 side = cross(tri.v[(k + 1) % 3] - v0, front);
     int out = 0;
     if (count == 1) {
       if (dot(side, poly[0].p - v0) <= 0.0f) next[out++] = poly[0];
@@ -293,7 +294,34 @@ Manifold3 collideMeshTriangle(const Mesh3& mesh, int triangle, Transform3 worldF
     const Vec3 onTriangle = invTransformPoint(worldFromMesh, p.point) - (0.5f * p.separation) * n;
     if (along > 0.0f && featureAllowsEdgeNormal(t, tri, onTriangle)) return g;
   }
-  return faceContact(mesh, triangle, worldFromMesh, convex, worldFromConvex, speculativeDistance);
+  return faceContact(tri, t.normal, t.normal, worldFromMesh, convex, worldFromConvex,
+                     speculativeDistance);
+}
+
+Manifold3 collideTriangle(const Triangle3& triangle, Transform3 worldFromTriangle,
+                          const ShapeGeometry3& convex, Transform3 worldFromConvex,
+                          float speculativeDistance) noexcept {
+  Manifold3 g = collideGeneral(makeProxy(triangle), worldFromTriangle, makeProxy(convex),
+                               worldFromConvex, speculativeDistance);
+  if (g.pointCount == 0) return g;
+  // A face normal (on either side) gets the face's points; any other normal is an edge's, a
+  // corner's, or, deep inside, the other shape's own face: all edges of a lone triangle are
+  // boundaries, so unlike a mesh triangle there is no neighbour's edge to guard against, and
+  // the general contact (the least push out) stands.
+  const Vec3 front = normalize(cross(triangle.v[1] - triangle.v[0], triangle.v[2] - triangle.v[0]));
+  const float along = dot(invTransformVector(worldFromTriangle, g.normal), front);
+  if (absf(along) < kMeshFaceNormalCosine3) return g;
+  const Manifold3 face =
+      faceContact(triangle, front, along < 0.0f ? -front : front, worldFromTriangle, convex,
+                  worldFromConvex, speculativeDistance);
+  // The clipped feature must hold the deepest point. A shape that reaches over an edge with
+  // its deepest part outside the triangle's prism (a ball whose centre is past the edge, a
+  // thin slab crossing the edge) clips to nothing or to points shallower than the shapes
+  // are: a lone triangle has no neighbour to take the contact, so the general one stands.
+  float deepest = std::numeric_limits<float>::infinity();
+  for (int i = 0; i < face.pointCount; ++i)
+    deepest = std::min(deepest, face.points[i].separation);
+  return deepest <= g.points[0].separation + kLinearSlop ? face : g;
 }
 
 int collideMesh(const Mesh3& mesh, Transform3 worldFromMesh, const ShapeGeometry3& convex,
@@ -516,6 +544,118 @@ MeshDistanceOutput3 computeDistanceMesh(const Mesh3& mesh, Transform3 worldFromM
       best.triangle = c.triangle;
     }
   }
+  return best;
+}
+
+namespace {
+
+bool finiteSweep(const Sweep3& s) noexcept {
+  return isFinite(s.localCenter) && isFinite(s.c1) && isFinite(s.c2) && isFinite(s.q1) &&
+         isFinite(s.rotation) && lengthSquared(s.q1) > 0.0f;
+}
+
+// Whether a triangle's run `c` comes before `best`: an earlier t; at one t an overlap
+// before a hit, and the deeper overlap first (depths are computePenetration's, 0 for runs
+// that did not overlap); then the lower index, as in a loop over every triangle in order.
+bool comesBefore(const ToiOutput3& c, float depth, int triangle, const MeshToiOutput3& best,
+                 float bestDepth) noexcept {
+  if (best.triangle < 0 || c.t != best.t) return best.triangle < 0 || c.t < best.t;
+  const bool overlap = c.status == ToiStatus::overlapped;
+  if (overlap != (best.status == ToiStatus::overlapped)) return overlap;
+  if (depth != bestDepth) return depth > bestDepth;
+  return triangle < best.triangle;
+}
+
+}  // namespace
+
+MeshToiOutput3 computeToiMesh(const Mesh3& mesh, Transform3 worldFromMesh, const ShapeProxy3& b,
+                              const Sweep3& sweepB, float tMax, float target) noexcept {
+  MeshToiOutput3 best;
+  if (!isFinite(worldFromMesh.p) || !isFinite(worldFromMesh.q) || !finiteSweep(sweepB) ||
+      !(tMax >= 0.0f && tMax <= 1.0f) || !(target >= 0.0f && std::isfinite(target))) {
+    best.status = ToiStatus::invalidInput;
+    return best;
+  }
+  // B's swept bounds in the mesh frame: its centre of mass runs along a segment, and no
+  // point of B is further from it than its reach, however B turns.
+  const Vec3 c1 = invTransformPoint(worldFromMesh, sweepB.c1);
+  const Vec3 c2 = invTransformPoint(worldFromMesh, (1.0f - tMax) * sweepB.c1 + tMax * sweepB.c2);
+  Aabb3 box{minv(c1, c2), maxv(c1, c2)};
+  const float grow = computeReach(b, sweepB.localCenter) + target + kToiTolerance +
+                     treeMargin(mesh.bounds(), box.lower, box.upper);
+  box.lower = box.lower - Vec3{grow, grow, grow};
+  box.upper = box.upper + Vec3{grow, grow, grow};
+  const Vec3 velocityInMesh = invTransformVector(worldFromMesh, sweepB.c2 - sweepB.c1);
+  const Sweep3 meshSweep{Vec3{}, worldFromMesh.p, worldFromMesh.p, worldFromMesh.q, Vec3{}};
+  MeshToiOutput3 failed;  // the failed run with the least last free time
+  float bestDepth = 0.0f;
+  mesh.query(box, [&](int t) {
+    const MeshTriangle3& tri = mesh.triangles()[static_cast<std::size_t>(t)];
+    if (dot(velocityInMesh, tri.normal) > 0.0f) return true;  // the centre leaves its front
+    const ShapeProxy3 proxy = makeProxy(mesh.triangle(t));
+    // Advancement's steps do not depend on tMax, only where it stops, so a run cut just
+    // past the earliest time so far finds any hit at or before it (ties included) exactly
+    // as a full run would.
+    const float reach = best.triangle >= 0 ? std::min(std::nextafter(best.t, 2.0f), tMax) : tMax;
+    ToiOutput3 c = computeToi(proxy, meshSweep, b, sweepB, reach, target);
+    // A cut run that stopped on its last step may be one that the full run would have
+    // failed with (its last free time before the cut): run it in full to know.
+    if (c.status == ToiStatus::separated && c.iterations == kToi3MaxIterations && reach < tMax)
+      c = computeToi(proxy, meshSweep, b, sweepB, tMax, target);
+    // Overlaps at t = 0 are ranked by depth, so the answer is the deepest triangle's, as
+    // computePenetrationMesh's among these (computeToi's overlap answer is EPA's on the
+    // same poses; only its depth is not kept).
+    const float depth =
+        c.status == ToiStatus::overlapped
+            ? computePenetration(proxy, worldFromMesh, b, transformAt(sweepB, 0.0f)).depth
+            : 0.0f;
+    if (c.status == ToiStatus::hit || c.status == ToiStatus::overlapped) {
+      if (comesBefore(c, depth, t, best, bestDepth)) {
+        static_cast<ToiOutput3&>(best) = c;
+        best.triangle = t;
+        bestDepth = depth;
+      }
+    } else if (c.status == ToiStatus::failed && comesBefore(c, 0.0f, t, failed, 0.0f)) {
+      static_cast<ToiOutput3&>(failed) = c;
+      failed.triangle = t;
+    }
+    return true;
+  });
+  // A failed run leaves its triangle unknown past its last free time: a hit after that is
+  // not proven first.
+  if (failed.triangle >= 0 && (best.triangle < 0 || failed.t < best.t)) return failed;
+  if (best.triangle < 0) {
+    best.status = ToiStatus::separated;
+    best.t = tMax;
+  }
+  return best;
+}
+
+MeshPenetrationOutput3 computePenetrationMesh(const Mesh3& mesh, Transform3 worldFromMesh,
+                                              const ShapeProxy3& b, Transform3 worldFromB) {
+  const Transform3 meshFromB = invMul(worldFromMesh, worldFromB);
+  Aabb3 box = boxInMesh(meshFromB, b, 0.0f);
+  const float m = treeMargin(mesh.bounds(), box.lower, box.upper);
+  box.lower = box.lower - Vec3{m, m, m};
+  box.upper = box.upper + Vec3{m, m, m};
+  MeshPenetrationOutput3 best;
+  mesh.query(box, [&](int t) {
+    const PenetrationOutput3 p =
+        computePenetration(makeProxy(mesh.triangle(t)), worldFromMesh, b, worldFromB);
+    if (p.overlap && (best.triangle < 0 || p.depth > best.depth ||
+                      (p.depth == best.depth && t < best.triangle))) {
+      static_cast<PenetrationOutput3&>(best) = p;
+      best.triangle = t;
+    }
+    return true;
+  });
+  if (best.triangle >= 0) return best;
+  // Apart from every triangle: the closest one's answer, as computePenetration gives for
+  // shapes apart.
+  const int closest = computeDistanceMesh(mesh, worldFromMesh, b, worldFromB).triangle;
+  static_cast<PenetrationOutput3&>(best) =
+      computePenetration(makeProxy(mesh.triangle(closest)), worldFromMesh, b, worldFromB);
+  best.triangle = closest;
   return best;
 }
 

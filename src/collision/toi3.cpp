@@ -16,15 +16,14 @@ bool finiteSweep(const Sweep3& s) noexcept {
   return isFinite(s.localCenter) && isFinite(s.c1) && isFinite(s.c2) && isFinite(s.q1) &&
          isFinite(s.rotation) && lengthSquared(s.q1) > 0.0f;
 }
-// Largest distance of a surface point from `center` (shape frame).
-float reach(const ShapeProxy3& p, Vec3 center) noexcept {
+}  // namespace
+
+float computeReach(const ShapeProxy3& p, Vec3 center) noexcept {
   float r = 0.0f;
   for (int i = 0; i < p.count(); ++i)
     r = maxf(r, distanceSquared(p.points()[i], center));
   return std::sqrt(r) + p.radius();
 }
-
-}  // namespace
 
 ShapeCastOutput3 castShape(const ShapeProxy3& a, Transform3 worldFromA, const ShapeProxy3& b,
                            Transform3 worldFromB, Vec3 translationB, float maxFraction) noexcept {
@@ -76,7 +75,7 @@ ToiOutput3 computeToi(const ShapeProxy3& a, const Sweep3& sweepA, const ShapePro
     out.status = ToiStatus::invalidInput;
     return out;
   }
-  const float rA = reach(a, sweepA.localCenter), rB = reach(b, sweepB.localCenter);
+  const float rA = computeReach(a, sweepA.localCenter), rB = computeReach(b, sweepB.localCenter);
   const float spin = sweepAngle(sweepA) * rA + sweepAngle(sweepB) * rB;
   const Vec3 vRel = (sweepB.c2 - sweepB.c1) - (sweepA.c2 - sweepA.c1);
   // Hits land in [target, target + tol]: aim at the middle of the band.

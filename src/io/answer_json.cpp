@@ -119,6 +119,18 @@ json toJson(const MeshShapeCastOutput3& c) {
   return out;
 }
 
+json toJson(const MeshToiOutput3& t) {
+  json out = toJson(static_cast<const ToiOutput3&>(t));
+  out["triangle"] = t.triangle;
+  return out;
+}
+
+json toJson(const MeshPenetrationOutput3& p) {
+  json out = toJson(static_cast<const PenetrationOutput3&>(p));
+  out["triangle"] = p.triangle;
+  return out;
+}
+
 json toJson(const std::vector<MeshContact3>& contacts) {
   json manifolds = json::array();
   for (const MeshContact3& c : contacts) {

@@ -464,7 +464,8 @@ Result<ShapeGeometry3> parseShape3(const json& j, const std::string& path,
   }
   if (*type == "mesh") {
     return fail(path + ".type: \"mesh\" is a static triangle mesh, not a convex shape: " +
-                "a query takes it as shape a only (ops " + kMeshQueryOps + ")");
+                "a query takes it as shape a (ops " + kMeshQueryOps + ") or as shape b (ops " +
+                kMeshQueryOpsAsB + ")");
   }
   if (*type == "circle" || *type == "segment" || *type == "polygon" || *type == "concave") {
     return fail(path + ".type: \"" + *type + "\" is a 2D shape (in 3D: sphere, capsule, box, " +
@@ -517,22 +518,27 @@ Result<Mesh3> parseMesh3(const json& j, const std::string& path) {
       triangles[i][k] = static_cast<std::int32_t>(v.get<std::int64_t>());
     }
   }
-  Result<Mesh3> mesh = makeMesh3(*vertices, triangles);
-  if (!mesh) {
-    // makeMesh3 names the triangle ("makeMesh3: triangle 4: ..."); say it as its field.
-    std::string message = mesh.error().message;
-    const std::string prefix = "makeMesh3: triangle ";
-    if (message.rfind(prefix, 0) == 0) {
-      const std::size_t colon = message.find(':', prefix.size());
-      if (colon != std::string::npos) {
-        return fail(at + "[" + message.substr(prefix.size(), colon - prefix.size()) + "]" +
-                    message.substr(colon));
-      }
+  return makeMesh3At(*vertices, triangles, path);
+}
+
+Result<Mesh3> makeMesh3At(std::span<const Vec3> vertices,
+                          std::span<const std::array<std::int32_t, 3>> triangles,
+                          const std::string& path) {
+  Result<Mesh3> mesh = makeMesh3(vertices, triangles);
+  if (mesh) return std::move(*mesh);
+  const std::string at = path.empty() ? "triangles" : path + ".triangles";
+  // makeMesh3 names the triangle ("makeMesh3: triangle 4: ..."); say it as its field.
+  std::string message = mesh.error().message;
+  const std::string prefix = "makeMesh3: triangle ";
+  if (message.rfind(prefix, 0) == 0) {
+    const std::size_t colon = message.find(':', prefix.size());
+    if (colon != std::string::npos) {
+      return fail(at + "[" + message.substr(prefix.size(), colon - prefix.size()) + "]" +
+                  message.substr(colon));
     }
-    if (message.rfind("makeMesh3: ", 0) == 0) message = message.substr(11);
-    return fail(at + ": " + message);
   }
-  return std::move(*mesh);
+  if (message.rfind("makeMesh3: ", 0) == 0) message = message.substr(11);
+  return fail(at + ": " + message);
 }
 
 }  // namespace quack

@@ -213,6 +213,48 @@ bool checkPair(const Pair3& p, int index) {
   return ok;
 }
 
+// The support search takes four points at a time in SIMD lanes: the same index as a plain
+// scan with a strict `>` (the first maximum), for every count up to the largest hull, on
+// random points and on lattice points with axis directions, where many points tie.
+TEST(Gjk3, SupportSearchAgreesWithAPlainScan) {
+  std::mt19937 rng(77);
+  std::uniform_int_distribution<int> lattice(-2, 2);
+  auto scan = [](const Vec3* p, int count, Vec3 d) {
+    int best = 0;
+    for (int i = 1; i < count; ++i) {
+      if (dot(p[i], d) > dot(p[best], d)) best = i;
+    }
+    return best;
+  };
+  int ties = 0;
+  for (int count = 1; count <= kMaxHullVertices3; ++count) {
+    for (int trial = 0; trial < 200; ++trial) {
+      Vec3 points[kMaxHullVertices3];
+      const bool onLattice = trial % 2 == 1;
+      for (int i = 0; i < count; ++i) {
+        points[i] = onLattice
+                        ? Vec3{static_cast<float>(lattice(rng)), static_cast<float>(lattice(rng)),
+                               static_cast<float>(lattice(rng))}
+                        : randomVec(rng, 3.0f);
+      }
+      Vec3 d = randomVec(rng, 1.0f);
+      if (onLattice)
+        d = Vec3{static_cast<float>(lattice(rng)), static_cast<float>(lattice(rng)),
+                 static_cast<float>(lattice(rng))};
+      const int expected = scan(points, count, d);
+      const ShapeProxy3 proxy = ShapeProxy3::fromPoints(points, count, 0.0f, Vec3{});
+      ASSERT_EQ(findSupport(proxy, d), expected) << "count " << count << " trial " << trial;
+      for (int i = expected + 1; i < count; ++i) {
+        if (dot(points[i], d) == dot(points[expected], d)) {
+          ++ties;
+          break;
+        }
+      }
+    }
+  }
+  EXPECT_GT(ties, 1000);  // the lattice cases do test the tie-break
+}
+
 TEST(Gjk3, RandomPairsAgreeWithBruteForce) {
   std::mt19937 rng(404);
   int mismatches = 0;

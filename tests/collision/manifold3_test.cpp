@@ -11,6 +11,7 @@
 #include "oracle3.hpp"
 #include "quack/collision/epa3.hpp"
 #include "quack/collision/manifold3.hpp"
+#include "quack/collision/mesh3.hpp"
 
 namespace quack {
 namespace {
@@ -181,7 +182,7 @@ TEST(Manifold3, DispatchMatchesThePairRoutinesAndSwaps) {
     Transform3 tb{ta.p + randomVec(rng, 1.2f), randomQuat(rng)};
     ShapeGeometry3 ga = geometryOf(a), gb = geometryOf(b);
     Manifold3 ab = collide(ga, ta, gb, tb), ba = collide(gb, tb, ga, ta);
-    bool triangle = a.kind == Kind3::triangle || b.kind == Kind3::triangle;
+    const bool triangle = a.kind == Kind3::triangle || b.kind == Kind3::triangle;
     if (!triangle && a.kind != Kind3::sphere && a.kind != Kind3::capsule &&
         b.kind != Kind3::sphere && b.kind != Kind3::capsule) {
       // Hull pairs: the dispatch is collideHulls itself.
@@ -194,13 +195,8 @@ TEST(Manifold3, DispatchMatchesThePairRoutinesAndSwaps) {
     if (shapeType(ga) == shapeType(gb)) continue;
     ASSERT_EQ(ab.pointCount, ba.pointCount) << i << " " << name(a.kind) << " " << name(b.kind);
     if (ab.pointCount == 0) continue;
-    if (triangle) {
-      // The general path runs GJK / EPA in each order: the same answer up to rounding.
-      expectNear(ab.normal, -ba.normal, 1e-3f);
-      EXPECT_NEAR(ab.points[0].separation, ba.points[0].separation, 1e-4f) << i;
-      continue;
-    }
-    // A pair routine in both orders: the same manifold, the normal flipped, anchors swapped.
+    // A pair routine (collideTriangle for a triangle) in both orders: the same manifold, the
+    // normal flipped, anchors swapped.
     expectNear(ab.normal, -ba.normal, 0);
     for (int k = 0; k < ab.pointCount; ++k) {
       EXPECT_EQ(ab.points[k].id, ba.points[k].id) << i;
@@ -239,6 +235,153 @@ Manifold3 collideAny(const Shape3& a, Transform3 ta, const Shape3& b, Transform3
   if (a.kind == Kind3::capsule && b.kind == Kind3::sphere)
     return collideCapsuleAndSphere(a.capsule, ta, b.sphere, tb, spec);
   return collideSpheres(a.sphere, ta, b.sphere, tb, spec);
+}
+
+// A lone triangle is two-sided: a box resting on it from either side has four points, an
+// edge or a corner touching it one, a triangle lying on it three.
+TEST(Manifold3, LoneTriangleFaceContactsFromEitherSide) {
+  const Triangle3 tri = makeTriangle3({-4, 0, -4}, {4, 0, -4}, {0, 0, 5}).value();
+  const Hull3 box = makeBox3({0.5f, 0.5f, 0.5f}).value();
+  for (float side : {1.0f, -1.0f}) {
+    SCOPED_TRACE(side);
+    // Rotated about y only: the bottom (or top) face lies flat, 0.01 deep.
+    Transform3 tb{{0.2f, side * (0.5f - 0.01f), -0.3f}, Quat::fromAxisAngle({0, 1, 0}, 0.4f)};
+    Manifold3 m = collide(tri, {}, box, tb);
+    ASSERT_EQ(m.pointCount, 4);
+    EXPECT_NEAR(m.normal.y, side, kTol);
+    for (int i = 0; i < 4; ++i) {
+      EXPECT_NEAR(m.points[i].separation, -0.01f, kTol);
+      EXPECT_NEAR(m.points[i].point.y, side * -0.005f, kTol);
+    }
+    EXPECT_EQ(ids(m).size(), 4u);
+    // Box first: the same points, the normal towards the box's side reversed.
+    Manifold3 s = collide(box, tb, tri, {});
+    ASSERT_EQ(s.pointCount, 4);
+    EXPECT_NEAR(s.normal.y, -side, kTol);
+    EXPECT_EQ(ids(s), ids(m));
+    // Apart by 0.015 (within the speculative distance): four points at +0.015.
+    Transform3 above{{0.2f, side * (0.5f + 0.015f), -0.3f}, tb.q};
+    Manifold3 a = collide(tri, {}, box, above);
+    ASSERT_EQ(a.pointCount, 4);
+    for (int i = 0; i < 4; ++i)
+      EXPECT_NEAR(a.points[i].separation, 0.015f, kTol);
+  }
+  // A box beyond the triangle's edge z = -4, tipped 45 degrees about x, so its edge along x
+  // reaches 0.01 over the triangle's edge in the triangle's plane. The least push out is
+  // along either face of the box at that edge: 0.01 cos 45 deg, one point (the edge rule).
+  const float h = 0.5f * std::sqrt(2.0f);
+  Transform3 edge{{0, 0, -4 - h + 0.01f}, Quat::fromAxisAngle({1, 0, 0}, 0.785398163f)};
+  Manifold3 e = collide(tri, {}, box, edge);
+  ASSERT_EQ(e.pointCount, 1);
+  EXPECT_NEAR(e.points[0].separation, -0.01f * std::sqrt(0.5f), 1e-5f);
+  EXPECT_NEAR(std::fabs(e.normal.y), std::sqrt(0.5f), 1e-3f);
+  EXPECT_NEAR(e.normal.z, -std::sqrt(0.5f), 1e-3f);
+  // A small triangle lying 0.02 above, parallel, inside: its three corners.
+  const Triangle3 small = makeTriangle3({-1, 0, -1}, {1, 0, -1}, {0, 0, 1}).value();
+  Transform3 ts{{0.1f, 0.02f, 0.1f}, Quat::fromAxisAngle({0, 1, 0}, 1.0f)};
+  Manifold3 t = collide(tri, {}, small, ts, 0.05f);
+  ASSERT_EQ(t.pointCount, 3);
+  for (int i = 0; i < 3; ++i)
+    EXPECT_NEAR(t.points[i].separation, 0.02f, kTol);
+  // A sphere above the face: one point, at its bottom.
+  const Sphere ball = makeSphere({0, 0, 0}, 0.5f).value();
+  Manifold3 b = collide(tri, {}, ball, Transform3{{1, 0.49f, 0}, {}});
+  ASSERT_EQ(b.pointCount, 1);
+  EXPECT_NEAR(b.points[0].separation, -0.01f, kTol);
+  EXPECT_NEAR(b.normal.y, 1, kTol);
+}
+
+// Signed distance of a world point from a lone triangle (double): it has no inside, so the
+// distance to its surface.
+double triangleDistance(const Shape3& s, Transform3 t, Vec3 pWorld) {
+  const Features f = s.features(t);
+  return lenD(toD(pWorld) - closestOnTriangle(toD(pWorld), f.v[0], f.v[1], f.v[2]));
+}
+
+// Random triangles against every kind, and the same pairs swapped: the manifold is empty
+// exactly when the brute-force distance (or EPA's depth) is beyond the speculative
+// distance; a contact along an edge or a corner is the general one (its separation the
+// oracle's); a face manifold's points lie on the triangle and on the other shape's surface,
+// and its deepest point is the oracle's to within the slop.
+TEST(Manifold3, RandomLoneTrianglesAgreeWithTheOracles) {
+  const Kind3 kinds[] = {Kind3::sphere, Kind3::capsule, Kind3::triangle, Kind3::box, Kind3::hull};
+  std::mt19937 rng(2027);
+  int mismatches = 0, checked = 0, faces = 0;
+  const int n = 3000 * testScale();
+  for (int i = 0; i < n && mismatches <= 10; ++i) {
+    Shape3 a = randomShape3(rng, Kind3::triangle, 1.0f),
+           b = randomShape3(rng, kinds[i % 5], 0.6f, 12);
+    Transform3 ta{randomVec(rng, 1), randomQuat(rng)};
+    Transform3 tb{ta.p + randomVec(rng, 0.6f), randomQuat(rng)};
+    const bool flat = i % 3 == 0 && b.kind == Kind3::box;
+    if (flat) {
+      // A box flat on the face, on either side: its y axis turned onto the triangle's
+      // normal (then a face lies along the triangle's plane), shifted along the normal.
+      const Features fa = a.features(ta);
+      const D3 nD = crossD(fa.v[1] - fa.v[0], fa.v[2] - fa.v[0]);
+      const Vec3 nrm = normalize(Vec3{float(nD.x), float(nD.y), float(nD.z)});
+      const Vec3 axis = cross(Vec3{0, 1, 0}, nrm);
+      const float angle = std::atan2(length(axis), nrm.y);
+      tb.q = length(axis) > 1e-6f ? Quat::fromAxisAngle(normalize(axis), angle) : Quat{};
+      tb.p = ta.p + uni(rng, -0.6f, 0.6f) * nrm;
+    }
+    const float spec = kSpeculativeDistance;
+    const ShapeGeometry3 ga = geometryOf(a), gb = geometryOf(b);
+    const Manifold3 m = collide(ga, ta, gb, tb, spec);
+    const PenetrationOutput3 p = computePenetration(a.proxy(), ta, b.proxy(), tb);
+    const double expected =
+        p.overlap ? -p.depth
+                  : bruteCoreDistance(a.features(ta), b.features(tb)) - b.features(tb).radius;
+    const D3 faceD = crossD(a.features(ta).v[1] - a.features(ta).v[0],
+                            a.features(ta).v[2] - a.features(ta).v[0]);
+    const double faceLen = lenD(faceD);
+    const double size = a.extent() + b.extent() + lenD(toD(tb.p) - toD(ta.p));
+    const double tol = 2e-5 * size;
+    bool ok = true;
+    if (expected > spec + tol) {
+      ok = m.pointCount == 0;
+    } else if (expected < spec - tol) {
+      ++checked;
+      if (m.pointCount == 0) {
+        ok = false;
+      } else if (std::fabs(dotD(toD(m.normal), faceD)) < kMeshFaceNormalCosine3 * faceLen) {
+        // The general contact (an edge or a corner): the oracle's separation.
+        ok = std::fabs(deepest(m) - expected) <= tol;
+      } else {
+        ++faces;
+        // Along the face normal: the clipped points hold the deepest one (to within the
+        // slop), and, apart, every point is in the triangle's prism, on B, so none is
+        // closer than the shapes are.
+        ok = deepest(m) >= expected - tol && deepest(m) <= expected + kLinearSlop + tol;
+        for (int k = 0; k < m.pointCount && ok; ++k) {
+          const ManifoldPoint3& mp = m.points[k];
+          const Vec3 onA = mp.point - (0.5f * mp.separation) * m.normal;
+          const Vec3 onB = mp.point + (0.5f * mp.separation) * m.normal;
+          if (triangleDistance(a, ta, onA) > tol) ok = false;
+          // A capsule's two ends each give their sphere's lowest point: on the surface for
+          // the lower end, inside the capsule for the higher one when it is tilted.
+          const double onSurface = b.kind == Kind3::triangle ? triangleDistance(b, tb, onB)
+                                                             : surfaceDistance(b, tb, onB);
+          if (onSurface > tol || (b.kind != Kind3::capsule && onSurface < -tol)) ok = false;
+          if (mp.separation > spec + tol) ok = false;
+        }
+      }
+    }
+    // Swapped: the same manifold mirrored (the triangle is A in both calls unless both are).
+    if (b.kind != Kind3::triangle) {
+      const Manifold3 s = collide(gb, tb, ga, ta, spec);
+      if (s.pointCount != m.pointCount) ok = false;
+      for (int k = 0; k < m.pointCount && ok; ++k)
+        if (s.points[k].separation != m.points[k].separation) ok = false;
+    }
+    if (!ok) ++mismatches;
+    EXPECT_TRUE(ok) << "pair " << i << " expected " << expected << " got "
+                    << (m.pointCount ? deepest(m) : 99.0f) << " points " << m.pointCount << "\nA "
+                    << describe(a) << "\nB " << describe(b);
+  }
+  EXPECT_EQ(mismatches, 0);
+  EXPECT_GT(checked, n / 4);
+  EXPECT_GT(faces, n / 20);
 }
 
 TEST(Manifold3, RandomPairsAgreeWithEpaAndLieOnBothSurfaces) {

@@ -38,4 +38,21 @@ Mesh3 grid(int n, float s, Height height) {
   return makeMesh3(v, t).value();
 }
 
+// The closed box [-h, h]^3 as twelve triangles, fronts out.
+inline Mesh3 closedBox(Vec3 h) {
+  std::vector<Vec3> v;
+  for (int i = 0; i < 8; ++i) {
+    v.push_back({(i & 1) ? h.x : -h.x, (i & 2) ? h.y : -h.y, (i & 4) ? h.z : -h.z});
+  }
+  // Each face's corners counter-clockwise seen from outside.
+  const int faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                           {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+  std::vector<std::array<std::int32_t, 3>> t;
+  for (const auto& f : faces) {
+    t.push_back({f[0], f[1], f[2]});
+    t.push_back({f[0], f[2], f[3]});
+  }
+  return makeMesh3(v, t).value();
+}
+
 }  // namespace quack::testing

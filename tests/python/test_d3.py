@@ -301,4 +301,4 @@ def test_mypy_strict_types_a_3d_program(source_dir, tmp_path):
                              capture_output=True, text=True, env=env, check=False)
         assert run.returncode == code, run.stdout + run.stderr
     assert "bad.py:2: error: Incompatible types in assignment" in run.stdout
-    assert 'bad.py:3: error: Missing positional argument "pb"' in run.stdout
+    assert 'bad.py:3: error: No overload variant of "distance" matches' in run.stdout

@@ -491,20 +491,102 @@ TEST(Query3, MeshAnswersItsOps) {
   EXPECT_GE(c["triangle"].get<int>(), 0);
 }
 
+TEST(Query3, MeshToiAndPenetrationAndMeshAsShapeB) {
+  // A sphere of radius 0.2 dropped from 1 m to -1 m over the floor: it comes within the
+  // target of the floor when its centre is at 0.2 + target, t = (0.8 - target) / 2.
+  const std::string ball = R"({"type":"sphere","radius":0.2})";
+  const std::string drop = R"({"from":{"pos":[0.1,1,0.1]},"to":{"pos":[0.1,-1,0.1]}})";
+  const double late = (0.8 - kToiTargetSeparation) / 2, band = kToiTolerance / 2;
+  json t = answerOk(R"({"op":"toi","a":)" + kFloorJson + R"(,"b":)" + ball + R"(,"sweepB":)" +
+                    drop + "}");
+  EXPECT_EQ(t["status"], "hit");
+  EXPECT_LE(t["t"].get<double>(), late + 1e-6);
+  EXPECT_GE(t["t"].get<double>(), late - band - 1e-6);
+  EXPECT_GE(t["triangle"].get<int>(), 0);
+  // The same with the mesh as shape b (its sweep held still), and with the floor's sweep
+  // given as the origin twice; the target moves the hit.
+  json tb = answerOk(R"({"op":"toi","a":)" + ball + R"(,"b":)" + kFloorJson + R"(,"sweepA":)" +
+                     drop + R"(,"sweepB":{"from":{},"to":{}}})");
+  EXPECT_EQ(tb, t);
+  json far = answerOk(R"({"op":"toi","a":)" + kFloorJson + R"(,"b":)" + ball + R"(,"sweepB":)" +
+                      drop + R"(,"target":0.2})");
+  EXPECT_NEAR(far["t"].get<double>(), 0.3, band + 1e-6);
+  // Rising from below: one-sided, separated at t = 1 with no triangle.
+  json up = answerOk(R"({"op":"toi","a":)" + kFloorJson + R"(,"b":)" + ball +
+                     R"(,"sweepB":{"from":{"pos":[0.1,-1,0.1]},"to":{"pos":[0.1,1,0.1]}}})");
+  EXPECT_EQ(up["status"], "separated");
+  EXPECT_EQ(up["triangle"].get<int>(), -1);
+
+  // The sphere 0.05 m into the floor: 0.05 m deep, straight up; as shape b the normal
+  // points from the sphere to the floor and the points swap.
+  const std::string sunk = R"({"type":"sphere","radius":0.2})";
+  json p = answerOk(R"({"op":"penetration","a":)" + kFloorJson + R"(,"b":)" + sunk +
+                    R"(,"pb":{"pos":[0.1,0.15,-0.3]}})");
+  EXPECT_TRUE(p["overlap"].get<bool>());
+  EXPECT_NEAR(p["depth"].get<double>(), 0.05, 1e-6);
+  expectVec3(p["normal"], 0, 1, 0, 1e-6);
+  expectVec3(p["pointA"], 0.1, 0, -0.3, 1e-6);
+  expectVec3(p["pointB"], 0.1, -0.05, -0.3, 1e-6);
+  EXPECT_EQ(p["triangle"].get<int>(), 1);  // z < x: the triangle (0, 2, 1)
+  json pb = answerOk(R"({"op":"penetration","a":)" + sunk +
+                     R"(,"pa":{"pos":[0.1,0.15,-0.3]},"b":)" + kFloorJson + "}");
+  EXPECT_EQ(pb["depth"], p["depth"]);
+  EXPECT_EQ(pb["triangle"], p["triangle"]);
+  expectVec3(pb["normal"], 0, -1, 0, 1e-6);
+  EXPECT_EQ(pb["pointA"], p["pointB"]);
+  EXPECT_EQ(pb["pointB"], p["pointA"]);
+  // Distance and overlap as shape b, the same numbers turned round.
+  const std::string above = R"({"pos":[0.1,0.5,0.1]})";
+  json d = answerOk(R"({"op":"distance","a":)" + kFloorJson + R"(,"b":)" + ball + R"(,"pb":)" +
+                    above + "}");
+  json db = answerOk(R"({"op":"distance","a":)" + ball + R"(,"pa":)" + above + R"(,"b":)" +
+                     kFloorJson + "}");
+  EXPECT_EQ(db["distance"], d["distance"]);
+  EXPECT_EQ(db["pointA"], d["pointB"]);
+  EXPECT_EQ(db["pointB"], d["pointA"]);
+  expectVec3(db["normal"], 0, -1, 0, 1e-6);
+  EXPECT_FALSE(answerOk(R"({"op":"overlap","a":)" + ball + R"(,"pa":)" + above + R"(,"b":)" +
+                        kFloorJson + "}")["overlap"]
+                   .get<bool>());
+}
+
 TEST(Query3, MeshErrorsNameTheFieldAndTheOp) {
   const std::string b = R"(,"b":{"type":"sphere","radius":0.2})";
-  EXPECT_EQ(errorOf(R"({"op":"penetration","a":)" + kFloorJson + b + "}"),
-            "a: a mesh supports ops overlap, distance, manifold, raycast, shapecast, not "
-            "penetration");
+  const std::string ball = R"({"type":"sphere","radius":0.2})";
+  EXPECT_EQ(errorOf(R"({"op":"manifold","a":)" + ball + R"(,"b":)" + kFloorJson + "}"),
+            "b: a mesh must be shape a for op manifold (as shape b it supports ops overlap, "
+            "distance, penetration, toi)");
+  EXPECT_EQ(errorOf(R"({"op":"shapecast","a":)" + ball + R"(,"b":)" + kFloorJson +
+                    R"(,"translation":[0,1,0]})"),
+            "b: a mesh must be shape a for op shapecast (as shape b it supports ops overlap, "
+            "distance, penetration, toi)");
+  EXPECT_EQ(errorOf(R"({"op":"distance","a":)" + kFloorJson + R"(,"b":)" + kFloorJson + "}"),
+            "b: a mesh against a mesh is not supported (shape b must be convex)");
+  // Op toi: the mesh's sweep must stand still; the convex sweep is checked as always.
+  const std::string toi = R"({"op":"toi","a":)" + kFloorJson + b;
+  EXPECT_EQ(
+      errorOf(toi + R"(,"sweepA":{"from":{},"to":{"pos":[0,1,0]}},"sweepB":{"from":{},"to":{}}})"),
+      "sweepA.to: a mesh is static: its pose must be sweepA.from's (or leave sweepA out: "
+      "the mesh at the origin)");
+  EXPECT_EQ(errorOf(toi + R"(,"sweepA":{"from":{}},"sweepB":{"from":{},"to":{}}})"),
+            "sweepA.to: missing");
+  EXPECT_EQ(errorOf(toi + "}"), "sweepB: missing");
+  EXPECT_EQ(
+      errorOf(toi + R"(,"sweepB":{"from":{},"to":{"pos":[0,"x",0]}}})").rfind("sweepB.to.pos", 0),
+      0u);
+  EXPECT_EQ(errorOf(toi + R"(,"sweepB":{"from":{},"to":{}},"target":-1})"),
+            "target: must be a number >= 0 within the coordinate limit 1e9 m");
+  EXPECT_EQ(errorOf(toi + R"(,"pa":{},"sweepB":{"from":{},"to":{}}})"),
+            "pa: not used by op toi (give sweepA and sweepB)");
   EXPECT_EQ(
       errorOf(
-          R"({"op":"toi","a":)" + kFloorJson +
-          R"(,"b":{"type":"sphere","radius":0.2},"sweepA":{"from":{},"to":{}},"sweepB":{"from":{},"to":{}}})"),
-      "a: a mesh supports ops overlap, distance, manifold, raycast, shapecast, not toi");
-  EXPECT_EQ(
-      errorOf(R"({"op":"distance","a":{"type":"sphere","radius":0.2},"b":)" + kFloorJson + "}"),
-      "b.type: \"mesh\" is a static triangle mesh, not a convex shape: a query takes it "
-      "as shape a only (ops overlap, distance, manifold, raycast, shapecast)");
+          R"({"op":"toi","a":)" + ball + R"(,"b":)" + kFloorJson +
+          R"(,"sweepB":{"from":{"pos":[1,0,0]},"to":{"pos":[1,0,0],"quat":[0,1,0,0]}},"sweepA":{"from":{},"to":{}}})"),
+      "sweepB.to: a mesh is static: its pose must be sweepB.from's (or leave sweepB out: "
+      "the mesh at the origin)");
+  EXPECT_EQ(errorOf(R"({"op":"penetration","a":)" + kFloorJson + R"(,"b":{"type":"sphere"}})")
+                .rfind("b.radius", 0),
+            0u);
   auto meshError = [&](const std::string& mesh) {
     return errorOf(R"({"op":"distance","a":)" + mesh + b + "}");
   };
@@ -643,6 +725,17 @@ TEST(Query3, ProgramOutputMatchesTheLibrary) {
       json{{"overlap", testOverlapMesh(floor, slabPose, makeProxy(cube), cubePose)}}, "mo");
   add(R"({"id":"ms","op":"shapecast",)" + floorPair + R"(,"translation":[0,-2,0.1]})",
       toJson(castShapeMesh(floor, slabPose, makeProxy(cube), cubePose, {0, -2, 0.1f})), "ms");
+  const Transform3 sunkPose{{0.3f, 0.2f, -0.2f}, {}};
+  add(R"({"id":"mp","op":"penetration","a":)" + kFloorJson + R"(,"pa":)" + turnJson + R"(,"b":)" +
+          cubeJson + R"(,"pb":{"pos":[0.3,0.2,-0.2]}})",
+      toJson(computePenetrationMesh(floor, slabPose, makeProxy(cube), sunkPose)), "mp");
+  const ShapeProxy3 cubeProxy = makeProxy(cube);
+  add(R"({"id":"mt","op":"toi","a":)" + kFloorJson + R"(,"sweepA":{"from":)" + turnJson +
+          R"(,"to":)" + turnJson + R"(},"b":)" + cubeJson +
+          R"(,"sweepB":{"from":{"pos":[0,3,0]},"to":{"pos":[0,-3,0],"quat":[1,0,0,1]}}})",
+      toJson(computeToiMesh(floor, slabPose, cubeProxy, makeSweep3(cubeProxy.center(), from, to),
+                            1.0f, kToiTargetSeparation)),
+      "mt");
 
   const std::filesystem::path dir = std::filesystem::temp_directory_path();
   const std::filesystem::path in = dir / ("quack_query3_in_" + std::to_string(::getpid()));

@@ -80,9 +80,19 @@ Manifold3 collideHullAndCapsule(const Hull3& a, Transform3 worldFromA, const Cap
 Manifold3 collideHulls(const Hull3& a, Transform3 worldFromA, const Hull3& b, Transform3 worldFromB,
                        float speculativeDistance = kSpeculativeDistance) noexcept;
 
+/// A lone triangle (two-sided) against any 3D shape. When the general contact's normal is the
+/// face's (kMeshFaceNormalCosine3, on either side), up to four points along it, the shape's
+/// incident feature clipped to the triangle as for a mesh triangle (mesh3.hpp,
+/// collideMeshTriangle), or the general contact if that clips to nothing; any other normal
+/// (an edge, a corner, or the other shape's face when deep) keeps the general contact, one
+/// point. Defined in mesh3.cpp beside the mesh's triangles. No allocation.
+Manifold3 collideTriangle(const Triangle3& a, Transform3 worldFromA, const ShapeGeometry3& b,
+                          Transform3 worldFromB,
+                          float speculativeDistance = kSpeculativeDistance) noexcept;
+
 /// Manifold of any two 3D shapes: the pair routine for their types (B-versus-A reuses
-/// A-versus-B with the normal flipped and the anchors swapped; the ids are kept), and the
-/// general path for triangles. No allocation.
+/// A-versus-B with the normal flipped and the anchors swapped; the ids are kept), and
+/// collideTriangle for a triangle. No allocation.
 Manifold3 collide(const ShapeGeometry3& a, Transform3 worldFromA, const ShapeGeometry3& b,
                   Transform3 worldFromB, float speculativeDistance = kSpeculativeDistance) noexcept;
 

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "quack/broadphase/dynamic_tree3.hpp"
+#include "quack/collision/epa3.hpp"
 #include "quack/collision/manifold3.hpp"
 #include "quack/collision/toi3.hpp"
 #include "quack/geometry/raycast3.hpp"
@@ -180,5 +181,51 @@ struct MeshDistanceOutput3 : DistanceOutput3 {
 /// of the triangles.
 MeshDistanceOutput3 computeDistanceMesh(const Mesh3& mesh, Transform3 worldFromMesh,
                                         const ShapeProxy3& b, Transform3 worldFromB);
+
+/// The first time a convex shape on a rotating sweep comes within the target of a mesh.
+/// World frame.
+struct MeshToiOutput3 : ToiOutput3 {
+  int triangle = -1;  ///< the triangle hit (or overlapped, or whose run failed), or -1
+};
+
+/// The first t in [0, tMax] at which convex proxy B, moving by sweepB (body frame = the
+/// proxy's shape frame), comes within `target` metres of the static mesh placed by
+/// worldFromMesh: computeToi against each triangle whose box overlaps B's swept bounds (the
+/// segment its centre of mass travels up to tMax, grown by its reach from that centre, the
+/// target, kToiTolerance and the rounding margin: no point of B leaves that ball), each run
+/// only to the earliest time found so far (advancement's steps do not depend on tMax, so
+/// the answer is the brute-force loop's over every triangle; ties at one t go to the lowest
+/// triangle index, except that at t = 0 an overlap comes before a hit and the deepest
+/// overlap (computePenetration's depth) first, so an overlapped answer is the deepest
+/// triangle's among the candidates, not a sliver's sideways normal). One-sided as castShapeMesh: a
+/// triangle is skipped when B's centre of mass moves out of its front (dot(c2 - c1, face normal) >
+/// 0); a sweep that only turns keeps every triangle. For a sweep without rotation the candidates
+/// are castShapeMesh's. Status, as computeToi's: the earliest triangle's hit or overlapped (at t =
+/// 0); failed when some triangle's run reached kToi3MaxIterations at a last free time before every
+/// hit (then `t` is the least such time, `triangle` that triangle); separated (t = tMax,
+/// distance and normal 0, triangle -1) when no triangle comes within the target;
+/// invalidInput as computeToi, or a non-finite worldFromMesh. No allocation.
+MeshToiOutput3 computeToiMesh(const Mesh3& mesh, Transform3 worldFromMesh, const ShapeProxy3& b,
+                              const Sweep3& sweepB, float tMax = 1.0f,
+                              float target = kToiTargetSeparation) noexcept;
+
+/// The penetration of a convex shape into a mesh. World frame.
+struct MeshPenetrationOutput3 : PenetrationOutput3 {
+  int triangle = -1;  ///< the deepest triangle (or the closest, when none overlaps)
+};
+
+/// The deepest penetration of convex proxy B, placed by worldFromB, into any one triangle
+/// of the mesh placed by worldFromMesh: computePenetration against each triangle the tree
+/// finds around B's box, the largest depth kept (ties to the lowest triangle index), so the
+/// answer is the brute-force loop's over every triangle. Two-sided, as testOverlapMesh:
+/// each triangle is a solid sliver, and its depth is EPA's on that triangle alone (no edge
+/// rule: collideMesh is where ghost normals are removed). The deepest depth is the least
+/// distance any translation of B must cover to clear every triangle (each triangle alone
+/// needs its own depth); the normal clears that triangle, not always its neighbours. When
+/// B overlaps no triangle, computeDistanceMesh's closest triangle, as computePenetration
+/// answers for shapes apart (overlap false, depth 0, status separated). Allocates only
+/// then (computeDistanceMesh's list).
+MeshPenetrationOutput3 computePenetrationMesh(const Mesh3& mesh, Transform3 worldFromMesh,
+                                              const ShapeProxy3& b, Transform3 worldFromB);
 
 }  // namespace quack

@@ -10,6 +10,16 @@
 /// makes the edge-edge separation exact rather than a guess from two edge points, and skips
 /// most of the n x m pairs. Written from the talk; no peer's
 /// code was consulted.
+///
+/// Bounds skip what cannot win, leaving every answer as the full test gives it: a hull's
+/// least projection on a unit direction is at most its centroid's less the radius of the
+/// ball about the centroid inside it, so each face has an upper bound on its separation
+/// (one dot product); the face with the largest bound is tested first, and a face whose
+/// bound is below a separation already found is not tested. An edge pair's axis lies on
+/// both edges' arcs, where the same bound, taken along the arc, is at most the edge's faces'
+/// bounds over cos(theta / 2) (theta the arc's angle); edges that cannot beat the best
+/// face are dropped before the pairs are formed, and the Gauss-map test runs four pairs at
+/// a time (SSE2 lanes).
 
 #include <cstdint>
 #include <limits>
@@ -40,7 +50,7 @@ struct SatOutput3 {
   int faceIndex = 0;        ///< for faceA and faceB
   int edgeA = 0;            ///< for edges
   int edgeB = 0;            ///< for edges
-  int edgePairsTested = 0;  ///< edge pairs that passed the Gauss-map test
+  int edgePairsTested = 0;  ///< edge pairs that the bounds kept and the Gauss map passed
 };
 
 /// SAT over the face normals of both hulls and their Minkowski-face edge pairs, computed in

@@ -53,6 +53,10 @@ struct ToiOutput3 {
   int iterations = 0;  ///< GJK distance evaluations
 };
 
+/// The largest distance of a surface point of proxy `p` from `center` (shape frame, metres):
+/// the ball of this radius about `center` holds the shape however it turns.
+float computeReach(const ShapeProxy3& p, Vec3 center) noexcept;
+
 /// The first t in [0, tMax] at which proxies A and B, moving by their sweeps (body frames =
 /// the proxies' shape frames), come within `target` metres (kToiTargetSeparation, the 2D
 /// one: a slop, so a solver has something to hold). Cap kToi3MaxIterations. No allocation.

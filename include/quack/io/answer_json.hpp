@@ -55,6 +55,8 @@ nlohmann::json toJson(const ToiOutput3& t);
 nlohmann::json toJson(const MeshRayHit3& r);
 nlohmann::json toJson(const MeshDistanceOutput3& d);
 nlohmann::json toJson(const MeshShapeCastOutput3& c);
+nlohmann::json toJson(const MeshToiOutput3& t);
+nlohmann::json toJson(const MeshPenetrationOutput3& p);
 nlohmann::json toJson(const std::vector<MeshContact3>& contacts);
 
 }  // namespace quack

@@ -31,8 +31,11 @@
 /// Positions, points, half-extents and radii must lie within the coordinate limit
 /// (kMaxCoordinate, 1e9 m), e.g. "a.half[0]: 1e+19 m is beyond the coordinate limit 1e9 m".
 
+#include <array>
+#include <cstdint>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -74,7 +77,10 @@ int shapeDimension(const nlohmann::json& j);
 Result<ShapeGeometry3> parseShape3(const nlohmann::json& j, const std::string& path,
                                    std::initializer_list<const char*> extraKeys = {});
 /// The ops `quack query` answers with a mesh as shape a.
-inline constexpr const char* kMeshQueryOps = "overlap, distance, manifold, raycast, shapecast";
+inline constexpr const char* kMeshQueryOps =
+    "overlap, distance, penetration, manifold, raycast, shapecast, toi";
+/// The ops `quack query` answers with a mesh as shape b (the answer turned round).
+inline constexpr const char* kMeshQueryOpsAsB = "overlap, distance, penetration, toi";
 /// Most vertices of a mesh read from JSON.
 inline constexpr int kMaxMeshVertices3Json = 1000000;
 /// True when `j` is an object of type "mesh".
@@ -85,6 +91,12 @@ bool isMesh3(const nlohmann::json& j);
 /// area" (makeMesh3's errors about one triangle), "a.triangles: edge (0, 1) is shared by 3
 /// triangles ...".
 Result<Mesh3> parseMesh3(const nlohmann::json& j, const std::string& path);
+/// makeMesh3 with its errors said as fields under `path` (parseMesh3's "a.triangles[1]: ...",
+/// "a.triangles: edge (0, 1) ..."; with an empty path "triangles[1]: ..."), for callers that
+/// read the vertices and triangles themselves (Python's quack.d3.mesh).
+Result<Mesh3> makeMesh3At(std::span<const Vec3> vertices,
+                          std::span<const std::array<std::int32_t, 3>> triangles,
+                          const std::string& path);
 /// 3D pose from JSON as worldFromShape; `path` prefixes error messages ("pa"). An "angle"
 /// key is refused with a message that points to "quat".
 Result<Transform3> parsePose3(const nlohmann::json& j, const std::string& path);
