@@ -299,6 +299,23 @@ TEST(Rounded3, RoundedBoxRestsOnAFloorMesh) {
     }
     EXPECT_GE(points, 4);
   }
+  // The mesh's penetration and a lone triangle's contact see the rounding too; a rounded
+  // cube dropped onto the floor by a time of impact stops with its rounding at the target.
+  Transform3 tb{{0.3f, 0.5f + 0.1f - 0.005f, -0.2f}, {}};
+  MeshPenetrationOutput3 p = computePenetrationMesh(floor, {}, makeProxy(cube), tb);
+  ASSERT_TRUE(p.overlap);
+  EXPECT_NEAR(p.depth, 0.005f, 1e-5f);
+  const Triangle3 lone = makeTriangle3({-3, 0, 3}, {3, 0, 3}, {0, 0, -3}).value();
+  Manifold3 m = collide(ShapeGeometry3{lone}, {}, ShapeGeometry3{cube}, tb);
+  ASSERT_GE(m.pointCount, 3);
+  for (int k = 0; k < m.pointCount; ++k)
+    EXPECT_NEAR(m.points[k].separation, -0.005f, 1e-5f);
+  Sweep3 drop = makeSweep3({}, {{0, 2, 0}, {}}, {{0, -1, 0}, {}});
+  MeshToiOutput3 t = computeToiMesh(floor, {}, makeProxy(cube), drop);
+  ASSERT_EQ(t.status, ToiStatus::hit);
+  // The rounded bottom at 2 - 0.6 - 3 t reaches the target above y = 0.
+  const float want = (2 - 0.6f - kToiTargetSeparation) / 3;
+  EXPECT_NEAR(t.t, want, kToiTolerance / 3 + 1e-5f);
 }
 
 TEST(Rounded3, ShapeCastOfARoundedBoxHitsWhereItsRoundingTouches) {
