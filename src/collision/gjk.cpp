@@ -97,9 +97,15 @@ Simplex2 toSimplex2(const GjkRun& run, const ShapeProxy& a, const ShapeProxy& b,
   return s;
 }
 
-template <class Observer>
-GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, const Transform& aFromB, GjkCache* cache,
-              float earlyOutRadius, Observer& observer) noexcept {
+namespace {
+
+// runGjk's loop, with earlyOut (earlyOutRadius >= 0) fixed at compile time: only
+// testOverlap asks for it, and the tests it adds to every pass of the other queries cost
+// about 20 instructions a query.
+template <class Observer, bool earlyOut>
+[[gnu::always_inline]] inline GjkRun gjkLoop(const ShapeProxy& a, const ShapeProxy& b,
+                                             const Transform& aFromB, GjkCache* cache,
+                                             float earlyOutRadius, Observer& observer) noexcept {
   GjkRun run;
   GjkVertex* v = run.vertices;
   int& count = run.count;
@@ -136,7 +142,6 @@ GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, const Transform& aFromB,
     count = 1;
   }
 
-  const bool earlyOut = earlyOutRadius >= 0.0f;
   // The simplex of the pass before, for the stall test: at most two vertices (a triangle
   // either holds the origin, which ends the run, or is reduced), copied whole each pass.
   GjkVertex previous[2];
@@ -249,10 +254,12 @@ GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, const Transform& aFromB,
       break;
     }
     run.closest = vPoint;
-    if (earlyOut && vv <= earlyOutSq) {
-      run.status = GjkStatus::overlap;
-      observe(nullptr);
-      break;
+    if constexpr (earlyOut) {
+      if (vv <= earlyOutSq) {
+        run.status = GjkStatus::overlap;
+        observe(nullptr);
+        break;
+      }
     }
     if (run.iterations >= kGjkMaxIterations) {
       run.status = GjkStatus::maxIterations;
@@ -294,10 +301,12 @@ GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, const Transform& aFromB,
     }
     // v.w measured along the exact direction: |v| * (dir . w).
     const float vw = vLength * dot(dir, w.w);
-    if (earlyOut && vw > 0.0f && vw * vw > earlyOutSq * vv) {
-      run.separatedEarly = true;
-      run.status = GjkStatus::converged;
-      break;
+    if constexpr (earlyOut) {
+      if (vw > 0.0f && vw * vw > earlyOutSq * vv) {
+        run.separatedEarly = true;
+        run.status = GjkStatus::converged;
+        break;
+      }
     }
     const std::uint32_t key = w.key;
     if ((v[0].key == key) | ((count == 2) & (v[1].key == key))) {
@@ -322,6 +331,16 @@ GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, const Transform& aFromB,
     }
   }
   return run;
+}
+
+}  // namespace
+
+template <class Observer>
+GjkRun runGjk(const ShapeProxy& a, const ShapeProxy& b, const Transform& aFromB, GjkCache* cache,
+              float earlyOutRadius, Observer& observer) noexcept {
+  if (earlyOutRadius >= 0.0f)
+    return gjkLoop<Observer, true>(a, b, aFromB, cache, earlyOutRadius, observer);
+  return gjkLoop<Observer, false>(a, b, aFromB, cache, earlyOutRadius, observer);
 }
 
 template GjkRun runGjk<NoGjkObserver>(const ShapeProxy&, const ShapeProxy&, const Transform&,

@@ -9,22 +9,6 @@ ShapeProxy ShapeProxy::fromPoints(const Vec2* points, int count, float radius) n
   return fromPoints(points, count, radius, (1.0f / static_cast<float>(count)) * sum);
 }
 
-ShapeProxy ShapeProxy::fromPoints(const Vec2* points, int count, float radius,
-                                  Vec2 center) noexcept {
-  QUACK_ASSERT(count >= 1 && count <= kMaxPolygonVertices);
-  ShapeProxy proxy;
-  proxy.count_ = count;
-  proxy.radius_ = radius;
-  if (count <= 2) {
-    for (int i = 0; i < count; ++i)
-      proxy.local_[i] = points[i];
-  } else {
-    proxy.external_ = points;
-  }
-  proxy.center_ = center;
-  return proxy;
-}
-
 ShapeProxy makeProxy(const Circle& circle) noexcept {
   return ShapeProxy::fromPoints(&circle.center, 1, circle.radius);
 }
@@ -37,10 +21,6 @@ ShapeProxy makeProxy(const Capsule& capsule) noexcept {
 ShapeProxy makeProxy(const Segment& segment) noexcept {
   const Vec2 points[2] = {segment.p1, segment.p2};
   return ShapeProxy::fromPoints(points, 2, 0.0f);
-}
-
-ShapeProxy makeProxy(const Polygon& polygon) noexcept {
-  return ShapeProxy::fromPoints(polygon.vertices, polygon.count, polygon.radius, polygon.centroid);
 }
 
 ShapeProxy makeProxy(const ShapeGeometry& geometry) noexcept {

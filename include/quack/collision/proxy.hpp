@@ -15,6 +15,7 @@
 #include <emmintrin.h>
 #endif
 
+#include "quack/core/assert.hpp"
 #include "quack/geometry/shapes.hpp"
 
 namespace quack {
@@ -32,8 +33,23 @@ class ShapeProxy {
   /// A proxy of `count` points (shape frame) and `radius` metres. With count <= 2 the
   /// points are copied; with more, the proxy views `points`, which must outlive it.
   static ShapeProxy fromPoints(const Vec2* points, int count, float radius) noexcept;
-  /// As above with a given `center` (shape frame), a point inside the core.
-  static ShapeProxy fromPoints(const Vec2* points, int count, float radius, Vec2 center) noexcept;
+  /// As above with a given `center` (shape frame), a point inside the core. Inline, as is
+  /// the polygon's makeProxy: the narrow phase makes two proxies a query, and out of line
+  /// the calls cost as much as the work.
+  static ShapeProxy fromPoints(const Vec2* points, int count, float radius, Vec2 center) noexcept {
+    QUACK_ASSERT(count >= 1 && count <= kMaxPolygonVertices);
+    ShapeProxy proxy;
+    proxy.count_ = count;
+    proxy.radius_ = radius;
+    if (count <= 2) {
+      for (int i = 0; i < count; ++i)
+        proxy.local_[i] = points[i];
+    } else {
+      proxy.external_ = points;
+    }
+    proxy.center_ = center;
+    return proxy;
+  }
 
   /// The core points, shape frame.
   const Vec2* points() const noexcept { return external_ != nullptr ? external_ : local_; }
@@ -56,7 +72,9 @@ class ShapeProxy {
 ShapeProxy makeProxy(const Circle& circle) noexcept;
 ShapeProxy makeProxy(const Capsule& capsule) noexcept;
 ShapeProxy makeProxy(const Segment& segment) noexcept;
-ShapeProxy makeProxy(const Polygon& polygon) noexcept;
+inline ShapeProxy makeProxy(const Polygon& polygon) noexcept {
+  return ShapeProxy::fromPoints(polygon.vertices, polygon.count, polygon.radius, polygon.centroid);
+}
 /// The proxy of a shape of any kind; it views the polygon a polygon geometry holds, so keep
 /// `geometry` alive and unmoved while the proxy is in use.
 ShapeProxy makeProxy(const ShapeGeometry& geometry) noexcept;
