@@ -33,7 +33,8 @@ std::uint32_t BodyStore3::addBody(const BodyDef3& def) {
 
 void BodyStore3::removeBody(std::uint32_t body) {
   // Shapes leave in reverse creation order so that the freed slots are reused in order.
-  while (!bodies[body].shapes.empty()) removeShape(bodies[body].shapes.back());
+  while (!bodies[body].shapes.empty())
+    removeShape(bodies[body].shapes.back());
   bodies[body] = Body3{};
   bodyIds.release(body);
 }

@@ -155,7 +155,8 @@ void ContactSet3::update(const BodyStore3& store, float speculativeDistance, flo
     // Both lists are in triangle order, so one merge pass matches them.
     std::size_t old = 0;
     for (ContactManifold3& now : fresh) {
-      while (old < c.manifolds.size() && c.manifolds[old].triangle < now.triangle) ++old;
+      while (old < c.manifolds.size() && c.manifolds[old].triangle < now.triangle)
+        ++old;
       if (old < c.manifolds.size() && c.manifolds[old].triangle == now.triangle) {
         carryImpulses(c.manifolds[old], now);
       }

@@ -17,7 +17,8 @@ std::uint32_t Islands3::find(std::uint32_t i) noexcept {
 void Islands3::wakeTouched(BodyStore3& store, const ContactSet3& contacts) {
   const auto n = static_cast<std::uint32_t>(store.bodies.size());
   parent_.resize(n);
-  for (std::uint32_t i = 0; i < n; ++i) parent_[i] = i;
+  for (std::uint32_t i = 0; i < n; ++i)
+    parent_[i] = i;
   for (const Contact3& c : contacts.contacts()) {
     if (!c.touching) continue;
     const std::uint32_t a = store.shapes[c.shapeA].body;

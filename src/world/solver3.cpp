@@ -111,8 +111,7 @@ void solveConstraint(Constraint& c, std::vector<BodyState>& states, const StepPa
   for (int k = 0; k < c.count; ++k) {
     PointConstraint& p = c.points[k];
     // The separation now, from the bodies' motion since the manifold was made.
-    const Vec3 d =
-        (b.dp - a.dp) + ((p.rB + cross(turnB, p.rB)) - (p.rA + cross(turnA, p.rA)));
+    const Vec3 d = (b.dp - a.dp) + ((p.rB + cross(turnB, p.rB)) - (p.rA + cross(turnA, p.rA)));
     const float s = dot(d, c.normal) + p.baseSeparation;
     float bias = 0.0f, massScale = 1.0f, impulseScale = 0.0f;
     if (s > 0.0f) {
@@ -287,12 +286,16 @@ void Solver3::step(BodyStore3& store, ContactSet3& contacts, const WorldDef3& de
 
   for (int sub = 0; sub < substeps; ++sub) {
     integrateVelocities(states, movers_, store, params);
-    for (Constraint& c : constraints) warmStart(c, states);
-    for (Constraint& c : constraints) solveConstraint<true>(c, states, params);
+    for (Constraint& c : constraints)
+      warmStart(c, states);
+    for (Constraint& c : constraints)
+      solveConstraint<true>(c, states, params);
     integratePositions(states, params.h);
-    for (Constraint& c : constraints) solveConstraint<false>(c, states, params);
+    for (Constraint& c : constraints)
+      solveConstraint<false>(c, states, params);
   }
-  for (Constraint& c : constraints) applyRestitution(c, states, params.restitutionThreshold);
+  for (Constraint& c : constraints)
+    applyRestitution(c, states, params.restitutionThreshold);
 
   for (Constraint& c : constraints) {
     ContactManifold3& m = *c.source;

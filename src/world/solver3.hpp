@@ -23,8 +23,7 @@ class Solver3 {
   // the touching contacts that have one of them. Moves their proxies. Bodies whose motion
   // would leave the world (beyond kMaxCoordinate / 2, or not finite) are held at their
   // pose from the start of the step with zero velocity.
-  void step(BodyStore3& store, ContactSet3& contacts, const WorldDef3& def, float dt,
-            int substeps);
+  void step(BodyStore3& store, ContactSet3& contacts, const WorldDef3& def, float dt, int substeps);
 
  private:
   std::vector<std::uint32_t> slotOf_;  // per body index: its slot, 0 for none

@@ -211,7 +211,8 @@ Status World3::destroyShape(ShapeId3 shape) {
   }
   StepEvents3 ends;
   state_->contacts.removeShape(store, shape.index, ends);
-  for (const ContactEvent3& e : ends.end) state_->pendingEnds.push_back(e);
+  for (const ContactEvent3& e : ends.end)
+    state_->pendingEnds.push_back(e);
   store.removeShape(shape.index);
   return {};
 }
@@ -247,7 +248,8 @@ std::vector<ContactView3> World3::touchingContacts() const {
     ContactView3 view{state_->contacts.shapeId(state_->store, c.shapeA),
                       state_->contacts.shapeId(state_->store, c.shapeB),
                       {}};
-    for (const detail::ContactManifold3& m : c.manifolds) view.manifolds.push_back(m.manifold);
+    for (const detail::ContactManifold3& m : c.manifolds)
+      view.manifolds.push_back(m.manifold);
     out.push_back(std::move(view));
   }
   return out;
@@ -351,8 +353,9 @@ Status World3::applyLinearImpulse(BodyId3 body, Vec3 impulse, Vec3 worldPoint) {
   const Vec3 v = b.linearVelocity + b.invMass * impulse;
   const Vec3 w = b.angularVelocity + b.invInertiaWorld() * cross(worldPoint - b.center, impulse);
   if (!finite(v) || !finite(w) || length(v) > kMaxLinearSpeed || length(w) > kMaxAngularSpeed) {
-    return fail("applyLinearImpulse: impulse: the body's speed would pass kMaxLinearSpeed or "
-                "kMaxAngularSpeed");
+    return fail(
+        "applyLinearImpulse: impulse: the body's speed would pass kMaxLinearSpeed or "
+        "kMaxAngularSpeed");
   }
   b.linearVelocity = v;
   b.angularVelocity = w;

@@ -152,8 +152,7 @@ TEST(World3Api, MassPropertiesMatchClosedForms) {
   EXPECT_NEAR(ip.cy.y, 2.0f * (0.4f * m * 0.25f + m * 2.25f), 1e-4f);
 
   // Turned a quarter about z, the box's world inertia swaps its x and y entries.
-  ASSERT_TRUE(
-      world.setTransform(box, {0, 0, 0}, Quat::fromAxisAngle({0, 0, 1}, 0.5f * kPi)).ok());
+  ASSERT_TRUE(world.setTransform(box, {0, 0, 0}, Quat::fromAxisAngle({0, 0, 1}, 0.5f * kPi)).ok());
   const Mat3 turned = world.inertia(box);
   EXPECT_NEAR(turned.cx.x, i.cy.y, 1e-3f);
   EXPECT_NEAR(turned.cy.y, i.cx.x, 1e-3f);

@@ -84,10 +84,10 @@ struct WorldDef3 {
 /// A new body. World frame.
 struct BodyDef3 {
   BodyType type = BodyType::dynamicBody;
-  Vec3 position;         ///< origin of the body frame
-  Quat rotation;         ///< worldFromBody's rotation; any non-zero quaternion (normalised)
-  Vec3 linearVelocity;   ///< of the centre of mass, m/s
-  Vec3 angularVelocity;  ///< rad/s, world axes
+  Vec3 position;                ///< origin of the body frame
+  Quat rotation;                ///< worldFromBody's rotation; any non-zero quaternion (normalised)
+  Vec3 linearVelocity;          ///< of the centre of mass, m/s
+  Vec3 angularVelocity;         ///< rad/s, world axes
   float linearDamping = 0.0f;   ///< 1/s, >= 0
   float angularDamping = 0.0f;  ///< 1/s, >= 0
   float gravityScale = 1.0f;    ///< within kMaxGravityScale
@@ -177,7 +177,7 @@ class World3 {
   Transform3 transform(BodyId3 body) const;  ///< worldFromBody
   Vec3 position(BodyId3 body) const;         ///< of the body origin
   Quat rotation(BodyId3 body) const;
-  Vec3 linearVelocity(BodyId3 body) const;  ///< of the centre of mass, m/s
+  Vec3 linearVelocity(BodyId3 body) const;   ///< of the centre of mass, m/s
   Vec3 angularVelocity(BodyId3 body) const;  ///< rad/s, world axes
   float mass(BodyId3 body) const;
   /// Inertia tensor about the centre of mass, world axes, kg m^2.
