@@ -1,0 +1,210 @@
+#pragma once
+/// `World3`: the 3D rigid-body world. Bodies carry convex shapes (sphere, capsule, box and
+/// convex hull from shapes3.hpp; triangles) or, on static bodies, triangle meshes
+/// (mesh3.hpp); they fall, collide, stack, slide, roll and fall asleep. It is built as the 2D
+/// `World` is (docs/world3.md): a thin facade over parts with one job each (a body store, a
+/// contact set, a soft-step solver, islands), in `src/world/*3.*`.
+///
+/// ```
+/// World3 world = World3::create().value();
+/// BodyId3 ground = world.createBody({.type = BodyType::staticBody}).value();
+/// world.createShape(ground, {}, makeBox3({10, 0.5f, 10}).value()).value();
+/// BodyId3 ball = world.createBody({.position = {0, 2, 0}}).value();
+/// world.createShape(ball, {.density = 1000}, Sphere{{}, 0.25f}).value();
+/// for (int i = 0; i < 60; ++i) world.step();
+/// Vec3 where = world.position(ball);
+/// ```
+///
+/// What it does not do yet (docs/world3.md, "Not yet"): continuous collision (a body that
+/// moves further than its thickness in one step can pass through a thin shape), joints,
+/// sensors, queries, snapshots, threads and SIMD lanes, ghost-collision removal between
+/// separate convex shapes (a mesh's triangles have it).
+///
+/// Units: metres, kilograms, seconds, radians; world frame, y up. Every input is checked at
+/// this boundary: a bad one fails with a message naming the field, and nothing changes.
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "quack/broadphase/proxy.hpp"
+#include "quack/collision/manifold3.hpp"
+#include "quack/collision/mesh3.hpp"
+#include "quack/geometry/shapes3.hpp"
+#include "quack/math/quat.hpp"
+#include "quack/world/types.hpp"
+
+namespace quack {
+
+namespace detail {
+struct WorldState3;
+}
+
+/// Handle to a body of a `World3`: slot index, the slot's generation when it was made (a
+/// handle kept after the body was destroyed is refused), and the id of its world (a handle
+/// given to another world is refused). The default handle is null.
+struct BodyId3 {
+  std::uint32_t index = 0xffffffffu;
+  std::uint32_t generation = 0;
+  std::uint32_t world = 0;  ///< World3::id() of its world; 0: none
+  friend constexpr bool operator==(BodyId3, BodyId3) noexcept = default;
+};
+
+/// Handle to a shape on a body of a `World3`, as BodyId3.
+struct ShapeId3 {
+  std::uint32_t index = 0xffffffffu;
+  std::uint32_t generation = 0;
+  std::uint32_t world = 0;  ///< World3::id() of its world; 0: none
+  friend constexpr bool operator==(ShapeId3, ShapeId3) noexcept = default;
+};
+
+/// How a `World3` is made. The defaults are the 2D world's (docs/world.md), which suit
+/// bodies of about 0.1 to 10 m.
+struct WorldDef3 {
+  Vec3 gravity{0.0f, -10.0f, 0.0f};  ///< m/s^2, each component within kMaxGravity
+  float timeStep = 1.0f / 60.0f;     ///< seconds per step() without arguments, in (0, kMaxTimeStep]
+  int substeps = 4;                  ///< solver sub-steps per step, 1..64
+  /// Contact stiffness (Hz, > 0) and damping ratio (>= 0) of the soft step; the stiffness
+  /// is capped at a quarter of the sub-step rate.
+  float contactHertz = 30.0f;
+  float contactDampingRatio = 10.0f;
+  /// Fastest speed (m/s, > 0) at which overlapping shapes are pushed apart.
+  float contactPushMaxSpeed = 3.0f;
+  /// Restitution acts only when the bodies approach faster than this (m/s, >= 0).
+  float restitutionThreshold = 1.0f;
+  /// Contact points are made this far (m, in [0, 1]) before the shapes touch.
+  float speculativeDistance = kSpeculativeDistance;
+  /// Broad-phase margin (m, >= speculativeDistance): the fat boxes' growth.
+  float aabbMargin = 0.1f;
+  bool enableSleep = true;
+};
+
+/// A new body. World frame.
+struct BodyDef3 {
+  BodyType type = BodyType::dynamicBody;
+  Vec3 position;                ///< origin of the body frame
+  Quat rotation;                ///< worldFromBody's rotation; any non-zero quaternion (normalised)
+  Vec3 linearVelocity;          ///< of the centre of mass, m/s
+  Vec3 angularVelocity;         ///< rad/s, world axes
+  float linearDamping = 0.0f;   ///< 1/s, >= 0
+  float angularDamping = 0.0f;  ///< 1/s, >= 0
+  float gravityScale = 1.0f;    ///< within kMaxGravityScale
+  /// May this body fall asleep? A body that may not keeps every body it touches awake.
+  bool enableSleep = true;
+  /// Below this speed (m/s, >= 0) the body rests: its centre's speed, and its angular speed
+  /// times its largest extent from the centre of mass.
+  float sleepThreshold = 0.05f;
+  std::uint64_t userData = 0;
+};
+
+/// A new shape on a body.
+struct ShapeDef3 {
+  float density = 1.0f;      ///< kg/m^3, >= 0
+  float friction = 0.6f;     ///< Coulomb coefficient, >= 0; a pair uses sqrt(fa fb)
+  float restitution = 0.0f;  ///< in [0, kMaxRestitution]; a pair uses the larger
+  /// Rolling resistance (dimensionless, >= 0; a pair uses the larger): a rolling sphere or
+  /// capsule is slowed by a torque of at most this times the normal force times its radius.
+  float rollingResistance = 0.0f;
+  Filter filter;
+  std::uint64_t userData = 0;
+};
+
+/// Two shapes started touching (their contact gained points), or stopped (lost them, or a
+/// shape was destroyed). A is the lower shape index, or the mesh.
+struct ContactEvent3 {
+  ShapeId3 shapeA, shapeB;
+};
+
+/// The events of one step.
+struct StepEvents3 {
+  std::vector<ContactEvent3> begin;
+  std::vector<ContactEvent3> end;
+};
+
+/// One touching contact (World3::touchingContacts): shape A, shape B and its manifolds
+/// (one for two convex shapes; one per touching triangle when A is a mesh). World frame,
+/// normals from A to B.
+struct ContactView3 {
+  ShapeId3 shapeA, shapeB;
+  std::vector<Manifold3> manifolds;
+};
+
+/// The 3D world (see the top of this file). Move-only.
+class World3 {
+ public:
+  /// Fails on a bad WorldDef3 field, naming it.
+  static Result<World3> create(const WorldDef3& def = {});
+  World3(World3&&) noexcept;
+  World3& operator=(World3&&) noexcept;
+  World3(const World3&) = delete;
+  World3& operator=(const World3&) = delete;
+  ~World3();
+
+  const WorldDef3& def() const noexcept;
+  /// Unique in the process (shared with the 2D worlds' ids), never 0.
+  std::uint32_t id() const noexcept;
+
+  // ---- bodies and shapes ---------------------------------------------------------------
+  Result<BodyId3> createBody(const BodyDef3& def);
+  /// Destroys the body, its shapes and their contacts (end events for touching ones in the
+  /// next step's events).
+  Status destroyBody(BodyId3 body);
+  /// A convex shape (or a triangle), in the body frame, checked by validateShape. The body's
+  /// mass, centre of mass and inertia are recomputed from all its shapes.
+  Result<ShapeId3> createShape(BodyId3 body, const ShapeDef3& def, const ShapeGeometry3& geometry);
+  /// A triangle mesh, in the body frame: static bodies only (a mesh has no volume).
+  Result<ShapeId3> createShape(BodyId3 body, const ShapeDef3& def, Mesh3 mesh);
+  Status destroyShape(ShapeId3 shape);
+
+  bool isValid(BodyId3 body) const noexcept;
+  bool isValid(ShapeId3 shape) const noexcept;
+  std::size_t bodyCount() const noexcept;
+  std::size_t shapeCount() const noexcept;
+  /// Contacts: pairs of shapes whose fat boxes overlap; touching ones have points.
+  std::size_t contactCount() const noexcept;
+  std::size_t touchingContactCount() const noexcept;
+  std::size_t awakeBodyCount() const noexcept;
+  /// Every touching contact, in contact order (allocates).
+  std::vector<ContactView3> touchingContacts() const;
+
+  // ---- body state ------------------------------------------------------------------------
+  // A null, stale or foreign handle is caught in every build: getters then return a neutral
+  // value (zeros, the identity), setters fail with a message.
+  BodyType bodyType(BodyId3 body) const;
+  bool isAwake(BodyId3 body) const;
+  Transform3 transform(BodyId3 body) const;  ///< worldFromBody
+  Vec3 position(BodyId3 body) const;         ///< of the body origin
+  Quat rotation(BodyId3 body) const;
+  Vec3 linearVelocity(BodyId3 body) const;   ///< of the centre of mass, m/s
+  Vec3 angularVelocity(BodyId3 body) const;  ///< rad/s, world axes
+  float mass(BodyId3 body) const;
+  /// Inertia tensor about the centre of mass, world axes, kg m^2.
+  Mat3 inertia(BodyId3 body) const;
+  Vec3 worldCenterOfMass(BodyId3 body) const;
+  std::uint64_t userData(BodyId3 body) const;
+  BodyId3 body(ShapeId3 shape) const;
+
+  // Each wakes the body; a static body cannot be given a velocity or an impulse.
+  Status setTransform(BodyId3 body, Vec3 position, Quat rotation);
+  Status setLinearVelocity(BodyId3 body, Vec3 velocity);
+  Status setAngularVelocity(BodyId3 body, Vec3 velocity);
+  /// An impulse (N s) at a world point: changes both velocities of a dynamic body.
+  Status applyLinearImpulse(BodyId3 body, Vec3 impulse, Vec3 worldPoint);
+  Status setAwake(BodyId3 body, bool awake);
+
+  // ---- stepping ------------------------------------------------------------------------
+  /// One step of def().timeStep in def().substeps sub-steps.
+  Status step();
+  /// One step of `dt` seconds in (0, kMaxTimeStep], in `substeps` sub-steps (1..64).
+  Status step(float dt, int substeps);
+  const StepEvents3& events() const noexcept;
+  std::uint64_t stepCount() const noexcept;
+
+ private:
+  explicit World3(std::unique_ptr<detail::WorldState3> state);
+  std::unique_ptr<detail::WorldState3> state_;
+};
+
+}  // namespace quack

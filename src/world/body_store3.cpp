@@ -1,0 +1,176 @@
+#include "body_store3.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "quack/collision/proxy3.hpp"
+#include "quack/geometry/mass3.hpp"
+
+namespace quack::detail {
+
+std::uint32_t BodyStore3::addBody(const BodyDef3& def) {
+  const std::uint32_t index = bodyIds.allocate();
+  if (index >= bodies.size()) bodies.resize(index + 1);
+  Body3& b = bodies[index];
+  b = Body3{};
+  b.type = def.type;
+  b.origin = def.position;
+  b.rotation = normalize(def.rotation);
+  b.center = def.position;
+  if (def.type != BodyType::staticBody) {
+    b.linearVelocity = def.linearVelocity;
+    b.angularVelocity = def.angularVelocity;
+  }
+  b.linearDamping = def.linearDamping;
+  b.angularDamping = def.angularDamping;
+  b.gravityScale = def.gravityScale;
+  b.sleepThreshold = def.sleepThreshold;
+  b.enableSleep = def.enableSleep;
+  b.userData = def.userData;
+  updateMass(index);
+  return index;
+}
+
+void BodyStore3::removeBody(std::uint32_t body) {
+  // Shapes leave in reverse creation order so that the freed slots are reused in order.
+  while (!bodies[body].shapes.empty())
+    removeShape(bodies[body].shapes.back());
+  bodies[body] = Body3{};
+  bodyIds.release(body);
+}
+
+Aabb3 BodyStore3::shapeBox(std::uint32_t shape) const {
+  const Shape3& s = shapes[shape];
+  const Transform3 xf = bodies[s.body].transform();
+  if (s.mesh) {
+    const Aabb3 local = s.mesh->bounds();
+    Aabb3 box{};
+    for (int i = 0; i < 8; ++i) {
+      const Vec3 corner{(i & 1) ? local.upper.x : local.lower.x,
+                        (i & 2) ? local.upper.y : local.lower.y,
+                        (i & 4) ? local.upper.z : local.lower.z};
+      const Vec3 p = transformPoint(xf, corner);
+      box = i == 0 ? Aabb3{p, p} : Aabb3{minv(box.lower, p), maxv(box.upper, p)};
+    }
+    return box;
+  }
+  const ShapeProxy3 proxy = makeProxy(s.geometry);
+  Aabb3 box{};
+  for (int i = 0; i < proxy.count(); ++i) {
+    const Vec3 p = transformPoint(xf, proxy.points()[i]);
+    box = i == 0 ? Aabb3{p, p} : Aabb3{minv(box.lower, p), maxv(box.upper, p)};
+  }
+  const Vec3 r{proxy.radius(), proxy.radius(), proxy.radius()};
+  return {box.lower - r, box.upper + r};
+}
+
+Result<std::uint32_t> BodyStore3::addShape(std::uint32_t body, const ShapeDef3& def,
+                                           const ShapeGeometry3& geometry,
+                                           std::shared_ptr<Mesh3> mesh) {
+  const std::uint32_t index = shapeIds.allocate();
+  if (index >= shapes.size()) shapes.resize(index + 1);
+  Shape3& s = shapes[index];
+  s = Shape3{};
+  s.body = body;
+  s.def = def;
+  s.geometry = geometry;
+  s.mesh = std::move(mesh);
+  const ProxyKind kind =
+      bodies[body].type == BodyType::staticBody ? ProxyKind::staticProxy : ProxyKind::dynamicProxy;
+  Result<ProxyId> proxy = broadPhase_.createProxy(shapeBox(index), index, def.filter, kind);
+  if (!proxy) {
+    shapes[index] = Shape3{};
+    shapeIds.release(index);
+    return fail("shape: its box is out of the world: " + proxy.error().message);
+  }
+  s.proxy = proxy.value();
+  bodies[body].shapes.push_back(index);
+  updateMass(body);
+  return index;
+}
+
+void BodyStore3::removeShape(std::uint32_t shape) {
+  Shape3& s = shapes[shape];
+  const std::uint32_t body = s.body;
+  Status removed = broadPhase_.destroyProxy(s.proxy);
+  QUACK_ASSERT(removed.ok());
+  std::vector<std::uint32_t>& list = bodies[body].shapes;
+  list.erase(std::find(list.begin(), list.end(), shape));
+  s = Shape3{};
+  shapeIds.release(shape);
+  updateMass(body);
+}
+
+void BodyStore3::moveProxies(std::uint32_t body, Vec3 displacement) {
+  for (std::uint32_t shape : bodies[body].shapes) {
+    Result<bool> moved = broadPhase_.moveProxy(shapes[shape].proxy, shapeBox(shape), displacement);
+    // The solver holds bodies inside kMaxCoordinate, so a refused box is a bug.
+    QUACK_ASSERT(moved.ok());
+  }
+}
+
+// Mass, centre of mass and inertia from the shapes (parallel-axis theorem about the body's
+// centre of mass, summed in double). A dynamic body whose shapes have no mass moves as a
+// 1 kg body that does not turn, as the 2D world's does.
+void BodyStore3::updateMass(std::uint32_t index) {
+  Body3& b = bodies[index];
+  b.mass = b.invMass = 0.0f;
+  b.inertiaLocal = b.invInertiaLocal = Mat3{};
+  b.localCenter = Vec3{};
+  b.maxExtent = 0.0f;
+  if (b.type != BodyType::dynamicBody) {
+    b.center = transformPoint(b.transform(), b.localCenter);
+    return;
+  }
+  double mass = 0.0, cx = 0.0, cy = 0.0, cz = 0.0;
+  std::vector<MassProperties3> parts;
+  for (std::uint32_t shape : b.shapes) {
+    const Shape3& s = shapes[shape];
+    parts.push_back(computeMass(s.geometry, s.def.density));
+    const MassProperties3& m = parts.back();
+    mass += double(m.mass);
+    cx += double(m.mass) * double(m.centroid.x);
+    cy += double(m.mass) * double(m.centroid.y);
+    cz += double(m.mass) * double(m.centroid.z);
+  }
+  if (mass > 0.0) {
+    const Vec3 c{float(cx / mass), float(cy / mass), float(cz / mass)};
+    double inertia[3][3] = {};
+    for (const MassProperties3& m : parts) {
+      const Vec3 d = m.centroid - c;
+      const Vec3 cols[3] = {m.inertia.cx, m.inertia.cy, m.inertia.cz};
+      const float dv[3] = {d.x, d.y, d.z};
+      const double dd =
+          double(d.x) * double(d.x) + double(d.y) * double(d.y) + double(d.z) * double(d.z);
+      for (int col = 0; col < 3; ++col) {
+        const float colv[3] = {cols[col].x, cols[col].y, cols[col].z};
+        for (int row = 0; row < 3; ++row) {
+          const double shift = (row == col ? dd : 0.0) - double(dv[row]) * double(dv[col]);
+          inertia[col][row] += double(colv[row]) + double(m.mass) * shift;
+        }
+      }
+    }
+    b.mass = float(mass);
+    b.invMass = 1.0f / b.mass;
+    b.localCenter = c;
+    b.inertiaLocal = {{float(inertia[0][0]), float(inertia[0][1]), float(inertia[0][2])},
+                      {float(inertia[1][0]), float(inertia[1][1]), float(inertia[1][2])},
+                      {float(inertia[2][0]), float(inertia[2][1]), float(inertia[2][2])}};
+    // An inertia tensor is positive definite; a determinant at or below zero (a shape with
+    // no volume in some direction) leaves the body unable to turn rather than spinning wild.
+    if (determinant(b.inertiaLocal) > 0.0f) b.invInertiaLocal = inverse(b.inertiaLocal);
+  } else {
+    b.mass = 1.0f;
+    b.invMass = 1.0f;
+  }
+  for (std::uint32_t shape : b.shapes) {
+    const ShapeProxy3 proxy = makeProxy(shapes[shape].geometry);
+    for (int i = 0; i < proxy.count(); ++i) {
+      b.maxExtent =
+          std::max(b.maxExtent, length(proxy.points()[i] - b.localCenter) + proxy.radius());
+    }
+  }
+  b.center = transformPoint(b.transform(), b.localCenter);
+}
+
+}  // namespace quack::detail

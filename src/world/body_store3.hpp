@@ -1,0 +1,84 @@
+#pragma once
+// The 3D world's body store: bodies and shapes in slot arrays with generations (IdPool),
+// mass properties from the shapes, and the shapes' boxes in the 3D broad phase. Private to
+// the world layer.
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "quack/broadphase/broad_phase3.hpp"
+#include "quack/core/id_pool.hpp"
+#include "quack/world/world3.hpp"
+
+namespace quack::detail {
+
+struct Body3 {
+  BodyType type = BodyType::dynamicBody;
+  Vec3 origin;       // worldFromBody.p
+  Quat rotation;     // worldFromBody.q
+  Vec3 localCenter;  // centre of mass, body frame
+  Vec3 center;       // centre of mass, world frame
+  Vec3 linearVelocity, angularVelocity;
+  float mass = 0.0f, invMass = 0.0f;
+  Mat3 inertiaLocal;     // about the centre of mass, body axes
+  Mat3 invInertiaLocal;  // its inverse (zero: the body does not turn)
+  float linearDamping = 0.0f, angularDamping = 0.0f, gravityScale = 1.0f;
+  float sleepThreshold = 0.05f;
+  float sleepTime = 0.0f;  // seconds at rest
+  float maxExtent = 0.0f;  // farthest shape point from the centre of mass, m
+  bool enableSleep = true;
+  bool awake = true;
+  std::vector<std::uint32_t> shapes;  // in creation order
+  std::uint64_t userData = 0;
+
+  Transform3 transform() const noexcept { return {origin, rotation}; }
+  // Inverse inertia about the centre of mass, world axes: R I^-1 R^T.
+  Mat3 invInertiaWorld() const noexcept {
+    const Mat3 r = toMat3(rotation);
+    return r * invInertiaLocal * transpose(r);
+  }
+};
+
+struct Shape3 {
+  std::uint32_t body = 0;
+  ShapeDef3 def;
+  ShapeGeometry3 geometry;      // unused when mesh is set
+  std::shared_ptr<Mesh3> mesh;  // a static body's triangle mesh
+  ProxyId proxy;
+};
+
+class BodyStore3 {
+ public:
+  explicit BodyStore3(BroadPhase3 broadPhase) : broadPhase_(std::move(broadPhase)) {}
+
+  std::uint32_t addBody(const BodyDef3& def);
+  // Removes the body's shapes' proxies and the body (the caller removes the contacts first).
+  void removeBody(std::uint32_t body);
+  // Adds a shape (validated by the caller) and recomputes the body's mass. Fails only when
+  // the broad phase refuses its box (beyond kMaxCoordinate).
+  Result<std::uint32_t> addShape(std::uint32_t body, const ShapeDef3& def,
+                                 const ShapeGeometry3& geometry, std::shared_ptr<Mesh3> mesh);
+  void removeShape(std::uint32_t shape);
+
+  // The body's origin from its centre of mass and rotation, after the solver moved it.
+  static void syncOrigin(Body3& body) noexcept {
+    body.origin = body.center - rotate(body.rotation, body.localCenter);
+  }
+  // Moves the body's proxies to its present pose (displacement: its centre's motion).
+  void moveProxies(std::uint32_t body, Vec3 displacement);
+  // The shape's box, world frame, at the body's present pose.
+  Aabb3 shapeBox(std::uint32_t shape) const;
+
+  IdPool bodyIds, shapeIds;
+  std::vector<Body3> bodies;
+  std::vector<Shape3> shapes;
+  BroadPhase3& broadPhase() noexcept { return broadPhase_; }
+  const BroadPhase3& broadPhase() const noexcept { return broadPhase_; }
+
+ private:
+  void updateMass(std::uint32_t body);
+  BroadPhase3 broadPhase_;
+};
+
+}  // namespace quack::detail

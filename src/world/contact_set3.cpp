@@ -1,0 +1,193 @@
+#include "contact_set3.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace quack::detail {
+
+namespace {
+
+bool isAwakeMover(const Body3& b) noexcept {
+  return b.type != BodyType::staticBody && b.awake;
+}
+
+// The radius a shape rolls on (spheres and capsules), or 0.
+float rollingRadius(const Shape3& s) noexcept {
+  if (s.mesh) return 0.0f;
+  if (const Sphere* sphere = std::get_if<Sphere>(&s.geometry)) return sphere->radius;
+  if (const Capsule3* capsule = std::get_if<Capsule3>(&s.geometry)) return capsule->radius;
+  return 0.0f;
+}
+
+// Warm start: each new point takes the impulses of the old point with its feature id, or
+// else of the nearest unclaimed old point within kWarmStartMatchDistance. The fallback is
+// needed because a box's ids are not stable when it rests exactly flush on another: its
+// vertices sit on the reference face's side planes and come out as vertex points one step
+// and as clipped points the next (and the reference face can swap between the boxes). Jolt
+// matches its contact points by position alone; ids first keeps sliding contacts right.
+constexpr float kWarmStartMatchDistance = 4.0f * kLinearSlop;
+
+void carryImpulses(const ContactManifold3& old, ContactManifold3& now) noexcept {
+  bool claimed[kMaxManifoldPoints3] = {};
+  int match[kMaxManifoldPoints3] = {-1, -1, -1, -1};
+  for (int i = 0; i < now.manifold.pointCount; ++i) {
+    for (int j = 0; j < old.manifold.pointCount; ++j) {
+      if (claimed[j] || old.manifold.points[j].id != now.manifold.points[i].id) continue;
+      match[i] = j;
+      claimed[j] = true;
+      break;
+    }
+  }
+  for (int i = 0; i < now.manifold.pointCount; ++i) {
+    if (match[i] >= 0) continue;
+    float best = kWarmStartMatchDistance * kWarmStartMatchDistance;
+    for (int j = 0; j < old.manifold.pointCount; ++j) {
+      if (claimed[j]) continue;
+      const float d = distanceSquared(old.manifold.points[j].point, now.manifold.points[i].point);
+      if (d <= best) {
+        best = d;
+        match[i] = j;
+      }
+    }
+    if (match[i] >= 0) claimed[match[i]] = true;
+  }
+  for (int i = 0; i < now.manifold.pointCount; ++i) {
+    if (match[i] < 0) continue;
+    now.normalImpulse[i] = old.normalImpulse[match[i]];
+    now.frictionImpulse[i] = old.frictionImpulse[match[i]];
+  }
+  now.rollingImpulse = old.rollingImpulse;
+}
+
+}  // namespace
+
+void ContactSet3::findNew(BodyStore3& store) {
+  store.broadPhase().updatePairs(pairs_);
+  // Sorted by shape indices, so contacts are made in one order whatever the structure found.
+  for (ProxyPair& p : pairs_) {
+    const auto sa = static_cast<std::uint32_t>(store.broadPhase().userData(p.a));
+    const auto sb = static_cast<std::uint32_t>(store.broadPhase().userData(p.b));
+    p.a.index = std::min(sa, sb);
+    p.b.index = std::max(sa, sb);
+  }
+  std::sort(pairs_.begin(), pairs_.end(), [](const ProxyPair& x, const ProxyPair& y) {
+    return x.a.index != y.a.index ? x.a.index < y.a.index : x.b.index < y.b.index;
+  });
+  for (const ProxyPair& p : pairs_) {
+    std::uint32_t a = p.a.index, b = p.b.index;
+    const Shape3& shapeA = store.shapes[a];
+    const Shape3& shapeB = store.shapes[b];
+    if (shapeA.body == shapeB.body) continue;
+    const Body3& bodyA = store.bodies[shapeA.body];
+    const Body3& bodyB = store.bodies[shapeB.body];
+    if (bodyA.type != BodyType::dynamicBody && bodyB.type != BodyType::dynamicBody) continue;
+    if (index_.count(key(a, b)) != 0) continue;
+    if (shapeB.mesh) std::swap(a, b);
+    Contact3 c;
+    c.shapeA = a;
+    c.shapeB = b;
+    const ShapeDef3& da = store.shapes[a].def;
+    const ShapeDef3& db = store.shapes[b].def;
+    c.friction = std::sqrt(da.friction * db.friction);
+    c.restitution = std::max(da.restitution, db.restitution);
+    const float ra = rollingRadius(store.shapes[a]);
+    const float rb = rollingRadius(store.shapes[b]);
+    const float radius = ra > 0.0f && rb > 0.0f ? std::min(ra, rb) : std::max(ra, rb);
+    c.rollingResistance = std::max(da.rollingResistance, db.rollingResistance) * radius;
+    index_.emplace(key(a, b), static_cast<std::uint32_t>(contacts_.size()));
+    contacts_.push_back(std::move(c));
+  }
+}
+
+void ContactSet3::destroy(std::uint32_t index) {
+  index_.erase(key(contacts_[index].shapeA, contacts_[index].shapeB));
+  const auto last = static_cast<std::uint32_t>(contacts_.size() - 1);
+  if (index != last) {
+    contacts_[index] = std::move(contacts_[last]);
+    index_[key(contacts_[index].shapeA, contacts_[index].shapeB)] = index;
+  }
+  contacts_.pop_back();
+}
+
+void ContactSet3::update(const BodyStore3& store, float speculativeDistance, float dt,
+                         StepEvents3& events) {
+  std::vector<ContactManifold3> fresh;
+  for (std::uint32_t i = 0; i < contacts_.size();) {
+    Contact3& c = contacts_[i];
+    const Shape3& sa = store.shapes[c.shapeA];
+    const Shape3& sb = store.shapes[c.shapeB];
+    const Body3& ba = store.bodies[sa.body];
+    const Body3& bb = store.bodies[sb.body];
+    if (!isAwakeMover(ba) && !isAwakeMover(bb)) {
+      ++i;
+      continue;
+    }
+    const BroadPhase3& bp = store.broadPhase();
+    if (!overlaps(bp.fatBox(sa.proxy), bp.fatBox(sb.proxy))) {
+      if (c.touching) events.end.push_back({shapeId(store, c.shapeA), shapeId(store, c.shapeB)});
+      // Swap-remove: the last contact takes this slot and is looked at next.
+      destroy(i);
+      continue;
+    }
+    fresh.clear();
+    // Speculative contact (Catto, "Speculative contacts", 2013): points are kept as far
+    // ahead as the bodies can close in this step, so a body falling onto a floor at a few
+    // metres a second is met at the floor rather than found inside it (or through a thin
+    // mesh) a step later; the solver lets such a point close exactly its gap.
+    const float closing = length(bb.linearVelocity - ba.linearVelocity) +
+                          length(ba.angularVelocity) * ba.maxExtent +
+                          length(bb.angularVelocity) * bb.maxExtent;
+    const float reach = std::min(speculativeDistance + dt * closing, kMaxSpeculativeReach3);
+    if (sa.mesh) {
+      meshContacts_.clear();
+      collideMesh(*sa.mesh, ba.transform(), sb.geometry, bb.transform(), meshContacts_, reach);
+      for (const MeshContact3& m : meshContacts_) {
+        ContactManifold3 cm;
+        cm.triangle = m.triangle;
+        cm.manifold = m.manifold;
+        fresh.push_back(cm);
+      }
+    } else {
+      ContactManifold3 cm;
+      cm.manifold = collide(sa.geometry, ba.transform(), sb.geometry, bb.transform(), reach);
+      if (cm.manifold.pointCount > 0) fresh.push_back(cm);
+    }
+    // Both lists are in triangle order, so one merge pass matches them.
+    std::size_t old = 0;
+    for (ContactManifold3& now : fresh) {
+      while (old < c.manifolds.size() && c.manifolds[old].triangle < now.triangle)
+        ++old;
+      if (old < c.manifolds.size() && c.manifolds[old].triangle == now.triangle) {
+        carryImpulses(c.manifolds[old], now);
+      }
+    }
+    c.manifolds.swap(fresh);
+    const bool touching = !c.manifolds.empty();
+    if (touching && !c.touching) {
+      events.begin.push_back({shapeId(store, c.shapeA), shapeId(store, c.shapeB)});
+    } else if (!touching && c.touching) {
+      events.end.push_back({shapeId(store, c.shapeA), shapeId(store, c.shapeB)});
+    }
+    c.touching = touching;
+    ++i;
+  }
+}
+
+void ContactSet3::removeShape(const BodyStore3& store, std::uint32_t shape, StepEvents3& events) {
+  for (std::uint32_t i = 0; i < contacts_.size();) {
+    const Contact3& c = contacts_[i];
+    if (c.shapeA != shape && c.shapeB != shape) {
+      ++i;
+      continue;
+    }
+    if (c.touching) events.end.push_back({shapeId(store, c.shapeA), shapeId(store, c.shapeB)});
+    destroy(i);
+  }
+}
+
+std::size_t ContactSet3::touchingCount() const noexcept {
+  return static_cast<std::size_t>(std::count_if(contacts_.begin(), contacts_.end(),
+                                                [](const Contact3& c) { return c.touching; }));
+}
+
+}  // namespace quack::detail

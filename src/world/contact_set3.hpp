@@ -1,0 +1,72 @@
+#pragma once
+// The 3D world's contact set: one contact per pair of shapes whose fat boxes overlap, its
+// manifolds (one for two convex shapes, one per touching triangle of a mesh), warm-start
+// impulses carried from step to step point by point through feature ids, and the begin and
+// end events. Private to the world layer.
+
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "body_store3.hpp"
+
+namespace quack::detail {
+
+// A manifold and the solver's impulses at its points, kept between steps for warm starting.
+struct ContactManifold3 {
+  int triangle = -1;  // the mesh triangle (A is the mesh), or -1
+  Manifold3 manifold;
+  float normalImpulse[kMaxManifoldPoints3] = {};
+  Vec3 frictionImpulse[kMaxManifoldPoints3];  // world frame, so a turned tangent basis keeps it
+  float maxNormalImpulse[kMaxManifoldPoints3] = {};
+  Vec3 rollingImpulse;  // angular, world frame
+};
+
+struct Contact3 {
+  std::uint32_t shapeA = 0, shapeB = 0;  // A: the mesh, else the lower shape index
+  std::vector<ContactManifold3> manifolds;
+  float friction = 0.0f, restitution = 0.0f;
+  float rollingResistance = 0.0f;  // rolling coefficient times the rolling radius, m
+  bool touching = false;
+};
+
+// The most a contact looks ahead (metres): the speculative distance grown by how far the
+// bodies can close in one step, up to this.
+inline constexpr float kMaxSpeculativeReach3 = 1.0f;
+
+class ContactSet3 {
+ public:
+  explicit ContactSet3(std::uint32_t worldId) : worldId_(worldId) {}
+
+  // Creates a contact for each new broad-phase pair the world's rules accept (two bodies,
+  // at least one dynamic), in sorted pair order.
+  void findNew(BodyStore3& store);
+  // For every contact with an awake body: destroys it when the fat boxes parted, else
+  // computes its manifolds at `speculativeDistance` plus how far the bodies can close in
+  // dt, and carries the impulses over by triangle and feature id (or position). Begin and
+  // end events in contact order.
+  void update(const BodyStore3& store, float speculativeDistance, float dt, StepEvents3& events);
+  // Destroys the contacts of a shape about to go (end events for the touching ones).
+  void removeShape(const BodyStore3& store, std::uint32_t shape, StepEvents3& events);
+
+  const std::vector<Contact3>& contacts() const noexcept { return contacts_; }
+  std::vector<Contact3>& contacts() noexcept { return contacts_; }
+  std::size_t touchingCount() const noexcept;
+  ShapeId3 shapeId(const BodyStore3& store, std::uint32_t shape) const noexcept {
+    return {shape, store.shapeIds.generation(shape), worldId_};
+  }
+
+ private:
+  static std::uint64_t key(std::uint32_t a, std::uint32_t b) noexcept {
+    return a < b ? (std::uint64_t{a} << 32) | b : (std::uint64_t{b} << 32) | a;
+  }
+  void destroy(std::uint32_t index);
+  std::vector<Contact3> contacts_;
+  // Lookup only, never iterated: the contacts' order is the vector's.
+  std::unordered_map<std::uint64_t, std::uint32_t> index_;
+  std::vector<ProxyPair> pairs_;
+  std::vector<MeshContact3> meshContacts_;
+  std::uint32_t worldId_;
+};
+
+}  // namespace quack::detail

@@ -1,0 +1,187 @@
+// World3's public boundary: every bad input refused with a message naming the field, handles
+// with generations, mass properties against closed forms, events.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "quack/world/world3.hpp"
+
+namespace quack {
+namespace {
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+bool mentions(const std::string& message, const char* field) {
+  return message.find(field) != std::string::npos;
+}
+
+TEST(World3Api, BadWorldDefsAreRefusedNamingTheField) {
+  struct Case {
+    WorldDef3 def;
+    const char* field;
+  };
+  const Case cases[] = {
+      {{.gravity = {0, kNaN, 0}}, "gravity"},
+      {{.timeStep = 0.0f}, "timeStep"},
+      {{.timeStep = 2.0f}, "timeStep"},
+      {{.substeps = 0}, "substeps"},
+      {{.substeps = 65}, "substeps"},
+      {{.contactHertz = -1.0f}, "contactHertz"},
+      {{.contactDampingRatio = kNaN}, "contactDampingRatio"},
+      {{.contactPushMaxSpeed = 0.0f}, "contactPushMaxSpeed"},
+      {{.restitutionThreshold = -1.0f}, "restitutionThreshold"},
+      {{.speculativeDistance = 2.0f}, "speculativeDistance"},
+      {{.aabbMargin = 0.001f}, "aabbMargin"},
+  };
+  for (const Case& c : cases) {
+    Result<World3> made = World3::create(c.def);
+    ASSERT_FALSE(made.ok()) << c.field;
+    EXPECT_TRUE(mentions(made.error().message, c.field)) << made.error().message;
+  }
+  EXPECT_TRUE(World3::create().ok());
+}
+
+TEST(World3Api, BadBodyAndShapeInputIsRefusedAndChangesNothing) {
+  World3 world = World3::create().value();
+  struct BodyCase {
+    BodyDef3 def;
+    const char* field;
+  };
+  const BodyCase bodies[] = {
+      {{.position = {kNaN, 0, 0}}, "position"},
+      {{.position = {0, 1e9f, 0}}, "position"},
+      {{.rotation = {0, 0, 0, 0}}, "rotation"},
+      {{.linearVelocity = {0, 0, kNaN}}, "linearVelocity"},
+      {{.angularVelocity = {1e6f, 0, 0}}, "angularVelocity"},
+      {{.linearDamping = -1.0f}, "linearDamping"},
+      {{.angularDamping = kNaN}, "angularDamping"},
+      {{.gravityScale = kNaN}, "gravityScale"},
+      {{.sleepThreshold = -1.0f}, "sleepThreshold"},
+  };
+  for (const BodyCase& c : bodies) {
+    Result<BodyId3> made = world.createBody(c.def);
+    ASSERT_FALSE(made.ok()) << c.field;
+    EXPECT_TRUE(mentions(made.error().message, c.field)) << made.error().message;
+  }
+  EXPECT_EQ(world.bodyCount(), 0u);
+
+  const BodyId3 body = world.createBody({}).value();
+  struct ShapeCase {
+    ShapeDef3 def;
+    const char* field;
+  };
+  const ShapeCase shapes[] = {
+      {{.density = -1.0f}, "density"},
+      {{.friction = kNaN}, "friction"},
+      {{.restitution = 11.0f}, "restitution"},
+      {{.rollingResistance = -0.1f}, "rollingResistance"},
+  };
+  for (const ShapeCase& c : shapes) {
+    Result<ShapeId3> made = world.createShape(body, c.def, Sphere{{}, 0.5f});
+    ASSERT_FALSE(made.ok()) << c.field;
+    EXPECT_TRUE(mentions(made.error().message, c.field)) << made.error().message;
+  }
+  Result<ShapeId3> bad = world.createShape(body, {}, Sphere{{}, 0.0f});
+  ASSERT_FALSE(bad.ok());
+  EXPECT_TRUE(mentions(bad.error().message, "geometry")) << bad.error().message;
+  EXPECT_EQ(world.shapeCount(), 0u);
+
+  const std::array<Vec3, 3> vertices = {Vec3{0, 0, 0}, Vec3{0, 0, 1}, Vec3{1, 0, 0}};
+  const std::array<std::array<std::int32_t, 3>, 1> triangles = {{{0, 1, 2}}};
+  Mesh3 mesh = makeMesh3(vertices, triangles).value();
+  Result<ShapeId3> onDynamic = world.createShape(body, {}, mesh);
+  ASSERT_FALSE(onDynamic.ok());
+  EXPECT_TRUE(mentions(onDynamic.error().message, "static")) << onDynamic.error().message;
+
+  EXPECT_FALSE(world.step(0.0f, 4).ok());
+  EXPECT_FALSE(world.step(1.0f / 60.0f, 0).ok());
+  EXPECT_FALSE(world.setLinearVelocity(body, {kNaN, 0, 0}).ok());
+  EXPECT_FALSE(world.applyLinearImpulse(body, {0, 0, 0}, {kNaN, 0, 0}).ok());
+  EXPECT_FALSE(world.setTransform(body, {0, 0, 0}, {0, 0, 0, 0}).ok());
+  EXPECT_EQ(world.stepCount(), 0u);
+}
+
+TEST(World3Api, StaleAndForeignHandlesAreCaught) {
+  World3 world = World3::create().value();
+  World3 other = World3::create().value();
+  EXPECT_NE(world.id(), other.id());
+  const BodyId3 body = world.createBody({.position = {1, 2, 3}}).value();
+  const ShapeId3 shape = world.createShape(body, {}, Sphere{{}, 0.5f}).value();
+  EXPECT_TRUE(world.isValid(body));
+  EXPECT_FALSE(other.isValid(body));
+  EXPECT_FALSE(other.setLinearVelocity(body, {1, 0, 0}).ok());
+  EXPECT_EQ(world.body(shape), body);
+  ASSERT_TRUE(world.destroyBody(body).ok());
+  EXPECT_FALSE(world.isValid(body));
+  EXPECT_FALSE(world.isValid(shape));
+  EXPECT_FALSE(world.destroyBody(body).ok());
+  EXPECT_EQ(world.position(body), (Vec3{}));  // neutral value
+  // The slot is reused with a new generation: the old handle stays stale.
+  const BodyId3 again = world.createBody({}).value();
+  EXPECT_EQ(again.index, body.index);
+  EXPECT_NE(again.generation, body.generation);
+  EXPECT_FALSE(world.isValid(body));
+  EXPECT_FALSE(world.isValid(BodyId3{}));
+}
+
+TEST(World3Api, MassPropertiesMatchClosedForms) {
+  World3 world = World3::create().value();
+  // A 1 x 2 x 3 m box of density 2: m = 12, I = m/12 (b^2 + c^2) about each axis.
+  const BodyId3 box = world.createBody({}).value();
+  ASSERT_TRUE(world.createShape(box, {.density = 2.0f}, makeBox3({0.5f, 1.0f, 1.5f}).value()).ok());
+  EXPECT_NEAR(world.mass(box), 12.0f, 1e-4f);
+  const Mat3 i = world.inertia(box);
+  EXPECT_NEAR(i.cx.x, 12.0f / 12.0f * (4.0f + 9.0f), 1e-3f);
+  EXPECT_NEAR(i.cy.y, 12.0f / 12.0f * (1.0f + 9.0f), 1e-3f);
+  EXPECT_NEAR(i.cz.z, 12.0f / 12.0f * (1.0f + 4.0f), 1e-3f);
+  EXPECT_NEAR(i.cx.y, 0.0f, 1e-4f);
+
+  // Two unit-density spheres of radius 0.5 at x = -1 and x = 2: the centre of mass halfway,
+  // inertia about y = 2 (2/5 m r^2 + m d^2) with d = 1.5, about x = 2 (2/5 m r^2).
+  const BodyId3 pair = world.createBody({.position = {10, 0, 0}}).value();
+  ASSERT_TRUE(world.createShape(pair, {}, Sphere{{-1, 0, 0}, 0.5f}).ok());
+  ASSERT_TRUE(world.createShape(pair, {}, Sphere{{2, 0, 0}, 0.5f}).ok());
+  const float m = 4.0f / 3.0f * kPi * 0.125f;
+  EXPECT_NEAR(world.mass(pair), 2.0f * m, 1e-5f);
+  EXPECT_NEAR(world.worldCenterOfMass(pair).x, 10.5f, 1e-5f);
+  const Mat3 ip = world.inertia(pair);
+  EXPECT_NEAR(ip.cx.x, 2.0f * 0.4f * m * 0.25f, 1e-5f);
+  EXPECT_NEAR(ip.cy.y, 2.0f * (0.4f * m * 0.25f + m * 2.25f), 1e-4f);
+
+  // Turned a quarter about z, the box's world inertia swaps its x and y entries.
+  ASSERT_TRUE(world.setTransform(box, {0, 0, 0}, Quat::fromAxisAngle({0, 0, 1}, 0.5f * kPi)).ok());
+  const Mat3 turned = world.inertia(box);
+  EXPECT_NEAR(turned.cx.x, i.cy.y, 1e-3f);
+  EXPECT_NEAR(turned.cy.y, i.cx.x, 1e-3f);
+}
+
+TEST(World3Api, BeginAndEndEvents) {
+  World3 world = World3::create().value();
+  const BodyId3 ground = world.createBody({.type = BodyType::staticBody}).value();
+  const ShapeId3 floor = world.createShape(ground, {}, makeBox3({5, 0.5f, 5}).value()).value();
+  const BodyId3 ball = world.createBody({.position = {0, 1.0f, 0}}).value();
+  const ShapeId3 shape = world.createShape(ball, {}, Sphere{{}, 0.25f}).value();
+  int begins = 0;
+  for (int i = 0; i < 60; ++i) {
+    ASSERT_TRUE(world.step().ok());
+    for (const ContactEvent3& e : world.events().begin) {
+      EXPECT_EQ(e.shapeA, floor);
+      EXPECT_EQ(e.shapeB, shape);
+      ++begins;
+    }
+    EXPECT_TRUE(world.events().end.empty());
+  }
+  EXPECT_EQ(begins, 1);
+  EXPECT_EQ(world.touchingContactCount(), 1u);
+  ASSERT_TRUE(world.destroyBody(ball).ok());
+  EXPECT_EQ(world.contactCount(), 0u);
+  ASSERT_TRUE(world.step().ok());
+  ASSERT_EQ(world.events().end.size(), 1u);
+  EXPECT_EQ(world.events().end[0].shapeB, shape);
+}
+
+}  // namespace
+}  // namespace quack
