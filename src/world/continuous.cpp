@@ -564,7 +564,7 @@ std::span<const std::uint32_t> ContinuousPhase::run(StepContext& step,
   while (!queue_.empty()) {
     // Many boxes changed since the index was built: index them again, so that queries do
     // not scan them one by one.
-    if (moved_.size() > 64 + indexed_ / 8) buildIndex();
+    if (moved_.size() > 32 + indexed_ / 32) buildIndex();
     std::pop_heap(queue_.begin(), queue_.end(), later);
     const ToiCandidate e = queue_.back();
     queue_.pop_back();

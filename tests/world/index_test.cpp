@@ -43,7 +43,9 @@ TEST(PairMap, AgreesWithAStandardMapThroughInsertsAndErases) {
       const std::uint32_t* v = map.find(k);
       const auto it = oracle.find(k);
       ASSERT_EQ(v != nullptr, it != oracle.end()) << "step " << i;
-      if (v != nullptr) ASSERT_EQ(*v, it->second) << "step " << i;
+      if (v != nullptr) {
+        ASSERT_EQ(*v, it->second) << "step " << i;
+      }
     }
     ASSERT_EQ(map.size(), oracle.size()) << "step " << i;
   }
