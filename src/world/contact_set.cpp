@@ -67,8 +67,7 @@ std::size_t ContactSet::touchingCount() const noexcept {
 }
 
 const std::uint32_t* ContactSet::find(std::uint32_t a, std::uint32_t b) const {
-  auto it = byPair_.find(pairKey(a, b));
-  return it == byPair_.end() ? nullptr : &it->second;
+  return byPair_.find(pairKey(a, b));
 }
 
 void ContactSet::destroy(std::uint32_t index, BodyStore& store, EventDispatcher& events,
@@ -117,7 +116,7 @@ void ContactSet::findNew(StepContext& step) {
     if (shapeA.def.sensor && shapeB.def.sensor) continue;  // sensors do not sense sensors
     // Jointed bodies do not collide unless the joint says so (JointDef::collideConnected).
     if (step.joints.blocksCollision(shapeA.body, shapeB.body)) continue;
-    if (byPair_.count(pairKey(sa, sb)) != 0) continue;
+    if (byPair_.contains(pairKey(sa, sb))) continue;
     std::uint32_t index;
     if (!free_.empty()) {
       index = free_.back();
@@ -145,7 +144,7 @@ void ContactSet::findNew(StepContext& step) {
     c.fn = findManifoldFn(shapeType(ga), shapeType(gb));
     c.friction = std::sqrt(store.shapes[sa].def.friction * store.shapes[sb].def.friction);
     c.restitution = maxf(store.shapes[sa].def.restitution, store.shapes[sb].def.restitution);
-    byPair_.emplace(pairKey(sa, sb), index);
+    byPair_.set(pairKey(sa, sb), index);
     store.shapes[sa].contacts.push_back(index);
     store.shapes[sb].contacts.push_back(index);
     ++count_;

@@ -6,9 +6,9 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
+#include "pair_map.hpp"
 #include "quack/broadphase/broad_phase.hpp"
 #include "quack/collision/manifold.hpp"
 
@@ -210,7 +210,7 @@ class ContactSet {
   std::vector<std::vector<std::uint32_t>> updateParts_;  // updateList_ gathered per range
   std::vector<Outcome> updateOutcome_;                   // and what each found
   std::vector<std::uint32_t> free_;
-  std::unordered_map<std::uint64_t, std::uint32_t> byPair_;
+  PairMap byPair_;
   std::vector<ProxyPair> pairScratch_;
   ContactChanges changes_;
   std::vector<ContactHead> heads_;

@@ -81,7 +81,7 @@ std::uint32_t ContinuousPhase::addParticipant(BodyStore& store, std::uint32_t bo
   fast_.push_back(f);
   participantOf_[body] = index;
   inMoved_.push_back(0);
-  if (!sorted_.empty()) markMoved(index);  // joined after the index was built
+  if (indexBuilt_) markMoved(index);  // joined after the index was built
   return index;
 }
 
@@ -91,17 +91,82 @@ void ContinuousPhase::markMoved(std::uint32_t index) {
   moved_.push_back(index);
 }
 
+void BoxGrid::build(std::span<const Item> items) {
+  count_ = items.size();
+  all_.assign(items.begin(), items.end());
+  float sum = 0.0f;
+  for (const Item& item : items)
+    sum += maxf(item.box.upper.x - item.box.lower.x, item.box.upper.y - item.box.lower.y);
+  const float mean = items.empty() ? 1.0f : sum / static_cast<float>(items.size());
+  inverseCell_ = 1.0f / maxf(1.5f * mean, 1.0e-3f);
+  large_.clear();
+  auto range = [&](const Aabb& b, std::int32_t& x0, std::int32_t& x1, std::int32_t& y0,
+                   std::int32_t& y1) {
+    x0 = cellOf(b.lower.x);
+    x1 = cellOf(b.upper.x);
+    y0 = cellOf(b.lower.y);
+    y1 = cellOf(b.upper.y);
+    return (std::int64_t{x1} - x0 + 1) * (std::int64_t{y1} - y0 + 1);
+  };
+  std::size_t count = 0;
+  for (const Item& item : items) {
+    std::int32_t x0, x1, y0, y1;
+    const std::int64_t cells = range(item.box, x0, x1, y0, y1);
+    if (cells > kMaxCells) {
+      large_.push_back(item);
+    } else {
+      count += static_cast<std::size_t>(cells);
+    }
+  }
+  std::uint32_t buckets = 16;
+  while (buckets < 2 * count)
+    buckets *= 2;
+  bucketMask_ = buckets - 1;
+  bucketStart_.assign(buckets + 1, 0);
+  entries_.resize(count);
+  auto forCells = [&](const Item& item, auto&& f) {
+    std::int32_t x0, x1, y0, y1;
+    if (range(item.box, x0, x1, y0, y1) > kMaxCells) return;
+    for (std::int32_t y = y0; y <= y1; ++y)
+      for (std::int32_t x = x0; x <= x1; ++x)
+        f(x, y, (x == x0 ? 1u : 0u) | (y == y0 ? 2u : 0u));
+  };
+  for (const Item& item : items)
+    forCells(item, [&](std::int32_t x, std::int32_t y, std::uint32_t) {
+      ++bucketStart_[bucketOf(x, y) + 1];
+    });
+  for (std::uint32_t b = 0; b < buckets; ++b)
+    bucketStart_[b + 1] += bucketStart_[b];
+  for (const Item& item : items)
+    forCells(item, [&](std::int32_t x, std::int32_t y, std::uint32_t first) {
+      entries_[bucketStart_[bucketOf(x, y)]++] = {item.box, item.id, x, y, first};
+    });
+  // Filling moved each bucket's start to the next one's: shift back.
+  for (std::uint32_t b = buckets; b > 0; --b)
+    bucketStart_[b] = bucketStart_[b - 1];
+  bucketStart_[0] = 0;
+}
+
+void ContinuousPhase::buildIndex() {
+  // Which participant is found from which cell never changes an answer (a search keeps the
+  // earliest impact by a total order, and re-checks are sorted).
+  gridItems_.clear();
+  for (std::uint32_t p = 0; p < fast_.size(); ++p)
+    gridItems_.push_back({fast_[p].box, p});
+  grid_.build(gridItems_);
+  for (std::uint32_t p : moved_)
+    inMoved_[p] = 0;
+  moved_.clear();
+  indexed_ = static_cast<std::uint32_t>(fast_.size());
+  indexBuilt_ = true;
+}
+
 template <class Visit>
 void ContinuousPhase::queryParticipants(Aabb box, Visit&& visit) const {
-  const auto first = static_cast<std::size_t>(
-      std::lower_bound(sortedLower_.begin(), sortedLower_.end(), box.lower.x - widest_) -
-      sortedLower_.begin());
-  // A participant not in moved_ still has the box it was sorted with.
-  for (std::size_t k = first; k < sortedBoxes_.size() && sortedLower_[k] <= box.upper.x; ++k) {
-    if (!overlaps(sortedBoxes_[k], box)) continue;
-    const std::uint32_t p = sorted_[k];
+  // A participant not in moved_ still has the box it was indexed with.
+  grid_.query(box, [&](std::uint32_t p) {
     if (!inMoved_[p]) visit(p);
-  }
+  });
   for (std::uint32_t p : moved_)
     if (overlaps(fast_[p].box, box)) visit(p);
 }
@@ -178,6 +243,8 @@ bool ContinuousPhase::findImpactWith(SearchScratch& scratch, const BodyStore& st
     if (listed_) {
       for (const ListedShape& l : listedShapes_)
         if (overlaps(l.box, f.box)) consider(l.shape);
+    } else if (stillGridded_) {
+      stillGrid_.query(f.box, consider);
     } else {
       broadPhase.queryAabb(f.box, [&](ProxyId, std::uint64_t user) {
         consider(static_cast<std::uint32_t>(user));
@@ -328,8 +395,8 @@ std::span<const std::uint32_t> ContinuousPhase::run(StepContext& step,
   if (!def.enableContinuous) return pushed_;
   fast_.clear();
   sorted_.clear();
-  sortedLower_.clear();
-  sortedBoxes_.clear();
+  indexBuilt_ = false;
+  indexed_ = 0;
   waitNodes_.clear();
   moved_.clear();
   inMoved_.clear();
@@ -368,6 +435,18 @@ std::span<const std::uint32_t> ContinuousPhase::run(StepContext& step,
       listedShapes_.push_back({s, broadPhase.fatBox(shape.proxy)});
     }
   }
+  const std::uint32_t stillShapes = broadPhase.proxyCount() - participantShapes;
+  stillGridded_ = !listed_ && 2 * stillShapes <= broadPhase.proxyCount();
+  if (stillGridded_) {
+    gridItems_.clear();
+    for (std::uint32_t s = 0; s < store.shapes.size(); ++s) {
+      if (!store.shapeAlive(s)) continue;
+      const Shape& shape = store.shapes[s];
+      if (shape.def.sensor || participantOf_[shape.body] != kNoParticipant) continue;
+      gridItems_.push_back({broadPhase.tightBox(shape.proxy), s});
+    }
+    stillGrid_.build(gridItems_);
+  }
   sorted_.resize(fast_.size());
   for (std::uint32_t i = 0; i < fast_.size(); ++i)
     sorted_[i] = i;
@@ -376,15 +455,7 @@ std::span<const std::uint32_t> ContinuousPhase::run(StepContext& step,
     const float lx = fast_[x].box.lower.x, ly = fast_[y].box.lower.x;
     return lx != ly ? lx < ly : x < y;
   });
-  sortedLower_.resize(sorted_.size());
-  sortedBoxes_.resize(sorted_.size());
-  widest_ = 0.0f;
-  for (std::size_t k = 0; k < sorted_.size(); ++k) {
-    const Aabb& box = fast_[sorted_[k]].box;
-    sortedLower_[k] = box.lower.x;
-    sortedBoxes_[k] = box;
-    widest_ = maxf(widest_, box.upper.x - box.lower.x);
-  }
+  buildIndex();
 
   // A min-heap by time (std's heap functions keep the largest on top: invert the order).
   auto later = [](const ToiCandidate& x, const ToiCandidate& y) { return earlier(y, x); };
@@ -412,7 +483,7 @@ std::span<const std::uint32_t> ContinuousPhase::run(StepContext& step,
   // Sweep-and-prune restores its order lazily, in its first query after changes (the
   // solver has just moved proxies): one query here, so that those on the workers only read.
   // (Any valid box flushes it; an empty one at the origin always is valid.)
-  if (tasks.workers() > 1 && !listed_)
+  if (tasks.workers() > 1 && !listed_ && !stillGridded_)
     broadPhase.queryAabb(Aabb{}, [](ProxyId, std::uint64_t) { return false; });
   tasks.parallelFor(static_cast<int>(fast_.size()), kMinSearchesPerTask,
                     [&](int begin, int end, int participant) {
@@ -491,6 +562,9 @@ std::span<const std::uint32_t> ContinuousPhase::run(StepContext& step,
 
   std::vector<std::uint32_t> changed;
   while (!queue_.empty()) {
+    // Many boxes changed since the index was built: index them again, so that queries do
+    // not scan them one by one.
+    if (moved_.size() > 32 + indexed_ / 32) buildIndex();
     std::pop_heap(queue_.begin(), queue_.end(), later);
     const ToiCandidate e = queue_.back();
     queue_.pop_back();

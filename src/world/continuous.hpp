@@ -4,6 +4,7 @@
 // time-ordered handling of the impacts (the execution phase of docs/background.md).
 // docs/continuous.md, "In the world", explains the choices.
 
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -61,6 +62,74 @@ struct ToiCandidate {
   bool stop = false;  // already touching at the start of a continued sweep: stop there
 };
 
+// Boxes with ids, indexed for overlap queries: a uniform grid of square cells hashed into
+// buckets (one array, filled by counting), rebuilt rather than updated. A box covering more
+// than kMaxCells cells is kept in a list that every query scans. The cell side is about the
+// typical box, so a box covers a few cells. Queries report each overlapping box once, in no
+// particular order (callers must not depend on it).
+class BoxGrid {
+ public:
+  static constexpr std::int64_t kMaxCells = 16;
+  struct Item {
+    Aabb box;
+    std::uint32_t id;
+  };
+  void build(std::span<const Item> items);
+  std::size_t size() const noexcept { return count_; }
+  // visit(id) for every item whose box overlaps `box`, once each.
+  template <class Visit>
+  void query(Aabb box, Visit&& visit) const {
+    const std::int32_t x0 = cellOf(box.lower.x), x1 = cellOf(box.upper.x);
+    const std::int32_t y0 = cellOf(box.lower.y), y1 = cellOf(box.upper.y);
+    const std::int64_t cells = (std::int64_t{x1} - x0 + 1) * (std::int64_t{y1} - y0 + 1);
+    if (cells > static_cast<std::int64_t>(entries_.size() / 2 + 16)) {
+      // More cells than entries: scan the items instead (each once).
+      for (const Item& item : all_)
+        if (overlaps(item.box, box)) visit(item.id);
+      return;
+    }
+    for (const Item& item : large_)
+      if (overlaps(item.box, box)) visit(item.id);
+    for (std::int32_t y = y0; y <= y1; ++y) {
+      for (std::int32_t x = x0; x <= x1; ++x) {
+        const std::uint32_t b = bucketOf(x, y);
+        for (std::uint32_t k = bucketStart_[b]; k < bucketStart_[b + 1]; ++k) {
+          const Entry& e = entries_[k];
+          if (e.x != x || e.y != y || !overlaps(e.box, box)) continue;
+          // Each item once: from the first cell that both its box and the query cover.
+          if (((e.first & 1u) == 0 && x != x0) || ((e.first & 2u) == 0 && y != y0)) continue;
+          visit(e.id);
+        }
+      }
+    }
+  }
+
+ private:
+  struct Entry {
+    Aabb box;
+    std::uint32_t id;
+    std::int32_t x, y;    // the cell
+    std::uint32_t first;  // bit 0: the box's first column; bit 1: its first row
+  };
+  std::int32_t cellOf(float v) const noexcept {
+    // Clamped well inside int32, so that a range's size always fits in 64 bits.
+    const float c = std::floor(v * inverseCell_);
+    return static_cast<std::int32_t>(c < -1.0e9f ? -1.0e9f : (c > 1.0e9f ? 1.0e9f : c));
+  }
+  std::uint32_t bucketOf(std::int32_t x, std::int32_t y) const noexcept {
+    return ((static_cast<std::uint32_t>(x) * 0x9E3779B1u) ^
+            (static_cast<std::uint32_t>(y) * 0x85EBCA77u)) &
+           bucketMask_;
+  }
+  std::vector<std::uint32_t> bucketStart_;  // bucket b's entries: [start[b], start[b + 1])
+  std::vector<Entry> entries_;
+  std::vector<Item> large_;
+  std::vector<Item> all_;
+  std::uint32_t bucketMask_ = 0;
+  std::size_t count_ = 0;
+  float inverseCell_ = 1.0f;
+};
+
 class ContinuousPhase {
  public:
   /// Handles the impacts of the bodies the solver flagged fast, in time order.
@@ -105,8 +174,8 @@ class ContinuousPhase {
   // The participants whose swept boxes overlap `box` (not in any order).
   template <class Visit>
   void queryParticipants(Aabb box, Visit&& visit) const;
-  // A participant's swept box changed (or it is new): it leaves the sorted index for the
-  // short list that queries scan in full.
+  // A participant's swept box changed (or it is new): it leaves the grid for the short
+  // list that queries scan in full.
   void markMoved(std::uint32_t index);
 
   // Two dynamic bodies, neither a bullet, that touch at the start of the step (a manifold
@@ -119,16 +188,19 @@ class ContinuousPhase {
   const JointSet* joints_ = nullptr;      // during run
   std::vector<FastBody> fast_;
   std::vector<std::uint32_t> participantOf_;  // per body index: its FastBody, or kNoParticipant
-  // The participants' swept boxes, indexed for overlap queries: sorted by lower x at the
-  // start of the phase (a query scans the lower-x window [lower - widest, upper]); those
-  // whose boxes changed since are in moved_ and scanned one by one. A tree would spend a
-  // large share of the phase on inserts (1,000 bullets); one sort is cheap.
-  std::vector<std::uint32_t> sorted_;
-  std::vector<float> sortedLower_;  // lower x of sorted_'s boxes, for the binary search
-  std::vector<Aabb> sortedBoxes_;   // sorted_'s boxes as they were sorted, scanned in place
+  // The participants' swept boxes, indexed for overlap queries: a BoxGrid built at the
+  // start of the phase and again whenever many boxes have changed since (buildIndex); those
+  // in moved_ (changed since the last build) are scanned one by one. An index sorted along x
+  // scanned a window as wide as the widest box (a 40 m paddle's sweep: every participant)
+  // and a whole column of falling bodies.
+  void buildIndex();
+  std::vector<std::uint32_t> sorted_;  // participants by swept box lower x (first searches)
+  BoxGrid grid_;                       // participants [0, indexed_) as they were at the last build
+  std::vector<BoxGrid::Item> gridItems_;
+  std::uint32_t indexed_ = 0;
+  bool indexBuilt_ = false;
   std::vector<std::uint32_t> moved_;
   std::vector<std::uint8_t> inMoved_;
-  float widest_ = 0.0f;                    // widest box in sorted_, metres
   std::vector<ToiCandidate> queue_;        // a binary heap, earliest on top
   std::vector<SearchScratch> scratch_{1};  // per worker
   std::vector<ToiCandidate> first_;        // the first searches' results, per participant
@@ -156,6 +228,14 @@ class ContinuousPhase {
   static constexpr std::uint32_t kMaxListedShapes = 64;
   std::vector<ListedShape> listedShapes_;
   bool listed_ = false;
+  // When the participants hold at least half the broad phase's proxies (a churning pile,
+  // where nearly every body is fast), the shapes outside them are put in a grid of their
+  // tight boxes at the start of the phase, and searches query it instead of the broad
+  // phase: the tree's query would find the participants' own neighbours, every one of them
+  // skipped. It finds what the tree's query finds (the same tight boxes, the same overlap
+  // test), so the answers are the same bits.
+  BoxGrid stillGrid_;
+  bool stillGridded_ = false;
 };
 
 }  // namespace quack::detail

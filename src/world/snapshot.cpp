@@ -1130,8 +1130,9 @@ Status SnapshotCodec::readMotion(std::span<const std::uint8_t> motion, std::uint
     c.fn = findManifoldFn(shapeType(sa.geometry), shapeType(sb.geometry));
     c.friction = std::sqrt(sa.def.friction * sb.def.friction);
     c.restitution = maxf(sa.def.restitution, sb.def.restitution);
-    cs.byPair_[(static_cast<std::uint64_t>(std::min(c.shapeA, c.shapeB)) << 32) |
-               std::max(c.shapeA, c.shapeB)] = i;
+    cs.byPair_.set((static_cast<std::uint64_t>(std::min(c.shapeA, c.shapeB)) << 32) |
+                       std::max(c.shapeA, c.shapeB),
+                   i);
     ++cs.count_;
   }
   cs.rebuildHeads();
