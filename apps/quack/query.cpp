@@ -305,6 +305,15 @@ Result<Sweep3> parseSweep3(const json& q, const char* key, Vec3 localCenter) {
   return makeSweep3(localCenter, *from, *to);
 }
 
+// Op toi's `target`: metres, kToiTargetSeparation when absent.
+Result<float> parseToiTarget(const json& q) {
+  if (!q.contains("target")) return kToiTargetSeparation;
+  const json& v = q.at("target");
+  if (!isLengthOption(v))
+    return fail("target: must be a number >= 0 within the coordinate limit 1e9 m");
+  return v.get<float>();
+}
+
 // The pose of a static mesh in op toi: its sweep's `from` when `key` is given (its `to` must
 // be the same pose), else the origin.
 Result<Transform3> parseStaticSweep3(const json& q, const char* key) {
@@ -348,16 +357,10 @@ QueryAnswer answerMesh3(const json& id, const std::string& op, const json& q, fl
     if (!worldFromMesh) return rejected(id, worldFromMesh.error().message);
     Result<Sweep3> sweep = parseSweep3(q, meshIsA ? "sweepB" : "sweepA", proxy.center());
     if (!sweep) return rejected(id, sweep.error().message);
-    float target = kToiTargetSeparation;
-    if (q.contains("target")) {
-      const json& v = q.at("target");
-      if (!isLengthOption(v)) {
-        return rejected(id, "target: must be a number >= 0 within the coordinate limit 1e9 m");
-      }
-      target = v.get<float>();
-    }
+    Result<float> target = parseToiTarget(q);
+    if (!target) return rejected(id, target.error().message);
     // The answer (status, t, triangle) reads the same either way round.
-    out.update(toJson(computeToiMesh(*mesh, *worldFromMesh, proxy, *sweep, 1.0f, target)));
+    out.update(toJson(computeToiMesh(*mesh, *worldFromMesh, proxy, *sweep, 1.0f, *target)));
     return finished(id, out);
   }
   const char* meshPoseKey = meshIsA ? "pa" : "pb";
@@ -450,15 +453,9 @@ QueryAnswer answerParsed3(const json& id, const std::string& op, const json& q, 
     if (!sweepA) return rejected(id, sweepA.error().message);
     Result<Sweep3> sweepB = parseSweep3(q, "sweepB", proxyB.center());
     if (!sweepB) return rejected(id, sweepB.error().message);
-    float target = kToiTargetSeparation;
-    if (q.contains("target")) {
-      const json& v = q.at("target");
-      if (!isLengthOption(v)) {
-        return rejected(id, "target: must be a number >= 0 within the coordinate limit 1e9 m");
-      }
-      target = v.get<float>();
-    }
-    out.update(toJson(computeToi(proxyA, *sweepA, proxyB, *sweepB, 1.0f, target)));
+    Result<float> target = parseToiTarget(q);
+    if (!target) return rejected(id, target.error().message);
+    out.update(toJson(computeToi(proxyA, *sweepA, proxyB, *sweepB, 1.0f, *target)));
     return finished(id, out);
   }
   if (op == "overlap") {
@@ -606,15 +603,9 @@ QueryAnswer answerParsed(const json& q) {
     if (!sweepA) return rejected(id, sweepA.error().message);
     Result<Sweep> sweepB = parseSweep("sweepB", shapeB);
     if (!sweepB) return rejected(id, sweepB.error().message);
-    float target = kToiTargetSeparation;
-    if (q.contains("target")) {
-      const json& v = q.at("target");
-      if (!isLengthOption(v)) {
-        return rejected(id, "target: must be a number >= 0 within the coordinate limit 1e9 m");
-      }
-      target = v.get<float>();
-    }
-    out.update(toJson(computeToi(shapeA, *sweepA, shapeB, *sweepB, 1.0f, target)));
+    Result<float> target = parseToiTarget(q);
+    if (!target) return rejected(id, target.error().message);
+    out.update(toJson(computeToi(shapeA, *sweepA, shapeB, *sweepB, 1.0f, *target)));
     return finished(id, out);
   }
   if (op == "overlap") {
