@@ -19,6 +19,8 @@ namespace {
 using testing::grid;
 
 using testing::closedBox;
+using testing::ConvexKinds;
+using testing::rollingField;
 
 // The closest front hit over every triangle in order, in the mesh frame as rayCastMesh
 // works, carried back to the world.
@@ -158,16 +160,10 @@ TEST(Mesh3Query, BoxDroppedOntoAFlatGridHitsAtTheGap) {
 TEST(Mesh3Query, RandomShapeCastsAgreeWithEveryTriangle) {
   std::mt19937 rng(9);
   std::uniform_real_distribution<float> u(-1, 1);
-  const Mesh3 field = grid(6, 3, [](float x, float z) { return 0.4f * std::sin(1.3f * x + z); });
+  const Mesh3 field = rollingField();
   const Mesh3 box = closedBox({1.5f, 0.7f, 1.1f});
-  // Proxies point into their shapes: the shapes live as long as the proxies.
-  const Sphere sphere = makeSphere({0, 0, 0}, 0.3f).value();
-  const Capsule3 capsule = makeCapsule3({-0.4f, 0, 0}, {0.4f, 0, 0}, 0.15f).value();
-  const Hull3 hull = makeBox3({0.3f, 0.2f, 0.25f}).value();
-  const Triangle3 triangle =
-      makeTriangle3({-0.4f, 0, -0.4f}, {0.4f, 0, -0.4f}, {0, 0, 0.5f}).value();
-  const std::vector<ShapeProxy3> shapes = {makeProxy(sphere), makeProxy(capsule), makeProxy(hull),
-                                           makeProxy(triangle)};
+  const ConvexKinds kinds;
+  const std::vector<ShapeProxy3>& shapes = kinds.proxies;
   int hits = 0;
   for (int q = 0; q < 240; ++q) {
     const Mesh3& m = q % 2 == 0 ? field : box;
@@ -196,7 +192,7 @@ TEST(Mesh3Query, RandomShapeCastsAgreeWithEveryTriangle) {
 TEST(Mesh3Query, RandomOverlapAndDistanceAgreeWithEveryTriangle) {
   std::mt19937 rng(13);
   std::uniform_real_distribution<float> u(-1, 1);
-  const Mesh3 field = grid(6, 3, [](float x, float z) { return 0.4f * std::sin(1.3f * x + z); });
+  const Mesh3 field = rollingField();
   const Mesh3 box = closedBox({1.5f, 0.7f, 1.1f});
   const Sphere sphere = makeSphere({0, 0, 0}, 0.3f).value();
   const Capsule3 capsule = makeCapsule3({-0.4f, 0, 0}, {0.4f, 0, 0}, 0.15f).value();

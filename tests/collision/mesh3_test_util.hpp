@@ -5,7 +5,10 @@
 #include <cstdint>
 #include <vector>
 
+#include <cmath>
+
 #include "quack/collision/mesh3.hpp"
+#include "quack/collision/proxy3.hpp"
 
 namespace quack::testing {
 
@@ -54,5 +57,29 @@ inline Mesh3 closedBox(Vec3 h) {
   }
   return makeMesh3(v, t).value();
 }
+
+// The rolling field the random mesh tests use: a 6 x 6 grid over [-3, 3]^2.
+inline Mesh3 rollingField() {
+  return grid(6, 3, [](float x, float z) { return 0.4f * std::sin(1.3f * x + z); });
+}
+
+// One shape of each convex kind the random mesh tests move about, and their proxies. The
+// proxies point into the shapes, so the set is neither copied nor moved.
+struct ConvexKinds {
+  explicit ConvexKinds(Vec3 sphereCenter = {})
+      : sphere(makeSphere(sphereCenter, 0.3f).value()),
+        capsule(makeCapsule3({-0.4f, 0, 0}, {0.4f, 0, 0}, 0.15f).value()),
+        hull(makeBox3({0.3f, 0.2f, 0.25f}).value()),
+        triangle(makeTriangle3({-0.4f, 0, -0.4f}, {0.4f, 0, -0.4f}, {0, 0, 0.5f}).value()),
+        proxies{makeProxy(sphere), makeProxy(capsule), makeProxy(hull), makeProxy(triangle)} {}
+  ConvexKinds(const ConvexKinds&) = delete;
+  ConvexKinds& operator=(const ConvexKinds&) = delete;
+
+  Sphere sphere;
+  Capsule3 capsule;
+  Hull3 hull;
+  Triangle3 triangle;
+  std::vector<ShapeProxy3> proxies;
+};
 
 }  // namespace quack::testing

@@ -18,7 +18,9 @@ namespace quack {
 namespace {
 
 using testing::closedBox;
+using testing::ConvexKinds;
 using testing::grid;
+using testing::rollingField;
 
 const Transform3 kIdentity{};
 
@@ -226,16 +228,10 @@ TEST(Mesh3Toi, OneSidedOverlappedAndInvalid) {
 TEST(Mesh3Toi, RandomRotatingSweepsAgreeWithEveryTriangle) {
   std::mt19937 rng(17);
   std::uniform_real_distribution<float> u(-1, 1);
-  const Mesh3 field = grid(6, 3, [](float x, float z) { return 0.4f * std::sin(1.3f * x + z); });
+  const Mesh3 field = rollingField();
   const Mesh3 box = closedBox({1.5f, 0.7f, 1.1f});
-  // Proxies point into their shapes: the shapes live as long as the proxies.
-  const Sphere sphere = makeSphere({0.1f, 0, 0}, 0.3f).value();
-  const Capsule3 capsule = makeCapsule3({-0.4f, 0, 0}, {0.4f, 0, 0}, 0.15f).value();
-  const Hull3 hull = makeBox3({0.3f, 0.2f, 0.25f}).value();
-  const Triangle3 triangle =
-      makeTriangle3({-0.4f, 0, -0.4f}, {0.4f, 0, -0.4f}, {0, 0, 0.5f}).value();
-  const std::vector<ShapeProxy3> shapes = {makeProxy(sphere), makeProxy(capsule), makeProxy(hull),
-                                           makeProxy(triangle)};
+  const ConvexKinds kinds(Vec3{0.1f, 0, 0});
+  const std::vector<ShapeProxy3>& shapes = kinds.proxies;
   int hits = 0, separated = 0, overlapped = 0;
   const int n = 240 * testing3::testScale();
   for (int q = 0; q < n; ++q) {
@@ -290,15 +286,10 @@ TEST(Mesh3Penetration, CubeSunkIntoAFlatGridIsItsDepthUp) {
 TEST(Mesh3Penetration, RandomPosesAgreeWithEveryTriangle) {
   std::mt19937 rng(19);
   std::uniform_real_distribution<float> u(-1, 1);
-  const Mesh3 field = grid(6, 3, [](float x, float z) { return 0.4f * std::sin(1.3f * x + z); });
+  const Mesh3 field = rollingField();
   const Mesh3 box = closedBox({1.5f, 0.7f, 1.1f});
-  const Sphere sphere = makeSphere({0, 0, 0}, 0.3f).value();
-  const Capsule3 capsule = makeCapsule3({-0.4f, 0, 0}, {0.4f, 0, 0}, 0.15f).value();
-  const Hull3 hull = makeBox3({0.3f, 0.2f, 0.25f}).value();
-  const Triangle3 triangle =
-      makeTriangle3({-0.4f, 0, -0.4f}, {0.4f, 0, -0.4f}, {0, 0, 0.5f}).value();
-  const std::vector<ShapeProxy3> shapes = {makeProxy(sphere), makeProxy(capsule), makeProxy(hull),
-                                           makeProxy(triangle)};
+  const ConvexKinds kinds;
+  const std::vector<ShapeProxy3>& shapes = kinds.proxies;
   int overlaps = 0;
   const int n = 300 * testing3::testScale();
   for (int q = 0; q < n; ++q) {
