@@ -101,34 +101,36 @@ json toJson(const ToiOutput3& t) {
   return {{"status", toString(t.status)}, {"t", t.t}};
 }
 
-json toJson(const MeshRayHit3& r) {
-  json out = toJson(static_cast<const RayHit3&>(r));
-  out["triangle"] = r.triangle;
+// A mesh answer: the convex answer it extends, and the triangle it names.
+namespace {
+
+template <class Convex, class MeshAnswer>
+json withTriangle(const MeshAnswer& a) {
+  json out = toJson(static_cast<const Convex&>(a));
+  out["triangle"] = a.triangle;
   return out;
+}
+
+}  // namespace
+
+json toJson(const MeshRayHit3& r) {
+  return withTriangle<RayHit3>(r);
 }
 
 json toJson(const MeshDistanceOutput3& d) {
-  json out = toJson(static_cast<const DistanceOutput3&>(d));
-  out["triangle"] = d.triangle;
-  return out;
+  return withTriangle<DistanceOutput3>(d);
 }
 
 json toJson(const MeshShapeCastOutput3& c) {
-  json out = toJson(static_cast<const ShapeCastOutput3&>(c));
-  out["triangle"] = c.triangle;
-  return out;
+  return withTriangle<ShapeCastOutput3>(c);
 }
 
 json toJson(const MeshToiOutput3& t) {
-  json out = toJson(static_cast<const ToiOutput3&>(t));
-  out["triangle"] = t.triangle;
-  return out;
+  return withTriangle<ToiOutput3>(t);
 }
 
 json toJson(const MeshPenetrationOutput3& p) {
-  json out = toJson(static_cast<const PenetrationOutput3&>(p));
-  out["triangle"] = p.triangle;
-  return out;
+  return withTriangle<PenetrationOutput3>(p);
 }
 
 json toJson(const std::vector<MeshContact3>& contacts) {
