@@ -27,6 +27,10 @@ struct Body3 {
   float sleepThreshold = 0.05f;
   float sleepTime = 0.0f;  // seconds at rest
   float maxExtent = 0.0f;  // farthest shape point from the centre of mass, m
+  // The thinnest of its shapes (a sphere's or capsule's radius, a hull's inscribed ball
+  // about its centroid, 0 for a triangle): moving more than half of it in a step makes the
+  // body fast, for continuous collision.
+  float minExtent = 0.0f;
   bool enableSleep = true;
   bool awake = true;
   // Counts teleports and mass changes: a contact recycles its manifold only while both
@@ -70,8 +74,9 @@ class BodyStore3 {
   }
   // Moves the body's proxies to its present pose (displacement: its centre's motion).
   void moveProxies(std::uint32_t body, Vec3 displacement);
-  // The shape's box, world frame, at the body's present pose.
+  // The shape's box, world frame, at the body's present pose (or at worldFromBody).
   Aabb3 shapeBox(std::uint32_t shape) const;
+  Aabb3 shapeBox(std::uint32_t shape, Transform3 worldFromBody) const;
 
   IdPool bodyIds, shapeIds;
   std::vector<Body3> bodies;

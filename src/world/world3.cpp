@@ -8,6 +8,7 @@
 
 #include "body_store3.hpp"
 #include "contact_set3.hpp"
+#include "continuous3.hpp"
 #include "islands3.hpp"
 #include "quack/world/world.hpp"
 #include "solver3.hpp"
@@ -25,6 +26,7 @@ struct WorldState3 {
   BodyStore3 store;
   ContactSet3 contacts;
   Solver3 solver;
+  Continuous3 continuous;
   Islands3 islands;
   StepEvents3 events;
   std::vector<ContactEvent3> pendingEnds;  // of shapes destroyed since the last step
@@ -383,7 +385,8 @@ Status World3::step() {
 }
 
 // The step, top to bottom: new contacts from the broad phase, manifolds for contacts with
-// an awake body, islands woken by touch, the soft-step solver, sleep.
+// an awake body, islands woken by touch, the soft-step solver, continuous collision of fast
+// bodies against static geometry, sleep.
 Status World3::step(float dt, int substeps) {
   if (!(dt > 0.0f && dt <= kMaxTimeStep)) {
     return fail("step: dt: must be in (0, kMaxTimeStep], got " + str(dt));
@@ -398,7 +401,9 @@ Status World3::step(float dt, int substeps) {
   w.contacts.findNew(w.store);
   w.contacts.update(w.store, w.def, dt, w.events);
   w.islands.wakeTouched(w.store, w.contacts);
+  if (w.def.enableContinuous) w.continuous.recordStarts(w.store);
   w.solver.step(w.store, w.contacts, w.def, dt, substeps);
+  if (w.def.enableContinuous) w.continuous.solve(w.store);
   if (w.def.enableSleep) w.islands.sleepRested(w.store, w.contacts, dt);
   ++w.stepCount;
   return {};
