@@ -2,9 +2,13 @@
 a ball and a box at rest on a box and on a mesh (heights from the geometry), mass and
 impulses against the formulas for a ball, stale and foreign handles, every bad argument
 named, the same bits on two runs, begin and end events, the bulk state, and the GIL
-released while a world steps."""
+released while a world steps; docs/python.md's example run and typed."""
 
 import math
+import os
+import re
+import subprocess
+import sys
 import threading
 
 import numpy as np
@@ -433,3 +437,44 @@ def test_handles_compare_and_hash():
     assert len({a, w.bodies[0]}) == 1
     assert repr(a) == "quack.d3.BodyHandle(index=0, generation=1)"
     assert repr(w) == "quack.d3.World(bodies=1, shapes=0, steps=0)"
+
+
+def _doc_block(source_dir):
+    """The first Python block of docs/python.md's "The 3D world" section."""
+    with open(os.path.join(source_dir, "docs", "python.md")) as f:
+        text = f.read()
+    section = text[text.index("## The 3D world: `quack.d3.World`"):]
+    return re.search(r"```python\n(.*?)```", section, re.S).group(1)
+
+
+def test_the_doc_example_runs_and_agrees_with_the_closed_forms(source_dir):
+    run = subprocess.run([sys.executable, "-c", _doc_block(source_dir)], capture_output=True,
+                         text=True, check=False)
+    assert run.returncode == 0, run.stderr
+    m = re.search(r"landed in the step ending at (\d\.\d+) s; sqrt\(2 h / g\) = (\d\.\d+) s",
+                  run.stdout)
+    landed, closed = float(m.group(1)), float(m.group(2))
+    assert closed == pytest.approx(math.sqrt(2 * 1.75 / G), abs=1e-3)
+    assert landed - DT < closed <= landed + 1e-3  # the closed-form touch within that step
+    m = re.search(r"resting at y = (-?\d\.\d+) m, awake: (\w+), mass (\d+\.\d+) kg", run.stdout)
+    assert float(m.group(1)) == pytest.approx(0.25, abs=0.005)
+    assert m.group(2) == "False"
+    assert float(m.group(3)) == pytest.approx(1000 * 4 / 3 * math.pi * 0.25**3, abs=0.01)
+    assert run.stdout.splitlines()[-1] == "(2, 13)"
+
+
+def test_mypy_strict_types_the_doc_example_and_catches_a_wrong_call(source_dir, tmp_path):
+    pytest.importorskip("mypy", reason="mypy is not installed (Debian python3-mypy)")
+    good = tmp_path / "good.py"
+    good.write_text(_doc_block(source_dir))
+    bad = tmp_path / "bad.py"
+    bad.write_text("from quack import d3\nw = d3.World()\nw.step(substeps='4')\n"
+                   "p: float = w.create_body().position\n")
+    env = dict(os.environ, MYPYPATH=os.path.join(source_dir, "python", "stubs"))
+    for path, code in ((good, 0), (bad, 1)):
+        run = subprocess.run([sys.executable, "-m", "mypy", "--strict", "--no-incremental",
+                              "--cache-dir", str(tmp_path / "cache"), str(path)],
+                             capture_output=True, text=True, env=env, check=False)
+        assert run.returncode == code, run.stdout + run.stderr
+    assert 'bad.py:3: error: Argument "substeps"' in run.stdout
+    assert "bad.py:4: error: Incompatible types in assignment" in run.stdout
