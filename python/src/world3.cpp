@@ -368,9 +368,9 @@ del _t, _collections
             const Mat3 i = liveWorld(b).world.inertia(b.id);
             // Mat3 keeps columns; the tuple is rows (the tensor is symmetric, but rows read
             // as the written matrix).
-            return py::make_tuple(py::make_tuple(double{i.cx.x}, double{i.cy.x}, double{i.cz.x}),
-                                  py::make_tuple(double{i.cx.y}, double{i.cy.y}, double{i.cz.y}),
-                                  py::make_tuple(double{i.cx.z}, double{i.cy.z}, double{i.cz.z}));
+            return py::make_tuple(toTuple3(Vec3{i.cx.x, i.cy.x, i.cz.x}),
+                                  toTuple3(Vec3{i.cx.y, i.cy.y, i.cz.y}),
+                                  toTuple3(Vec3{i.cx.z, i.cy.z, i.cz.z}));
           },
           "Inertia tensor about the centre of mass, world axes, kg m^2: three rows.")
       .def_property_readonly(
