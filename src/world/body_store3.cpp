@@ -114,6 +114,7 @@ void BodyStore3::moveProxies(std::uint32_t body, Vec3 displacement) {
 // 1 kg body that does not turn, as the 2D world's does.
 void BodyStore3::updateMass(std::uint32_t index) {
   Body3& b = bodies[index];
+  ++b.poseVersion;  // the centre of mass may move: contacts get new manifolds
   b.mass = b.invMass = 0.0f;
   b.inertiaLocal = b.invInertiaLocal = Mat3{};
   b.localCenter = Vec3{};

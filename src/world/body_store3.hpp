@@ -29,6 +29,9 @@ struct Body3 {
   float maxExtent = 0.0f;  // farthest shape point from the centre of mass, m
   bool enableSleep = true;
   bool awake = true;
+  // Counts teleports and mass changes: a contact recycles its manifold only while both
+  // bodies' counts are what they were when it was computed.
+  std::uint32_t poseVersion = 0;
   std::vector<std::uint32_t> shapes;  // in creation order
   std::uint64_t userData = 0;
 

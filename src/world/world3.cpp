@@ -69,6 +69,9 @@ Status checkDef(const WorldDef3& d) {
   if (!(d.speculativeDistance >= 0.0f && d.speculativeDistance <= 1.0f)) {
     return fail("WorldDef3::speculativeDistance: must be in [0, 1] m");
   }
+  if (!(d.contactRecycleDistance >= 0.0f && d.contactRecycleDistance <= 1.0f)) {
+    return fail("WorldDef3::contactRecycleDistance: must be in [0, 1] m");
+  }
   if (!(d.aabbMargin >= d.speculativeDistance && std::isfinite(d.aabbMargin))) {
     return fail("WorldDef3::aabbMargin: must be finite and >= speculativeDistance");
   }
@@ -309,6 +312,7 @@ Status World3::setTransform(BodyId3 body, Vec3 position, Quat rotation) {
   b.center = transformPoint(b.transform(), b.localCenter);
   b.awake = true;
   b.sleepTime = 0.0f;
+  ++b.poseVersion;  // its contacts get new manifolds
   // A teleport: no displacement to stretch the fat boxes by.
   state_->store.moveProxies(body.index, Vec3{});
   return {};
@@ -392,7 +396,7 @@ Status World3::step(float dt, int substeps) {
   w.events.end.assign(w.pendingEnds.begin(), w.pendingEnds.end());
   w.pendingEnds.clear();
   w.contacts.findNew(w.store);
-  w.contacts.update(w.store, w.def.speculativeDistance, dt, w.events);
+  w.contacts.update(w.store, w.def, dt, w.events);
   w.islands.wakeTouched(w.store, w.contacts);
   w.solver.step(w.store, w.contacts, w.def, dt, substeps);
   if (w.def.enableSleep) w.islands.sleepRested(w.store, w.contacts, dt);

@@ -35,6 +35,8 @@ TEST(World3Api, BadWorldDefsAreRefusedNamingTheField) {
       {{.restitutionThreshold = -1.0f}, "restitutionThreshold"},
       {{.speculativeDistance = 2.0f}, "speculativeDistance"},
       {{.aabbMargin = 0.001f}, "aabbMargin"},
+      {{.contactRecycleDistance = kNaN}, "contactRecycleDistance"},
+      {{.contactRecycleDistance = -0.1f}, "contactRecycleDistance"},
   };
   for (const Case& c : cases) {
     Result<World3> made = World3::create(c.def);
