@@ -447,7 +447,7 @@ del _t, _collections
                        py::handle contactHertz, py::handle contactDampingRatio,
                        py::handle contactPushMaxSpeed, py::handle restitutionThreshold,
                        py::handle speculativeDistance, py::handle aabbMargin,
-                       py::handle enableSleep) {
+                       py::handle contactRecycleDistance, py::handle enableSleep) {
              WorldDef3 def;
              def.gravity = toVector3(gravity, "gravity", "m/s^2");
              def.timeStep = toFloat(dt, "dt");
@@ -458,6 +458,8 @@ del _t, _collections
              def.restitutionThreshold = toFloat(restitutionThreshold, "restitution_threshold");
              def.speculativeDistance = toFloat(speculativeDistance, "speculative_distance");
              def.aabbMargin = toFloat(aabbMargin, "aabb_margin");
+             def.contactRecycleDistance =
+                 toFloat(contactRecycleDistance, "contact_recycle_distance");
              def.enableSleep = toBool(enableSleep, "enable_sleep");
              return std::make_unique<PyWorld3>(valueOrRaise3(World3::create(def)));
            }),
@@ -470,12 +472,15 @@ del _t, _collections
            py::arg("restitution_threshold") = number(worldDefaults.restitutionThreshold),
            py::arg("speculative_distance") = number(worldDefaults.speculativeDistance),
            py::arg("aabb_margin") = number(worldDefaults.aabbMargin),
+           py::arg("contact_recycle_distance") = number(worldDefaults.contactRecycleDistance),
            py::arg("enable_sleep") = worldDefaults.enableSleep,
            "A 3D world (WorldDef3's fields): gravity (m/s^2), dt (seconds per step(), in (0, "
            "1]), substeps (1..64), contact_hertz (> 0) and contact_damping_ratio (>= 0) of the "
            "soft contacts, contact_push_max_speed (m/s, > 0), restitution_threshold (m/s, >= "
            "0), speculative_distance (m, in [0, 1]), aabb_margin (m, >= "
-           "speculative_distance), enable_sleep.")
+           "speculative_distance), contact_recycle_distance (m, in [0, 1]: a resting pair of "
+           "flat shapes keeps its manifold while their relative pose moves less; 0: a new "
+           "manifold every step), enable_sleep.")
       .def(
           "create_body",
           [](py::object self, const std::string& type, py::handle position, py::handle rotation,

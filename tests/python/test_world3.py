@@ -188,6 +188,8 @@ def test_a_stale_handle_raises():
     (lambda: d3.World(restitution_threshold=-1), r"^restitution_threshold: must be"),
     (lambda: d3.World(speculative_distance=2), r"^speculative_distance: must be in \[0, 1\]"),
     (lambda: d3.World(aabb_margin=0), r"^aabb_margin: must be finite and >= speculative"),
+    (lambda: d3.World(contact_recycle_distance=-1),
+     r"^contact_recycle_distance: must be in \[0, 1\] m"),
     (lambda: d3.World(gravity=(0, math.nan, 0)), r"^gravity\[1\]: must be finite"),
     (lambda: d3.World(gravity=(0, -10)), r"^gravity: must be a vector \(x, y, z\)"),
     (lambda: d3.World(gravity=(0, 1e5, 0)), r"^gravity: must be finite, each component"),

@@ -375,7 +375,8 @@ class World:
                  substeps: int = 4, contact_hertz: _Number = 30.0,
                  contact_damping_ratio: _Number = 10.0, contact_push_max_speed: _Number = 3.0,
                  restitution_threshold: _Number = 1.0, speculative_distance: _Number = ...,
-                 aabb_margin: _Number = 0.1, enable_sleep: bool = True) -> None: ...
+                 aabb_margin: _Number = 0.1, contact_recycle_distance: _Number = ...,
+                 enable_sleep: bool = True) -> None: ...
     def create_body(self, type: str = "dynamic", position: _Vec3 = (0.0, 0.0, 0.0),
                     rotation: _Quat = (0.0, 0.0, 0.0, 1.0),
                     linear_velocity: _Vec3 = (0.0, 0.0, 0.0),
