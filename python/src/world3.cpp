@@ -447,7 +447,8 @@ del _t, _collections
                        py::handle contactHertz, py::handle contactDampingRatio,
                        py::handle contactPushMaxSpeed, py::handle restitutionThreshold,
                        py::handle speculativeDistance, py::handle aabbMargin,
-                       py::handle contactRecycleDistance, py::handle enableSleep) {
+                       py::handle contactRecycleDistance, py::handle enableContinuous,
+                       py::handle enableSleep) {
              WorldDef3 def;
              def.gravity = toVector3(gravity, "gravity", "m/s^2");
              def.timeStep = toFloat(dt, "dt");
@@ -460,6 +461,7 @@ del _t, _collections
              def.aabbMargin = toFloat(aabbMargin, "aabb_margin");
              def.contactRecycleDistance =
                  toFloat(contactRecycleDistance, "contact_recycle_distance");
+             def.enableContinuous = toBool(enableContinuous, "enable_continuous");
              def.enableSleep = toBool(enableSleep, "enable_sleep");
              return std::make_unique<PyWorld3>(valueOrRaise3(World3::create(def)));
            }),
@@ -473,6 +475,7 @@ del _t, _collections
            py::arg("speculative_distance") = number(worldDefaults.speculativeDistance),
            py::arg("aabb_margin") = number(worldDefaults.aabbMargin),
            py::arg("contact_recycle_distance") = number(worldDefaults.contactRecycleDistance),
+           py::arg("enable_continuous") = worldDefaults.enableContinuous,
            py::arg("enable_sleep") = worldDefaults.enableSleep,
            "A 3D world (WorldDef3's fields): gravity (m/s^2), dt (seconds per step(), in (0, "
            "1]), substeps (1..64), contact_hertz (> 0) and contact_damping_ratio (>= 0) of the "
@@ -480,7 +483,8 @@ del _t, _collections
            "0), speculative_distance (m, in [0, 1]), aabb_margin (m, >= "
            "speculative_distance), contact_recycle_distance (m, in [0, 1]: a resting pair of "
            "flat shapes keeps its manifold while their relative pose moves less; 0: a new "
-           "manifold every step), enable_sleep.")
+           "manifold every step), enable_continuous (fast bodies stopped at static geometry), "
+           "enable_sleep.")
       .def(
           "create_body",
           [](py::object self, const std::string& type, py::handle position, py::handle rotation,

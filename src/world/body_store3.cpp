@@ -16,7 +16,7 @@ std::uint32_t BodyStore3::addBody(const BodyDef3& def) {
   b = Body3{};
   b.type = def.type;
   b.origin = def.position;
-  b.rotation = normalize(def.rotation);
+  b.rotation = unitRotation(def.rotation);
   b.center = def.position;
   if (def.type != BodyType::staticBody) {
     b.linearVelocity = def.linearVelocity;

@@ -3,7 +3,10 @@
 // mass properties from the shapes, and the shapes' boxes in the 3D broad phase. Private to
 // the world layer.
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -46,6 +49,24 @@ struct Body3 {
     return r * invInertiaLocal * transpose(r);
   }
 };
+
+// A rotation as given, made unit: scaled first by an exact power of two when its largest
+// component is huge (its squared length would overflow to infinity and normalising give
+// zero), and left to the bit when it is already unit to rounding, so that a rotation read
+// back from a body writes back unchanged.
+inline Quat unitRotation(Quat q) noexcept {
+  const float largest =
+      std::max(std::max(std::fabs(q.x), std::fabs(q.y)), std::max(std::fabs(q.z), std::fabs(q.w)));
+  if (largest > 0x1p60f) {
+    int exponent = 0;
+    (void)std::frexp(largest, &exponent);
+    const float scale = std::ldexp(1.0f, -exponent);
+    q = {scale * q.x, scale * q.y, scale * q.z, scale * q.w};
+  }
+  const float n2 = dot(q, q);
+  if (std::fabs(n2 - 1.0f) <= 4.0f * std::numeric_limits<float>::epsilon()) return q;
+  return normalize(q);
+}
 
 struct Shape3 {
   std::uint32_t body = 0;

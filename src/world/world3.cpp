@@ -310,7 +310,7 @@ Status World3::setTransform(BodyId3 body, Vec3 position, Quat rotation) {
   if (Status s = checkBodyDef(probe); !s) return fail("setTransform: " + s.message());
   detail::Body3& b = state_->store.bodies[body.index];
   b.origin = position;
-  b.rotation = normalize(rotation);
+  b.rotation = detail::unitRotation(rotation);
   b.center = transformPoint(b.transform(), b.localCenter);
   b.awake = true;
   b.sleepTime = 0.0f;

@@ -376,7 +376,7 @@ class World:
                  contact_damping_ratio: _Number = 10.0, contact_push_max_speed: _Number = 3.0,
                  restitution_threshold: _Number = 1.0, speculative_distance: _Number = ...,
                  aabb_margin: _Number = 0.1, contact_recycle_distance: _Number = ...,
-                 enable_sleep: bool = True) -> None: ...
+                 enable_continuous: bool = True, enable_sleep: bool = True) -> None: ...
     def create_body(self, type: str = "dynamic", position: _Vec3 = (0.0, 0.0, 0.0),
                     rotation: _Quat = (0.0, 0.0, 0.0, 1.0),
                     linear_velocity: _Vec3 = (0.0, 0.0, 0.0),
