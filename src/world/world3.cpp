@@ -6,32 +6,13 @@
 #include <cmath>
 #include <string>
 
-#include "body_store3.hpp"
-#include "contact_set3.hpp"
-#include "continuous3.hpp"
-#include "islands3.hpp"
 #include "quack/world/world.hpp"
-#include "solver3.hpp"
+#include "world_state3.hpp"
 
 namespace quack {
 namespace detail {
 
 std::uint32_t nextWorldId();  // world.cpp: one sequence for the 2D and 3D worlds
-
-struct WorldState3 {
-  WorldState3(const WorldDef3& d, BroadPhase3 bp, std::uint32_t worldId)
-      : def(d), id(worldId), store(std::move(bp)), contacts(worldId) {}
-  WorldDef3 def;
-  std::uint32_t id;
-  BodyStore3 store;
-  ContactSet3 contacts;
-  Solver3 solver;
-  Continuous3 continuous;
-  Islands3 islands;
-  StepEvents3 events;
-  std::vector<ContactEvent3> pendingEnds;  // of shapes destroyed since the last step
-  std::uint64_t stepCount = 0;
-};
 
 }  // namespace detail
 

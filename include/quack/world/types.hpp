@@ -37,6 +37,14 @@ struct JointId {
   friend constexpr bool operator==(JointId, JointId) noexcept = default;
 };
 
+/// Which shapes a query sees: those whose filter accepts this one (see shouldCollide), in
+/// the 2D and the 3D world.
+struct QueryFilter {
+  std::uint64_t category = 1;
+  std::uint64_t mask = ~std::uint64_t{0};
+  bool includeSensors = false;
+};
+
 /// Static bodies never move; kinematic bodies move at the velocity they are given and are
 /// not pushed; dynamic bodies are moved by gravity, forces and contacts.
 enum class BodyType : std::uint8_t { staticBody, kinematicBody, dynamicBody };

@@ -229,13 +229,6 @@ const char* toString(SnapshotKind kind) noexcept;
 /// version are refused. Bumped whenever the layout, or the arithmetic of a step, changes.
 inline constexpr std::uint32_t kSnapshotFormatVersion = 2;
 
-/// Which shapes a query sees: those whose filter accepts this one (see shouldCollide).
-struct QueryFilter {
-  std::uint64_t category = 1;
-  std::uint64_t mask = ~std::uint64_t{0};
-  bool includeSensors = false;
-};
-
 class World {
  public:
   static Result<World> create(const WorldDef& def = {});

@@ -26,6 +26,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -139,6 +140,34 @@ struct ContactView3 {
   std::vector<Manifold3> manifolds;
 };
 
+/// The first shape a World3 ray cast entered. World frame.
+struct RayHitResult3 {
+  ShapeId3 shape;
+  BodyId3 body;
+  Vec3 point;
+  Vec3 normal;         ///< unit, outward from the shape (a mesh: its triangle's face normal)
+  float fraction = 0;  ///< along the ray's translation
+  int triangle = -1;   ///< the mesh triangle entered, or -1
+};
+
+/// A shape a World3 overlap query met, and how to get the query shape out of it.
+struct ShapeOverlap3 {
+  ShapeId3 shape;
+  BodyId3 body;
+  float depth = 0.0f;  ///< metres, >= 0
+  /// Move the query shape by this (world frame, metres) to separate it from `shape`.
+  Vec3 depenetration;
+};
+
+/// The first shape a World3 shape cast met. World frame.
+struct ShapeCastResult3 {
+  ShapeId3 shape;
+  BodyId3 body;
+  Vec3 point;          ///< on the shape met, where the cast shape touches it
+  Vec3 normal;         ///< unit, from the shape met towards the cast shape
+  float fraction = 0;  ///< of the translation; 0 when the cast shape starts overlapping
+};
+
 /// The 3D world (see the top of this file). Move-only.
 class World3 {
  public:
@@ -207,6 +236,30 @@ class World3 {
   Status step();
   /// One step of `dt` seconds in (0, kMaxTimeStep], in `substeps` sub-steps (1..64).
   Status step(float dt, int substeps);
+
+  // ---- queries (world frame; every shape, awake or asleep; QueryFilter as in 2D) --------
+  /// The first shape the ray `origin + t translation`, t in [0, 1], enters (a mesh from its
+  /// triangles' fronts only); ties go to the lower shape index. Nothing for a zero or
+  /// non-finite translation.
+  std::optional<RayHitResult3> rayCastClosest(Vec3 origin, Vec3 translation,
+                                              QueryFilter filter = {}) const;
+  /// Every shape the ray enters, by fraction (ties: lower shape index).
+  std::vector<RayHitResult3> rayCastAll(Vec3 origin, Vec3 translation,
+                                        QueryFilter filter = {}) const;
+  /// Shapes whose bounding boxes overlap `box`, by shape index.
+  std::vector<ShapeId3> overlapAabb(Aabb3 box, QueryFilter filter = {}) const;
+  /// Shapes that overlap `geometry` placed by `worldFromShape`, by shape index, each with
+  /// the depenetration of the query shape (EPA; a mesh: its deepest triangle). Errors: a
+  /// bad geometry or a non-finite transform.
+  Result<std::vector<ShapeOverlap3>> overlapShape(const ShapeGeometry3& geometry,
+                                                  Transform3 worldFromShape,
+                                                  QueryFilter filter = {}) const;
+  /// Sweeps `geometry` from `worldFromShape` along `translation` (metres) and returns the
+  /// first shape it meets (lowest fraction; ties: lower shape index), if any. A shape the
+  /// cast starts overlapping is met at fraction 0. Errors: non-finite input, a bad geometry.
+  Result<std::optional<ShapeCastResult3>> castShape(const ShapeGeometry3& geometry,
+                                                    Transform3 worldFromShape, Vec3 translation,
+                                                    QueryFilter filter = {}) const;
   const StepEvents3& events() const noexcept;
   std::uint64_t stepCount() const noexcept;
 

@@ -1,0 +1,38 @@
+#pragma once
+// The 3D world's parts, held together: what World3 (world3.cpp) and its queries
+// (world3_queries.cpp) reach through their one pointer. Private to the world layer.
+
+#include <cstdint>
+#include <vector>
+
+#include "body_store3.hpp"
+#include "contact_set3.hpp"
+#include "continuous3.hpp"
+#include "islands3.hpp"
+#include "solver3.hpp"
+
+namespace quack::detail {
+
+struct WorldState3 {
+  WorldState3(const WorldDef3& d, BroadPhase3 bp, std::uint32_t worldId)
+      : def(d), id(worldId), store(std::move(bp)), contacts(worldId) {}
+  WorldDef3 def;
+  std::uint32_t id;
+  BodyStore3 store;
+  ContactSet3 contacts;
+  Solver3 solver;
+  Continuous3 continuous;
+  Islands3 islands;
+  StepEvents3 events;
+  std::vector<ContactEvent3> pendingEnds;  // of shapes destroyed since the last step
+  std::uint64_t stepCount = 0;
+
+  ShapeId3 shapeId(std::uint32_t shape) const noexcept {
+    return {shape, store.shapeIds.generation(shape), id};
+  }
+  BodyId3 bodyId(std::uint32_t body) const noexcept {
+    return {body, store.bodyIds.generation(body), id};
+  }
+};
+
+}  // namespace quack::detail
