@@ -257,6 +257,77 @@ BroadPhase3Stats BroadPhase3::stats() const {
   return s;
 }
 
+BroadPhase3Records BroadPhase3::records() const {
+  BroadPhase3Records r;
+  const std::uint32_t slots = ids_.capacity();
+  for (std::uint32_t p = 0; p < slots; ++p) {
+    r.generations.push_back(ids_.generation(p));
+    r.kinds.push_back((flags_[p] & kStatic) != 0 ? ProxyKind::staticProxy
+                                                 : ProxyKind::dynamicProxy);
+    r.buffered.push_back((flags_[p] & kBuffered) != 0 ? 1 : 0);
+    r.filters.push_back(records_[p].filter);
+    r.userData.push_back(records_[p].userData);
+  }
+  r.freeSlots = ids_.freeSlots();
+  r.tight = tight_;
+  r.fat = fat_;
+  r.moveBuffer = moveBuffer_;
+  return r;
+}
+
+Result<BroadPhase3> BroadPhase3::fromRecords(BroadPhase3Config config, BroadPhase3Records r) {
+  Result<BroadPhase3> made = create(config);
+  if (!made) return made;
+  const std::size_t slots = r.generations.size();
+  const char* where = "BroadPhase3::fromRecords: ";
+  if (slots >= 0x7fffffffu) return fail(std::string(where) + "too many proxies (2^31)");
+  if (r.tight.size() != slots || r.fat.size() != slots || r.kinds.size() != slots ||
+      r.buffered.size() != slots || r.filters.size() != slots || r.userData.size() != slots)
+    return fail(std::string(where) + "the per-slot arrays differ in length");
+  Result<IdPool> ids = IdPool::fromSlots(std::move(r.generations), std::move(r.freeSlots));
+  if (!ids) return fail(std::string(where) + "proxy slots: " + ids.error().message);
+  BroadPhase3& bp = made.value();
+  bp.ids_ = std::move(ids).value();
+  bp.records_.resize(slots);
+  bp.flags_.assign(slots, 0);
+  bp.fat_.assign(slots, Aabb3{});
+  bp.tight_.assign(slots, Aabb3{});
+  for (std::uint32_t p = 0; p < slots; ++p) {
+    const std::string name = std::string(where) + "proxy " + std::to_string(p);
+    if (!bp.ids_.isAlive(p)) {
+      if (r.buffered[p] != 0) return fail(name + " is free and buffered");
+      continue;
+    }
+    if (!isAcceptableBox(r.tight[p])) return fail(name + " tight box is invalid");
+    if (!isAcceptableBox(r.fat[p])) return fail(name + " fat box is invalid");
+    if (!contains(r.fat[p], r.tight[p])) return fail(name + " tight box is outside its fat box");
+    if (r.kinds[p] != ProxyKind::staticProxy && r.kinds[p] != ProxyKind::dynamicProxy)
+      return fail(name + " kind is not a ProxyKind");
+    if (r.buffered[p] > 1) return fail(name + " buffered flag is not 0 or 1");
+    bp.records_[p] = {r.filters[p], r.userData[p]};
+    bp.tight_[p] = r.tight[p];
+    bp.fat_[p] = r.fat[p];
+    bp.flags_[p] = static_cast<std::uint8_t>((r.kinds[p] == ProxyKind::staticProxy ? kStatic : 0) |
+                                             (r.buffered[p] != 0 ? kBuffered : 0));
+    std::visit([&](auto& index) { index.insert(p, bp.fat_[p]); }, bp.index_);
+  }
+  std::vector<std::uint8_t> listed(slots, 0);
+  for (std::uint32_t p : r.moveBuffer) {
+    if (p >= slots)
+      return fail(std::string(where) + "move buffer entry " + std::to_string(p) +
+                  " is beyond the " + std::to_string(slots) + " slots");
+    listed[p] = 1;
+  }
+  for (std::uint32_t p = 0; p < slots; ++p) {
+    if ((bp.flags_[p] & kBuffered) != 0 && listed[p] == 0)
+      return fail(std::string(where) + "proxy " + std::to_string(p) +
+                  " is buffered but not in the move buffer");
+  }
+  bp.moveBuffer_ = std::move(r.moveBuffer);
+  if (Status s = bp.validate(); !s) return fail(std::string(where) + s.message());
+  return made;
+}
+
 Status BroadPhase3::validate() const {
   if (Status s = std::visit([](const auto& index) { return index.validate(); }, index_); !s) {
     return fail(std::string(toString(kind())) + ": " + s.message());

@@ -166,6 +166,13 @@ void ContactSet3::findNew(BodyStore3& store) {
   }
 }
 
+void ContactSet3::restore(std::vector<Contact3> contacts) {
+  contacts_ = std::move(contacts);
+  index_.clear();
+  for (std::uint32_t i = 0; i < contacts_.size(); ++i)
+    index_.emplace(key(contacts_[i].shapeA, contacts_[i].shapeB), i);
+}
+
 void ContactSet3::destroy(std::uint32_t index) {
   index_.erase(key(contacts_[index].shapeA, contacts_[index].shapeB));
   const auto last = static_cast<std::uint32_t>(contacts_.size() - 1);

@@ -60,6 +60,8 @@ class ContactSet3 {
   // Destroys the contacts of a shape about to go (end events for the touching ones).
   void removeShape(const BodyStore3& store, std::uint32_t shape, StepEvents3& events);
 
+  // Replaces every contact (a snapshot's), in their order, and the lookup built from them.
+  void restore(std::vector<Contact3> contacts);
   const std::vector<Contact3>& contacts() const noexcept { return contacts_; }
   std::vector<Contact3>& contacts() noexcept { return contacts_; }
   std::size_t touchingCount() const noexcept;

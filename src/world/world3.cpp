@@ -10,11 +10,6 @@
 #include "world_state3.hpp"
 
 namespace quack {
-namespace detail {
-
-std::uint32_t nextWorldId();  // world.cpp: one sequence for the 2D and 3D worlds
-
-}  // namespace detail
 
 namespace {
 
@@ -114,6 +109,10 @@ World3::World3(std::unique_ptr<detail::WorldState3> state) : state_(std::move(st
 World3::World3(World3&&) noexcept = default;
 World3& World3::operator=(World3&&) noexcept = default;
 World3::~World3() = default;
+
+Status detail::checkWorldDef3(const WorldDef3& def) {
+  return checkDef(def);
+}
 
 Result<World3> World3::create(const WorldDef3& def) {
   if (Status s = checkDef(def); !s) return Error{s.message()};

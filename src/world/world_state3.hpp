@@ -13,6 +13,10 @@
 
 namespace quack::detail {
 
+// WorldDef3's checks (world3.cpp), for snapshots.
+Status checkWorldDef3(const WorldDef3& def);
+std::uint32_t nextWorldId();  // world.cpp: one sequence for the 2D and 3D worlds
+
 struct WorldState3 {
   WorldState3(const WorldDef3& d, BroadPhase3 bp, std::uint32_t worldId)
       : def(d), id(worldId), store(std::move(bp)), contacts(worldId) {}

@@ -97,6 +97,21 @@ struct BroadPhase3Stats {
 };
 
 /// The 3D broad phase (see the top of this file). A value: copies are independent.
+/// Every record of a `BroadPhase3` that decides what it reports from now on, slot by slot,
+/// as BroadPhaseRecords is for 2D: generations and free slots, tight and fat boxes, kinds,
+/// filters, user data and the move buffer; not the structure's own shape, which changes
+/// only the order of hits (World3's snapshots sort what depends on order).
+struct BroadPhase3Records {
+  std::vector<std::uint32_t> generations;  ///< per slot, never 0
+  std::vector<std::uint32_t> freeSlots;    ///< in release order (IdPool::freeSlots)
+  std::vector<Aabb3> tight, fat;           ///< per slot, world frame
+  std::vector<ProxyKind> kinds;            ///< per slot
+  std::vector<std::uint8_t> buffered;      ///< per slot: 1 while in the move buffer
+  std::vector<Filter> filters;             ///< per slot
+  std::vector<std::uint64_t> userData;     ///< per slot
+  std::vector<std::uint32_t> moveBuffer;   ///< slots, in order (may hold stale entries)
+};
+
 class BroadPhase3 {
  public:
   /// A broad phase using `config`; fails on a non-finite or negative margin or displacement
@@ -193,6 +208,12 @@ class BroadPhase3 {
   BroadPhase3Stats stats() const;
   /// Checks the structure's invariants and that it agrees with the proxy records.
   Status validate() const;
+
+  /// A copy of every record (see BroadPhase3Records), for saving.
+  BroadPhase3Records records() const;
+  /// A broad phase holding exactly these records (its structure built anew). Fails, naming
+  /// the slot and the field, on records that do not make a valid broad phase.
+  static Result<BroadPhase3> fromRecords(BroadPhase3Config config, BroadPhase3Records records);
 
   /// The tree, when that is the structure (for tests and tools).
   const DynamicTree3* tree() const noexcept { return std::get_if<DynamicTree3>(&index_); }

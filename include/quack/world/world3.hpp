@@ -140,6 +140,10 @@ struct ContactView3 {
   std::vector<Manifold3> manifolds;
 };
 
+/// The 3D snapshot format's version: snapshots of another version are refused by name.
+/// Bumped whenever the layout, or the arithmetic of a step, changes.
+inline constexpr std::uint32_t kSnapshot3FormatVersion = 1;
+
 /// The first shape a World3 ray cast entered. World frame.
 struct RayHitResult3 {
   ShapeId3 shape;
@@ -236,6 +240,20 @@ class World3 {
   Status step();
   /// One step of `dt` seconds in (0, kMaxTimeStep], in `substeps` sub-steps (1..64).
   Status step(float dt, int substeps);
+
+  // ---- snapshots (docs/world3.md, "Snapshots") ------------------------------------------
+  /// The world's whole state as bytes (bodies, shapes with their geometry, contacts with
+  /// their manifolds, warm-start impulses and recycling caches, the broad phase's records,
+  /// the last step's events): a world restored from them steps on to the same bits as this
+  /// one.
+  std::vector<std::uint8_t> snapshot() const;
+  /// Puts the world back in the state a snapshot saved. Handles valid when the snapshot was
+  /// taken are valid again, with this world's id. Refused, with a message naming what is
+  /// wrong, and leaving the world unchanged: bytes that are not a 3D snapshot, of another
+  /// format version, truncated or corrupted (checksum), or contents that fail the checks.
+  Status restore(std::span<const std::uint8_t> bytes);
+  /// A new world (a new id) from a snapshot; refused as restore is.
+  static Result<World3> fromSnapshot(std::span<const std::uint8_t> bytes);
 
   // ---- queries (world frame; every shape, awake or asleep; QueryFilter as in 2D) --------
   /// The first shape the ray `origin + t translation`, t in [0, 1], enters (a mesh from its
