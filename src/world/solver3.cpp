@@ -10,38 +10,33 @@ namespace quack::detail {
 
 namespace {
 
-// A body's state while the solver runs. Slot 0 is a resting body that static and sleeping
-// bodies read: no mass, no velocity, never moved.
-struct BodyState {
-  Vec3 v, w;
-  Vec3 dp;     // motion of the centre of mass since the step began
-  Quat q, q0;  // rotation now, and at the start of the step
-  float invMass = 0.0f;
-  Mat3 invI;  // world axes, fixed over the step (as Box2D v3 keeps its inertia)
-};
+[[gnu::always_inline]] inline float speedAlong(const BodyState3& a, const BodyState3& b, Vec3 d,
+                                               const Axis3& x) noexcept {
+  return dot(b.v - a.v, d) + dot(b.w, x.crossB) - dot(a.w, x.crossA);
+}
 
-struct PointConstraint {
-  Vec3 rA, rB;  // from each centre of mass at the start of the step, world axes (fixed)
-  float baseSeparation = 0.0f;  // separation minus the anchors' offset along the normal
-  float normalMass = 0.0f;
-  float tangentMass[2] = {};
-  float normalImpulse = 0.0f;
-  float tangentImpulse[2] = {};
-  float maxNormalImpulse = 0.0f;
-  float relativeVelocity = 0.0f;  // normal velocity before the step (restitution)
-};
+[[gnu::always_inline]] inline void pushAlong(BodyState3& a, BodyState3& b, Vec3 d, const Axis3& x,
+                                             float p) noexcept {
+  a.v = a.v - (a.invMass * p) * d;
+  a.w = a.w - p * x.angularA;
+  b.v = b.v + (b.invMass * p) * d;
+  b.w = b.w + p * x.angularB;
+}
 
-struct Constraint {
-  ContactManifold3* source = nullptr;
-  std::uint32_t slotA = 0, slotB = 0;
-  Vec3 normal, t1, t2;
-  float friction = 0.0f, restitution = 0.0f, rolling = 0.0f;
-  Softness soft;
-  Mat3 rollingMass;
-  Vec3 rollingImpulse;
-  PointConstraint points[kMaxManifoldPoints3];
-  int count = 0;
-};
+Axis3 makeAxis(const BodyState3& a, const BodyState3& b, Vec3 rA, Vec3 rB, Vec3 d) noexcept {
+  Axis3 x;
+  x.crossA = cross(rA, d);
+  x.crossB = cross(rB, d);
+  x.angularA = a.invI * x.crossA;
+  x.angularB = b.invI * x.crossB;
+  return x;
+}
+
+// 1 / (mA + mB + (rA x d) . I_A^-1 (rA x d) + (rB x d) . I_B^-1 (rB x d)), or 0.
+float invEffectiveMass(const BodyState3& a, const BodyState3& b, const Axis3& x) noexcept {
+  const float k = a.invMass + b.invMass + dot(x.crossA, x.angularA) + dot(x.crossB, x.angularB);
+  return k > 0.0f ? 1.0f / k : 0.0f;
+}
 
 // Two unit tangents that make a right-handed basis with the unit normal n, chosen by n
 // alone (so the same normal always gets the same basis): t1 is perpendicular to n and to
@@ -55,38 +50,19 @@ void computeTangents(Vec3 n, Vec3& t1, Vec3& t2) noexcept {
   t2 = cross(n, t1);
 }
 
-float invEffectiveMass(float mA, const Mat3& iA, Vec3 rA, float mB, const Mat3& iB, Vec3 rB,
-                       Vec3 dir) noexcept {
-  const Vec3 rnA = cross(rA, dir);
-  const Vec3 rnB = cross(rB, dir);
-  const float k = mA + mB + dot(rnA, iA * rnA) + dot(rnB, iB * rnB);
-  return k > 0.0f ? 1.0f / k : 0.0f;
-}
-
-Vec3 relativeVelocityAt(const BodyState& a, const BodyState& b, Vec3 rA, Vec3 rB) noexcept {
-  return (b.v + cross(b.w, rB)) - (a.v + cross(a.w, rA));
-}
-
-void applyImpulse(BodyState& a, BodyState& b, Vec3 rA, Vec3 rB, Vec3 p) noexcept {
-  a.v = a.v - a.invMass * p;
-  a.w = a.w - a.invI * cross(rA, p);
-  b.v = b.v + b.invMass * p;
-  b.w = b.w + b.invI * cross(rB, p);
-}
-
 struct StepParams {
   float h = 0.0f, invH = 0.0f, pushMax = 0.0f, restitutionThreshold = 0.0f;
   Vec3 gravity;
 };
 
-void warmStart(Constraint& c, std::vector<BodyState>& states) {
-  BodyState& a = states[c.slotA];
-  BodyState& b = states[c.slotB];
+void warmStart(Constraint3& c, std::vector<BodyState3>& states) {
+  BodyState3& a = states[c.slotA];
+  BodyState3& b = states[c.slotB];
   for (int k = 0; k < c.count; ++k) {
-    const PointConstraint& p = c.points[k];
-    const Vec3 impulse =
-        p.normalImpulse * c.normal + p.tangentImpulse[0] * c.t1 + p.tangentImpulse[1] * c.t2;
-    applyImpulse(a, b, p.rA, p.rB, impulse);
+    const PointConstraint3& p = c.points[k];
+    pushAlong(a, b, c.normal, p.normal, p.normalImpulse);
+    pushAlong(a, b, c.t1, p.tangent[0], p.tangentImpulse[0]);
+    pushAlong(a, b, c.t2, p.tangent[1], p.tangentImpulse[1]);
   }
   a.w = a.w - a.invI * c.rollingImpulse;
   b.w = b.w + b.invI * c.rollingImpulse;
@@ -98,10 +74,10 @@ void warmStart(Constraint& c, std::vector<BodyState>& states) {
 // takes more of the load in a pass, and always the same corner first would push a box
 // sideways a little every sub-step (the 2D solver alternates the same way).
 template <bool useBias>
-void solveConstraint(Constraint& c, std::vector<BodyState>& states, const StepParams& params,
+void solveConstraint(Constraint3& c, std::vector<BodyState3>& states, const StepParams& params,
                      bool reverse) {
-  BodyState& a = states[c.slotA];
-  BodyState& b = states[c.slotB];
+  BodyState3& a = states[c.slotA];
+  BodyState3& b = states[c.slotB];
   // The bodies' turns since the step began, as rotation vectors (2 x the vector part of the
   // delta quaternion, to first order). The anchors turn to first order only: turned exactly,
   // a rolling ball's contact anchor would rise by r (1 - cos angle) and the solver would
@@ -115,10 +91,11 @@ void solveConstraint(Constraint& c, std::vector<BodyState>& states, const StepPa
   const int first = reverse ? c.count - 1 : 0;
   const int stride = reverse ? -1 : 1;
   for (int n = 0, k = first; n < c.count; ++n, k += stride) {
-    PointConstraint& p = c.points[k];
-    // The separation now, from the bodies' motion since the manifold was made.
-    const Vec3 d = (b.dp - a.dp) + ((p.rB + cross(turnB, p.rB)) - (p.rA + cross(turnA, p.rA)));
-    const float s = dot(d, c.normal) + p.baseSeparation;
+    PointConstraint3& p = c.points[k];
+    // The separation now, from the bodies' motion since the manifold was made: each anchor
+    // r moved by dp + turn x r, and (turn x r) . n = turn . (r x n).
+    const float s = dot(b.dp - a.dp, c.normal) +
+                    (dot(turnB, p.normal.crossB) - dot(turnA, p.normal.crossA)) + p.separation;
     float bias = 0.0f, massScale = 1.0f, impulseScale = 0.0f;
     if (s > 0.0f) {
       bias = s * params.invH;  // speculative: may close the gap in this sub-step, no more
@@ -127,20 +104,19 @@ void solveConstraint(Constraint& c, std::vector<BodyState>& states, const StepPa
       massScale = c.soft.massScale;
       impulseScale = c.soft.impulseScale;
     }
-    const float vn = dot(relativeVelocityAt(a, b, p.rA, p.rB), c.normal);
+    const float vn = speedAlong(a, b, c.normal, p.normal);
     float impulse = -p.normalMass * massScale * (vn + bias) - impulseScale * p.normalImpulse;
     const float total = std::max(p.normalImpulse + impulse, 0.0f);
     impulse = total - p.normalImpulse;
     p.normalImpulse = total;
     p.maxNormalImpulse = std::max(p.maxNormalImpulse, impulse);
     totalNormalImpulse += total;
-    applyImpulse(a, b, p.rA, p.rB, impulse * c.normal);
+    pushAlong(a, b, c.normal, p.normal, impulse);
   }
   for (int n = 0, k = first; n < c.count; ++n, k += stride) {
-    PointConstraint& p = c.points[k];
-    const Vec3 dv = relativeVelocityAt(a, b, p.rA, p.rB);
-    float f1 = p.tangentImpulse[0] - p.tangentMass[0] * dot(dv, c.t1);
-    float f2 = p.tangentImpulse[1] - p.tangentMass[1] * dot(dv, c.t2);
+    PointConstraint3& p = c.points[k];
+    float f1 = p.tangentImpulse[0] - p.tangentMass[0] * speedAlong(a, b, c.t1, p.tangent[0]);
+    float f2 = p.tangentImpulse[1] - p.tangentMass[1] * speedAlong(a, b, c.t2, p.tangent[1]);
     // The Coulomb cone: the friction impulse within friction times the normal impulse.
     const float limit = c.friction * p.normalImpulse;
     const float f = std::sqrt(f1 * f1 + f2 * f2);
@@ -149,10 +125,10 @@ void solveConstraint(Constraint& c, std::vector<BodyState>& states, const StepPa
       f1 *= scale;
       f2 *= scale;
     }
-    const Vec3 impulse = (f1 - p.tangentImpulse[0]) * c.t1 + (f2 - p.tangentImpulse[1]) * c.t2;
+    pushAlong(a, b, c.t1, p.tangent[0], f1 - p.tangentImpulse[0]);
+    pushAlong(a, b, c.t2, p.tangent[1], f2 - p.tangentImpulse[1]);
     p.tangentImpulse[0] = f1;
     p.tangentImpulse[1] = f2;
-    applyImpulse(a, b, p.rA, p.rB, impulse);
   }
   if (c.rolling > 0.0f) {
     const Vec3 dw = b.w - a.w;
@@ -169,29 +145,29 @@ void solveConstraint(Constraint& c, std::vector<BodyState>& states, const StepPa
 
 // After the sub-steps: points that approached faster than the threshold get the normal
 // velocity -e times their approach speed (Box2D v3's restitution, on the relaxed velocities).
-void applyRestitution(Constraint& c, std::vector<BodyState>& states, float threshold) {
+void applyRestitution(Constraint3& c, std::vector<BodyState3>& states, float threshold) {
   if (c.restitution == 0.0f) return;
-  BodyState& a = states[c.slotA];
-  BodyState& b = states[c.slotB];
+  BodyState3& a = states[c.slotA];
+  BodyState3& b = states[c.slotB];
   for (int k = 0; k < c.count; ++k) {
-    PointConstraint& p = c.points[k];
+    PointConstraint3& p = c.points[k];
     if (p.relativeVelocity > -threshold || p.maxNormalImpulse == 0.0f) continue;
-    const float vn = dot(relativeVelocityAt(a, b, p.rA, p.rB), c.normal);
+    const float vn = speedAlong(a, b, c.normal, p.normal);
     float impulse = -p.normalMass * (vn + c.restitution * p.relativeVelocity);
     const float total = std::max(p.normalImpulse + impulse, 0.0f);
     impulse = total - p.normalImpulse;
     p.normalImpulse = total;
     p.maxNormalImpulse = std::max(p.maxNormalImpulse, impulse);
-    applyImpulse(a, b, p.rA, p.rB, impulse * c.normal);
+    pushAlong(a, b, c.normal, p.normal, impulse);
   }
 }
 
-void integrateVelocities(std::vector<BodyState>& states, const std::vector<std::uint32_t>& movers,
+void integrateVelocities(std::vector<BodyState3>& states, const std::vector<std::uint32_t>& movers,
                          const BodyStore3& store, const StepParams& params) {
   for (std::size_t slot = 1; slot < states.size(); ++slot) {
     const Body3& body = store.bodies[movers[slot]];
     if (body.type != BodyType::dynamicBody) continue;  // kinematic: keeps its velocity
-    BodyState& s = states[slot];
+    BodyState3& s = states[slot];
     Vec3 v = s.v + (params.h * body.gravityScale) * params.gravity;
     v = (1.0f / (1.0f + params.h * body.linearDamping)) * v;
     Vec3 w = (1.0f / (1.0f + params.h * body.angularDamping)) * s.w;
@@ -206,9 +182,9 @@ void integrateVelocities(std::vector<BodyState>& states, const std::vector<std::
   }
 }
 
-void integratePositions(std::vector<BodyState>& states, float h) {
+void integratePositions(std::vector<BodyState3>& states, float h) {
   for (std::size_t slot = 1; slot < states.size(); ++slot) {
-    BodyState& s = states[slot];
+    BodyState3& s = states[slot];
     s.dp = s.dp + h * s.v;
     s.q = integrateRotation(s.q, s.w, h);
   }
@@ -230,7 +206,8 @@ void Solver3::step(BodyStore3& store, ContactSet3& contacts, const WorldDef3& de
   const Softness soft = makeSoftness(hertz, def.contactDampingRatio, params.h);
   const Softness staticSoft = makeSoftness(2.0f * hertz, def.contactDampingRatio, params.h);
 
-  std::vector<BodyState> states(1);
+  std::vector<BodyState3>& states = states_;
+  states.assign(1, BodyState3{});
   slotOf_.assign(store.bodies.size(), 0);
   movers_.assign(1, 0);
   for (std::uint32_t i = 0; i < store.bodies.size(); ++i) {
@@ -238,7 +215,7 @@ void Solver3::step(BodyStore3& store, ContactSet3& contacts, const WorldDef3& de
     if (!store.bodyIds.isAlive(i) || b.type == BodyType::staticBody || !b.awake) continue;
     slotOf_[i] = static_cast<std::uint32_t>(states.size());
     movers_.push_back(i);
-    BodyState s;
+    BodyState3 s;
     s.v = b.linearVelocity;
     s.w = b.angularVelocity;
     s.q = s.q0 = b.rotation;
@@ -247,17 +224,19 @@ void Solver3::step(BodyStore3& store, ContactSet3& contacts, const WorldDef3& de
     states.push_back(s);
   }
 
-  std::vector<Constraint> constraints;
+  std::vector<Constraint3>& constraints = constraints_;
+  constraints.clear();
   for (Contact3& contact : contacts.contacts()) {
     if (!contact.touching) continue;
     const std::uint32_t bodyA = store.shapes[contact.shapeA].body;
     const std::uint32_t bodyB = store.shapes[contact.shapeB].body;
     const std::uint32_t slotA = slotOf_[bodyA], slotB = slotOf_[bodyB];
     if (slotA == 0 && slotB == 0) continue;
-    const BodyState& a = states[slotA];
-    const BodyState& b = states[slotB];
+    const BodyState3& a = states[slotA];
+    const BodyState3& b = states[slotB];
     for (ContactManifold3& m : contact.manifolds) {
-      Constraint c;
+      // Filled in place: a constraint is about a kilobyte, too big to build and copy.
+      Constraint3& c = constraints.emplace_back();
       c.source = &m;
       c.slotA = slotA;
       c.slotB = slotB;
@@ -273,42 +252,43 @@ void Solver3::step(BodyStore3& store, ContactSet3& contacts, const WorldDef3& de
       c.count = m.manifold.pointCount;
       for (int i = 0; i < c.count; ++i) {
         const ManifoldPoint3& mp = m.manifold.points[i];
-        PointConstraint& p = c.points[i];
+        PointConstraint3& p = c.points[i];
         // The arms as the manifold was computed (kept while it is recycled: arms turned
         // with the bodies under a normal that stays put tilt a column further).
-        p.rA = m.armA[i];
-        p.rB = m.armB[i];
-        p.baseSeparation = mp.separation - dot(p.rB - p.rA, c.normal);
-        p.normalMass = invEffectiveMass(a.invMass, a.invI, p.rA, b.invMass, b.invI, p.rB, c.normal);
-        p.tangentMass[0] = invEffectiveMass(a.invMass, a.invI, p.rA, b.invMass, b.invI, p.rB, c.t1);
-        p.tangentMass[1] = invEffectiveMass(a.invMass, a.invI, p.rA, b.invMass, b.invI, p.rB, c.t2);
+        const Vec3 rA = m.armA[i], rB = m.armB[i];
+        p.normal = makeAxis(a, b, rA, rB, c.normal);
+        p.tangent[0] = makeAxis(a, b, rA, rB, c.t1);
+        p.tangent[1] = makeAxis(a, b, rA, rB, c.t2);
+        p.separation = mp.separation;
+        p.normalMass = invEffectiveMass(a, b, p.normal);
+        p.tangentMass[0] = invEffectiveMass(a, b, p.tangent[0]);
+        p.tangentMass[1] = invEffectiveMass(a, b, p.tangent[1]);
         p.normalImpulse = m.normalImpulse[i];
         p.tangentImpulse[0] = dot(m.frictionImpulse[i], c.t1);
         p.tangentImpulse[1] = dot(m.frictionImpulse[i], c.t2);
-        p.relativeVelocity = dot(relativeVelocityAt(a, b, p.rA, p.rB), c.normal);
+        p.relativeVelocity = speedAlong(a, b, c.normal, p.normal);
       }
-      constraints.push_back(c);
     }
   }
 
   for (int sub = 0; sub < substeps; ++sub) {
     integrateVelocities(states, movers_, store, params);
-    for (Constraint& c : constraints)
+    for (Constraint3& c : constraints)
       warmStart(c, states);
     const bool odd = (sub & 1) != 0;
-    for (Constraint& c : constraints)
+    for (Constraint3& c : constraints)
       solveConstraint<true>(c, states, params, odd);
     integratePositions(states, params.h);
-    for (Constraint& c : constraints)
+    for (Constraint3& c : constraints)
       solveConstraint<false>(c, states, params, !odd);
   }
-  for (Constraint& c : constraints)
+  for (Constraint3& c : constraints)
     applyRestitution(c, states, params.restitutionThreshold);
 
-  for (Constraint& c : constraints) {
+  for (Constraint3& c : constraints) {
     ContactManifold3& m = *c.source;
     for (int i = 0; i < c.count; ++i) {
-      const PointConstraint& p = c.points[i];
+      const PointConstraint3& p = c.points[i];
       m.normalImpulse[i] = p.normalImpulse;
       m.frictionImpulse[i] = p.tangentImpulse[0] * c.t1 + p.tangentImpulse[1] * c.t2;
       m.maxNormalImpulse[i] = p.maxNormalImpulse;
@@ -320,7 +300,7 @@ void Solver3::step(BodyStore3& store, ContactSet3& contacts, const WorldDef3& de
   // held where the step found it.
   const float limit = 0.5f * kMaxCoordinate;
   for (std::size_t slot = 1; slot < states.size(); ++slot) {
-    const BodyState& s = states[slot];
+    const BodyState3& s = states[slot];
     Body3& body = store.bodies[movers_[slot]];
     const Vec3 center = body.center + s.dp;
     const Vec3 far = absv(center);

@@ -14,8 +14,53 @@
 #include <vector>
 
 #include "contact_set3.hpp"
+#include "quack/world/world.hpp"
+#include "solver.hpp"
 
 namespace quack::detail {
+
+// A body's state while the solver runs. Slot 0 is a resting body that static and sleeping
+// bodies read: no mass, no velocity, never moved.
+struct BodyState3 {
+  Vec3 v, w;
+  Vec3 dp;     // motion of the centre of mass since the step began
+  Quat q, q0;  // rotation now, and at the start of the step
+  float invMass = 0.0f;
+  Mat3 invI;  // world axes, fixed over the step (as Box2D v3 keeps its inertia)
+};
+
+// One direction of a point's constraint (the normal or a tangent d), prepared once a step:
+// the arms crossed with d, and the angular responses I^-1 (r x d). A relative velocity along
+// d is then dot(vB - vA, d) + dot(wB, rB x d) - dot(wA, rA x d), and an impulse of size p
+// along d changes wA by -p I_A^-1 (rA x d) and wB by +p I_B^-1 (rB x d): no cross product
+// or matrix product inside the iterations (the arms stay fixed over the step).
+struct Axis3 {
+  Vec3 crossA, crossB;      // rA x d, rB x d
+  Vec3 angularA, angularB;  // I_A^-1 (rA x d), I_B^-1 (rB x d)
+};
+
+struct PointConstraint3 {
+  Axis3 normal, tangent[2];
+  float separation = 0.0f;  // as the manifold has it, at the start of the step
+  float normalMass = 0.0f;
+  float tangentMass[2] = {};
+  float normalImpulse = 0.0f;
+  float tangentImpulse[2] = {};
+  float maxNormalImpulse = 0.0f;
+  float relativeVelocity = 0.0f;  // normal velocity before the step (restitution)
+};
+
+struct Constraint3 {
+  ContactManifold3* source = nullptr;
+  std::uint32_t slotA = 0, slotB = 0;
+  Vec3 normal, t1, t2;
+  float friction = 0.0f, restitution = 0.0f, rolling = 0.0f;
+  Softness soft;
+  Mat3 rollingMass;
+  Vec3 rollingImpulse;
+  PointConstraint3 points[kMaxManifoldPoints3];
+  int count = 0;
+};
 
 class Solver3 {
  public:
@@ -28,6 +73,9 @@ class Solver3 {
  private:
   std::vector<std::uint32_t> slotOf_;  // per body index: its slot, 0 for none
   std::vector<std::uint32_t> movers_;  // body index per slot (slot 0: none)
+  // Kept between steps for their capacity only: refilled every step.
+  std::vector<BodyState3> states_;
+  std::vector<Constraint3> constraints_;
 };
 
 }  // namespace quack::detail
