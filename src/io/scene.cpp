@@ -813,7 +813,8 @@ Result<Scene> detail::parseSceneRoot(const json& root, const std::string& fileNa
     p.worldSleep = w->enableSleep;
   }
   if (root.contains("categories")) {
-    Result<std::vector<std::string>> c = detail::readCategories(root.at("categories"), "categories");
+    Result<std::vector<std::string>> c =
+        detail::readCategories(root.at("categories"), "categories");
     if (!c) return p.relabel(c.error());
     p.categories = std::move(*c);
     scene.categories = p.categories;

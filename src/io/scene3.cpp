@@ -13,11 +13,11 @@
 namespace quack {
 namespace {
 
-using nlohmann::json;
 using detail::atMost;
 using detail::checkSceneKeys;
 using detail::joinPath;
 using detail::showNumber;
+using nlohmann::json;
 
 // How often a long loop reports progress (and looks whether it should stop), in bodies.
 constexpr std::size_t kProgressEvery = 4096;
@@ -84,8 +84,8 @@ Result<ShapeDef3> parseMaterial3(const std::vector<std::string>& categories, con
   return def;
 }
 
-constexpr std::initializer_list<const char*> kMaterialKeys3 = {
-    "density", "friction", "restitution", "rollingResistance", "filter"};
+constexpr std::initializer_list<const char*> kMaterialKeys3 = {"density", "friction", "restitution",
+                                                               "rollingResistance", "filter"};
 
 Result<SceneShape3> parseShape3At(const std::vector<std::string>& categories, const json& j,
                                   const std::string& path, BodyType bodyType) {
@@ -97,8 +97,9 @@ Result<SceneShape3> parseShape3At(const std::vector<std::string>& categories, co
   shape.path = path;
   if (isMesh3(j)) {
     if (bodyType != BodyType::staticBody) {
-      return fail(path + ".type: a mesh needs a static body (a triangle mesh has no volume; "
-                         "World3 puts meshes on static bodies only)");
+      return fail(path +
+                  ".type: a mesh needs a static body (a triangle mesh has no volume; "
+                  "World3 puts meshes on static bodies only)");
     }
     Result<Mesh3> mesh = parseMesh3(j, path, kMaterialKeys3);
     if (!mesh) return mesh.error();
@@ -171,8 +172,8 @@ Status checkBodyShapes3(const SceneBody3& b) {
         (dynamic && (static_cast<double>(m.mass) > kSceneMaxMass || moment > kSceneMaxInertia))) {
       return fail(shape.path + ".density: the shape's mass (" +
                   showNumber(static_cast<double>(m.mass)) + " kg) or rotational inertia (" +
-                  showNumber(moment) + " kg m^2) is above " + showNumber(kSceneMaxMass) +
-                  " kg (" + showNumber(kSceneMaxInertia) +
+                  showNumber(moment) + " kg m^2) is above " + showNumber(kSceneMaxMass) + " kg (" +
+                  showNumber(kSceneMaxInertia) +
                   " kg m^2); use a lower density or a smaller shape");
     }
     mass += static_cast<double>(m.mass);
@@ -207,8 +208,8 @@ Status parseBodyDef3(const json& j, const std::string& path, bool worldSleep, Sc
   }
   Result<Vec3> vel = vec3(j, "vel", path, {});
   if (!vel) return vel.error();
-  if (Status s = atMost(static_cast<float>(lengthD(*vel)), kSceneMaxSpeed, path + ".vel",
-                        " m/s in speed");
+  if (Status s =
+          atMost(static_cast<float>(lengthD(*vel)), kSceneMaxSpeed, path + ".vel", " m/s in speed");
       !s) {
     return s;
   }
@@ -229,8 +230,8 @@ Status parseBodyDef3(const json& j, const std::string& path, bool worldSleep, Sc
   def.angularDamping = *angularDamping;
   Result<float> gravityScale = detail::readNumber(j, "gravityScale", path, 1.0f);
   if (!gravityScale) return gravityScale.error();
-  if (Status s = atMost(std::fabs(*gravityScale), kMaxGravityScale, path + ".gravityScale",
-                        " in size");
+  if (Status s =
+          atMost(std::fabs(*gravityScale), kMaxGravityScale, path + ".gravityScale", " in size");
       !s) {
     return s;
   }
@@ -257,17 +258,17 @@ Status parseBodyDef3(const json& j, const std::string& path, bool worldSleep, Sc
 Result<SceneBody3> parseBody3(const std::vector<std::string>& categories, bool worldSleep,
                               const json& j, const std::string& path, std::size_t index) {
   if (!j.is_object()) return fail(path + ": must be an object");
-  if (Status s = refuse2DKeys(
-          j, path,
-          {{"angle", "a 3D body turns by \"quat\": [x, y, z, w], not by an angle"},
-           {"bullet", "the 3D world has no continuous collision yet"}});
+  if (Status s =
+          refuse2DKeys(j, path,
+                       {{"angle", "a 3D body turns by \"quat\": [x, y, z, w], not by an angle"},
+                        {"bullet", "the 3D world has no continuous collision yet"}});
       !s) {
     return fail(s.message());
   }
-  if (Status s = checkSceneKeys(j, path,
-                                {"name", "type", "pos", "quat", "vel", "angvel", "linearDamping",
-                                 "angularDamping", "gravityScale", "sleepThreshold", "sleep",
-                                 "awake", "shapes"});
+  if (Status s = checkSceneKeys(
+          j, path,
+          {"name", "type", "pos", "quat", "vel", "angvel", "linearDamping", "angularDamping",
+           "gravityScale", "sleepThreshold", "sleep", "awake", "shapes"});
       !s) {
     return fail(s.message());
   }
@@ -300,10 +301,10 @@ Result<WorldDef3> parseWorld3(const json& j, const std::string& path) {
       !s) {
     return fail(s.message());
   }
-  if (Status s = checkSceneKeys(j, path,
-                                {"dim", "gravity", "dt", "substeps", "sleep", "contactHertz",
-                                 "contactDampingRatio", "contactPushMaxSpeed",
-                                 "restitutionThreshold", "speculativeDistance", "aabbMargin"});
+  if (Status s = checkSceneKeys(
+          j, path,
+          {"dim", "gravity", "dt", "substeps", "sleep", "contactHertz", "contactDampingRatio",
+           "contactPushMaxSpeed", "restitutionThreshold", "speculativeDistance", "aabbMargin"});
       !s) {
     return fail(s.message());
   }
@@ -318,8 +319,8 @@ Result<WorldDef3> parseWorld3(const json& j, const std::string& path) {
   if (!dt) return dt.error();
   if (*dt <= 0.0f) return fail(path + ".dt: must be > 0");
   if (Status s = atMost(*dt, kSceneMaxTimeStep, path + ".dt", " s"); !s) return fail(s.message());
-  Result<int> substeps = detail::readInteger(j, "substeps", path, def.substeps, 1,
-                                             kSceneMaxSubsteps);
+  Result<int> substeps =
+      detail::readInteger(j, "substeps", path, def.substeps, 1, kSceneMaxSubsteps);
   if (!substeps) return substeps.error();
   Result<bool> sleep = detail::readBoolean(j, "sleep", path, def.enableSleep);
   if (!sleep) return sleep.error();

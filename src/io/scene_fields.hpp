@@ -45,8 +45,7 @@ Result<int> readInteger(const nlohmann::json& j, const char* key, const std::str
 Result<bool> readBoolean(const nlohmann::json& j, const char* key, const std::string& path,
                          bool fallback);
 /// "type": "static", "kinematic" or "dynamic".
-Result<BodyType> readBodyType(const nlohmann::json& j, const std::string& path,
-                              BodyType fallback);
+Result<BodyType> readBodyType(const nlohmann::json& j, const std::string& path, BodyType fallback);
 /// A body's "name" (a string; "body<index>" when absent).
 Result<std::string> readBodyName(const nlohmann::json& j, const std::string& path,
                                  std::size_t index);

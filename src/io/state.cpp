@@ -319,7 +319,9 @@ StateFile3 captureState3(const SceneWorld3& scene, const EventTotals& events) {
     if (!scene.world.isValid(b)) continue;  // destroyed during the run
     s.bodies.push_back({scene.names[i], scene.world.position(b), scene.world.rotation(b),
                         scene.world.linearVelocity(b), scene.world.angularVelocity(b),
-                        scene.world.isAwake(b)});
+                        // World3 keeps a static body's flag set; a state file says what the
+                        // 2D one does: a static body is never awake (never simulated).
+                        scene.world.isAwake(b) && scene.world.bodyType(b) != BodyType::staticBody});
   }
   s.events = {events.begin, events.end, 0, 0};
   return s;
@@ -354,8 +356,9 @@ Result<StateFile3> parseState3(std::string_view text, const std::string& fileNam
   json j = json::parse(text, nullptr, false);
   if (j.is_discarded() || !j.is_object()) return error("not a JSON object");
   if (!j.contains("dim")) {
-    return error("dim: missing (a 3D state file starts with \"dim\": 3; a file without it is "
-                 "2D: parseState reads it)");
+    return error(
+        "dim: missing (a 3D state file starts with \"dim\": 3; a file without it is "
+        "2D: parseState reads it)");
   }
   if (!j.at("dim").is_number_integer() || j.at("dim").get<long long>() != 3)
     return error("dim: must be 3");
@@ -405,7 +408,8 @@ Result<StateFile3> parseState3(std::string_view text, const std::string& fileNam
   if (!j.contains("events") || !j.at("events").is_object())
     return error("events: must be an object");
   const json& e = j.at("events");
-  for (auto [key, target] : {std::pair{"begin", &s.events.begin}, std::pair{"end", &s.events.end}}) {
+  for (auto [key, target] :
+       {std::pair{"begin", &s.events.begin}, std::pair{"end", &s.events.end}}) {
     Result<std::uint64_t> c = readCount(e, key, "events");
     if (!c) return error(c.error().message);
     *target = *c;

@@ -110,7 +110,7 @@ struct BodyState3 {
   Quat quat;          ///< worldFromBody's rotation, [x, y, z, w]
   Vec3 vel;           ///< centre of mass, m/s
   Vec3 angvel;        ///< rad/s, world axes
-  bool awake = true;  ///< World3::isAwake: false while asleep, and for static bodies
+  bool awake = true;  ///< World3::isAwake, and false for a static body (as in 2D)
   friend bool operator==(const BodyState3&, const BodyState3&) = default;
 };
 
