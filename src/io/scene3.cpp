@@ -28,7 +28,8 @@ std::string show(Vec3 v) {
 }
 
 double lengthD(Vec3 v) {
-  const double x = v.x, y = v.y, z = v.z;
+  const double x = static_cast<double>(v.x), y = static_cast<double>(v.y),
+               z = static_cast<double>(v.z);
   return std::sqrt(x * x + y * y + z * z);
 }
 
