@@ -444,19 +444,16 @@ struct RunContext {
   }
 };
 
-// Steps `count` times from step `firstStep` (`step(i)` takes step firstStep + i + 1 and
-// returns its status), showing progress and stopping at a signal. kRunOk, or the status to
-// exit with.
+// Calls `step(i)` for i = 0 .. count - 1, showing progress and stopping at a signal;
+// `step` returns kRunOk, or the status to exit with once it has said why. kRunOk, or the
+// status to exit with.
 template <class Step>
-int simulate(RunContext& run, std::uint64_t firstStep, std::uint64_t count, Step&& step) {
+int simulate(RunContext& run, std::uint64_t count, Step&& step) {
   Progress& progress = run.progress;
   progress.begin("simulating", std::to_string(count) + " steps");
   for (std::uint64_t i = 0; i < count; ++i) {
     if (gSignal != 0) return interruptedStatus();
-    if (Status s = step(i); !s) {
-      run.err << "quack run: step " << firstStep + i + 1 << ": " << s.message() << '\n';
-      return kRunFailed;
-    }
+    if (int status = step(i); status != kRunOk) return status;
     progress.update([&] {
       double elapsed = progress.elapsed();
       double rate = static_cast<double>(i + 1) / elapsed;
@@ -614,9 +611,11 @@ int runScene2(RunContext& run, Scene& scene, double loadMs,
   run.phase("simulate");
   std::string eventLines;
   t0 = Clock::now();
-  bool snapshotFailed = false;
-  const int simulated = simulate(run, firstStep, stepsToRun, [&](std::uint64_t i) -> Status {
-    if (Status s = sw.world.step(); !s) return s;
+  const int simulated = simulate(run, stepsToRun, [&](std::uint64_t i) {
+    if (Status s = sw.world.step(); !s) {
+      err << "quack run: step " << firstStep + i + 1 << ": " << s.message() << '\n';
+      return kRunFailed;
+    }
     const StepEvents& e = sw.world.events();
     totals.begin += e.begin.size();
     totals.end += e.end.size();
@@ -624,13 +623,8 @@ int runScene2(RunContext& run, Scene& scene, double loadMs,
     totals.sensor += e.sensorBegin.size();
     if (!options.events.empty()) appendEventLines(eventLines, firstStep + i + 1, e);
     if (replay) replay->record(sw);
-    if (!takeSnapshot()) {
-      snapshotFailed = true;
-      return fail("the snapshot failed");
-    }
-    return {};
+    return takeSnapshot() ? kRunOk : kRunFailed;
   });
-  if (snapshotFailed) return kRunFailed;
   if (simulated != kRunOk) return simulated;
   const double simulateMs = msSince(t0);
   progress.end([&] {
@@ -770,14 +764,17 @@ int runScene3(RunContext& run, const Scene3& scene, double loadMs,
   EventTotals totals;
   std::string eventLines;
   t0 = Clock::now();
-  const int simulated = simulate(run, 0, options.steps, [&](std::uint64_t i) -> Status {
-    if (Status s = sw.world.step(); !s) return s;
+  const int simulated = simulate(run, options.steps, [&](std::uint64_t i) {
+    if (Status s = sw.world.step(); !s) {
+      err << "quack run: step " << i + 1 << ": " << s.message() << '\n';
+      return kRunFailed;
+    }
     const StepEvents3& e = sw.world.events();
     totals.begin += e.begin.size();
     totals.end += e.end.size();
     if (!options.events.empty()) appendEventLines3(eventLines, i + 1, e);
     if (replay) replay->record(sw);
-    return {};
+    return kRunOk;
   });
   if (simulated != kRunOk) return simulated;
   const double simulateMs = msSince(t0);
