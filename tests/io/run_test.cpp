@@ -461,13 +461,13 @@ TEST_F(Run, A3DSceneWritesItsStateEventsAndReplay) {
   std::vector<std::string> phases;
   o.onPhase = [&](const std::string& p) { phases.push_back(p); };
   ASSERT_EQ(run(o), kRunOk) << err_.str();
-  EXPECT_EQ(phases, (std::vector<std::string>{"load", "build", "simulate", "render", "write",
-                                              "commit"}));
+  EXPECT_EQ(phases,
+            (std::vector<std::string>{"load", "build", "simulate", "render", "write", "commit"}));
   EXPECT_TRUE(err_.str().empty()) << err_.str();
   const std::string summary = out_.str();
-  for (const char* line : {"hulls-3d.json (3D)", "bodies    49 (48 dynamic), 53 shapes",
-                           "steps     90 (1.500 s simulated", "events    begin ", "1 thread)",
-                           "replay    ", "WebGL"})
+  for (const char* line :
+       {"hulls-3d.json (3D)", "bodies    49 (48 dynamic), 53 shapes",
+        "steps     90 (1.500 s simulated", "events    begin ", "1 thread)", "replay    ", "WebGL"})
     EXPECT_NE(summary.find(line), std::string::npos) << line << "\n" << summary;
   const std::string text = read(at("state.json"));
   Result<StateFile3> state = parseState3(text, "state.json");
@@ -507,8 +507,7 @@ TEST_F(Run, A3DSceneRefusesWhatTheWorldLacksAndIgnoresThreads) {
     const char* message;
   };
   const Case cases[] = {
-      {[this](RunOptions& o) { o.svg = at("last.svg"); },
-       "--svg: a 3D scene has no SVG picture"},
+      {[this](RunOptions& o) { o.svg = at("last.svg"); }, "--svg: a 3D scene has no SVG picture"},
       {[this](RunOptions& o) {
          o.snapshotAt = 2;
          o.snapshotFile = at("snap.bin");
