@@ -6,6 +6,8 @@
 #   pyramid.svg         a picture of the last state
 #   pyramid.html        a self-contained replay (open it in a browser: play, pause, scrub, zoom)
 # Another scene:  scripts/run.sh scenes/rain.json 900
+# A 3D scene ("dim": 3; its replay is drawn with WebGL and it has no SVG):
+#                 scripts/run.sh scenes/cards-3d.json
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scene=${1:-scenes/pyramid.json}
@@ -15,7 +17,14 @@ scripts/setup.sh build
 cmake --preset release -DQUACK_BUILD_TESTS=OFF -DQUACK_BUILD_BENCHMARKS=OFF >/dev/null
 cmake --build --preset release --target quack
 mkdir -p out
-./build/release/apps/quack/quack run "$scene" --steps "$steps" --out "out/$name.state.json" \
-  --svg "out/$name.svg" --html "out/$name.html"
-echo
-echo "Open out/$name.html in a browser to watch the run (out/$name.svg is the last frame)."
+if grep -Eq '"dim"[[:space:]]*:[[:space:]]*3' "$scene"; then
+  ./build/release/apps/quack/quack run "$scene" --steps "$steps" --out "out/$name.state.json" \
+    --html "out/$name.html"
+  echo
+  echo "Open out/$name.html in a browser to watch the run (drag to orbit, wheel to zoom)."
+else
+  ./build/release/apps/quack/quack run "$scene" --steps "$steps" --out "out/$name.state.json" \
+    --svg "out/$name.svg" --html "out/$name.html"
+  echo
+  echo "Open out/$name.html in a browser to watch the run (out/$name.svg is the last frame)."
+fi

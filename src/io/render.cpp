@@ -7,14 +7,12 @@
 #include <cstring>
 
 #include "quack/geometry/bounds.hpp"
+#include "render_text.hpp"
 #include "replay_page.hpp"
 
 namespace quack {
-namespace {
 
-// Numbers for pictures: 4 decimals (0.1 mm, 0.1 mrad) is below what a screen shows, and
-// keeps big replays small. Trailing zeros are trimmed.
-void appendNumber(std::string& out, double x) {
+void detail::appendPictureNumber(std::string& out, double x) {
   char buf[32];
   if (!std::isfinite(x)) x = 0.0;
   int n = std::snprintf(buf, sizeof buf, "%.4f", x);
@@ -28,14 +26,7 @@ void appendNumber(std::string& out, double x) {
   out.append(buf, static_cast<std::size_t>(n));
 }
 
-void appendVec(std::string& out, Vec2 v) {
-  appendNumber(out, static_cast<double>(v.x));
-  out += ',';
-  appendNumber(out, static_cast<double>(v.y));
-}
-
-// Escapes a string for JSON inside an HTML <script> (no "</" may appear).
-std::string jsonString(const std::string& s) {
+std::string detail::scriptJsonString(const std::string& s) {
   std::string out = "\"";
   for (char c : s) {
     switch (c) {
@@ -70,7 +61,7 @@ std::string jsonString(const std::string& s) {
   return out + "\"";
 }
 
-std::string xmlEscape(const std::string& s) {
+std::string detail::xmlEscape(const std::string& s) {
   std::string out;
   for (char c : s) {
     switch (c) {
@@ -92,6 +83,24 @@ std::string xmlEscape(const std::string& s) {
   }
   return out;
 }
+
+namespace {
+
+void appendNumber(std::string& out, double x) {
+  detail::appendPictureNumber(out, x);
+}
+
+void appendVec(std::string& out, Vec2 v) {
+  appendNumber(out, static_cast<double>(v.x));
+  out += ',';
+  appendNumber(out, static_cast<double>(v.y));
+}
+
+std::string jsonString(const std::string& s) {
+  return detail::scriptJsonString(s);
+}
+
+using detail::xmlEscape;
 
 // Arc of radius r about c from direction `from` turning counter-clockwise to `to`.
 void appendArc(std::vector<Vec2>& out, Vec2 c, float r, Vec2 from, Vec2 to, float maxStep,
@@ -297,9 +306,53 @@ std::string renderSvg(const SceneWorld& scene, const std::string& title,
   return out;
 }
 
+void detail::ReplayFrames::start(std::uint64_t totalCalls, int maxFrames) {
+  totalCalls_ = totalCalls;
+  // At most maxFrames to begin with (a call every `every_`); thin() halves them whenever
+  // their text outgrows the budget.
+  const std::uint64_t cap = std::max<std::uint64_t>(2, static_cast<std::uint64_t>(maxFrames));
+  every_ = std::max<std::uint64_t>(1, (totalCalls + cap - 1) / cap);
+}
+
+bool detail::ReplayFrames::due() {
+  call_ = calls_++;
+  // Every `every_`-th call, and the last one: the replay always ends where the run did.
+  return call_ % every_ == 0 || call_ + 1 == totalCalls_;
+}
+
+void detail::ReplayFrames::add(std::string frame, std::size_t budget) {
+  bytes_ += frame.size() + 2;
+  frames_.emplace_back(call_, std::move(frame));
+  while (bytes_ > budget && frames_.size() > 2)
+    thin();
+}
+
+void detail::ReplayFrames::thin() {
+  std::uint64_t every = 2 * every_;
+  std::vector<std::pair<std::uint64_t, std::string>> kept;
+  std::size_t bytes = 0;
+  for (auto& f : frames_) {
+    if (f.first % every == 0 || f.first + 1 == totalCalls_) {
+      bytes += f.second.size() + 2;
+      kept.push_back(std::move(f));
+    }
+  }
+  frames_ = std::move(kept);
+  bytes_ = bytes;
+  every_ = every;
+}
+
+void detail::ReplayFrames::appendJoined(std::string& out) const {
+  out.reserve(out.size() + bytes_ + 8);
+  for (std::size_t k = 0; k < frames_.size(); ++k) {
+    if (k) out += ",\n";
+    out += frames_[k].second;
+  }
+}
+
 ReplayRecorder::ReplayRecorder(const SceneWorld& scene, std::uint64_t totalSteps,
                                ReplayOptions options)
-    : options_(options), totalCalls_(totalSteps) {
+    : options_(options) {
   shapesTotal_ = shapeCount(scene);
   const std::size_t stride = strideFor(shapesTotal_, options_.maxShapes);
   const std::size_t shapeBytes = options_.maxBytes / 4;
@@ -347,31 +400,11 @@ ReplayRecorder::ReplayRecorder(const SceneWorld& scene, std::uint64_t totalSteps
     }
   }
   shapes_ = shapes + "]";
-  // Frames: at most maxFrames to begin with (a call every `every_`); thin() halves them
-  // whenever their text outgrows the budget.
-  std::uint64_t cap = std::max<std::uint64_t>(2, static_cast<std::uint64_t>(options_.maxFrames));
-  every_ = std::max<std::uint64_t>(1, (totalSteps + cap - 1) / cap);
-}
-
-void ReplayRecorder::thin() {
-  std::uint64_t every = 2 * every_;
-  std::vector<std::pair<std::uint64_t, std::string>> kept;
-  std::size_t bytes = 0;
-  for (auto& f : frames_) {
-    if (f.first % every == 0 || f.first + 1 == totalCalls_) {
-      bytes += f.second.size() + 2;
-      kept.push_back(std::move(f));
-    }
-  }
-  frames_ = std::move(kept);
-  frameBytes_ = bytes;
-  every_ = every;
+  frames_.start(totalSteps, options_.maxFrames);
 }
 
 void ReplayRecorder::record(const SceneWorld& scene) {
-  std::uint64_t call = calls_++;
-  // Every `every_`-th call, and the last one: the replay always ends where the run did.
-  if (call % every_ != 0 && call + 1 != totalCalls_) return;
+  if (!frames_.due()) return;
   std::string f = "{\"t\":";
   appendNumber(f, scene.world.time());
   f += ",\"p\":[";
@@ -453,13 +486,9 @@ void ReplayRecorder::record(const SceneWorld& scene) {
     f += ']';
   }
   f += '}';
-  frameBytes_ += f.size() + 2;
-  frames_.emplace_back(call, std::move(f));
   // The frames' share of the budget: what the shapes and the page leave.
   const std::size_t fixed = shapes_.size() + std::strlen(kReplayPage) + 4096;
-  const std::size_t budget = options_.maxBytes > fixed ? options_.maxBytes - fixed : 0;
-  while (frameBytes_ > budget && frames_.size() > 2)
-    thin();
+  frames_.add(std::move(f), options_.maxBytes > fixed ? options_.maxBytes - fixed : 0);
 }
 
 std::string ReplayRecorder::html(const std::string& title) const {
@@ -473,11 +502,7 @@ std::string ReplayRecorder::html(const std::string& title) const {
           ",\"total\":" + std::to_string(shapesTotal_) +
           ",\"capped\":" + (contactsCapped_ ? "true" : "false") + ",\"shapes\":" + shapes_ +
           ",\"frames\":[\n";
-  data.reserve(data.size() + frameBytes_ + 8);
-  for (std::size_t k = 0; k < frames_.size(); ++k) {
-    if (k) data += ",\n";
-    data += frames_[k].second;
-  }
+  frames_.appendJoined(data);
   data += "]}";
   std::string page = kReplayPage;
   const std::string titleMark = "@TITLE@", dataMark = "@DATA@";

@@ -1,14 +1,9 @@
 #include "quack/io/scene.hpp"
 
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <random>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -16,6 +11,7 @@
 #include "quack/geometry/mass.hpp"
 #include "quack/io/shape_json.hpp"
 #include "quack/math/trig.hpp"
+#include "scene_fields.hpp"
 
 namespace quack {
 namespace {
@@ -41,77 +37,33 @@ struct Parser {
   Error relabel(const Error& e) const { return fail(file + ": " + e.message); }
 };
 
+// The field readers both scene parsers share (scene_fields.hpp), by their short names here.
 Status checkKeys(const json& j, const std::string& path, std::initializer_list<const char*> keys) {
-  for (const auto& item : j.items()) {
-    bool known = false;
-    for (const char* k : keys)
-      known |= item.key() == k;
-    if (!known) return fail((path.empty() ? "" : path + ".") + item.key() + ": unknown key");
-  }
-  return {};
+  return detail::checkSceneKeys(j, path, keys);
 }
-
 std::string join(const std::string& path, const char* key) {
-  return path.empty() ? key : path + "." + key;
+  return detail::joinPath(path, key);
 }
-
-// A number for a message: "1e+30", "0.5".
 std::string show(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", x);
-  return buf;
+  return detail::showNumber(x);
 }
-
 std::string show(Vec2 v) {
   return "[" + show(static_cast<double>(v.x)) + ", " + show(static_cast<double>(v.y)) + "]";
 }
-
-const std::string& coordinateLimitText() {
-  static const std::string text =
-      "the coordinate limit (+-" + show(static_cast<double>(kMaxCoordinate)) + " m)";
-  return text;
-}
-
-// The float `f` (already checked finite) at most `hi`; `unit` ends the message.
-Status atMost(float f, float hi, const std::string& path, const char* unit) {
-  if (f > hi) {
-    return fail(path + ": must be at most " + show(static_cast<double>(hi)) + unit + ", got " +
-                show(static_cast<double>(f)));
-  }
-  return {};
-}
-
+using detail::atMost;
+using detail::coordinateLimitText;
 Result<float> number(const json& j, const char* key, const std::string& path, float fallback) {
-  if (!j.contains(key)) return fallback;
-  const json& v = j.at(key);
-  if (!v.is_number()) return fail(join(path, key) + ": must be a number");
-  auto f = static_cast<float>(v.get<double>());
-  if (!std::isfinite(f)) return fail(join(path, key) + ": must be finite (as a float)");
-  return f;
+  return detail::readNumber(j, key, path, fallback);
 }
-
 Result<float> nonNegative(const json& j, const char* key, const std::string& path, float fallback) {
-  Result<float> f = number(j, key, path, fallback);
-  if (f && *f < 0.0f) return fail(join(path, key) + ": must be >= 0");
-  return f;
+  return detail::readNonNegative(j, key, path, fallback);
 }
-
 Result<int> integer(const json& j, const char* key, const std::string& path, int fallback, int lo,
                     int hi) {
-  if (!j.contains(key)) return fallback;
-  const json& v = j.at(key);
-  if (!v.is_number_integer()) return fail(join(path, key) + ": must be an integer");
-  long long i = v.get<long long>();
-  if (i < lo || i > hi) {
-    return fail(join(path, key) + ": must be in " + std::to_string(lo) + ".." + std::to_string(hi));
-  }
-  return static_cast<int>(i);
+  return detail::readInteger(j, key, path, fallback, lo, hi);
 }
-
 Result<bool> boolean(const json& j, const char* key, const std::string& path, bool fallback) {
-  if (!j.contains(key)) return fallback;
-  if (!j.at(key).is_boolean()) return fail(join(path, key) + ": must be true or false");
-  return j.at(key).get<bool>();
+  return detail::readBoolean(j, key, path, fallback);
 }
 
 Result<Vec2> vec(const json& j, const char* key, const std::string& path, Vec2 fallback) {
@@ -119,46 +71,8 @@ Result<Vec2> vec(const json& j, const char* key, const std::string& path, Vec2 f
   return parseVec2(j.at(key), join(path, key));
 }
 
-Result<std::uint64_t> categoryBits(const Parser& p, const json& v, const std::string& path) {
-  auto bit = [&](const json& name, const std::string& at) -> Result<std::uint64_t> {
-    if (!name.is_string()) return fail(at + ": must be a category name");
-    const std::string n = name.get<std::string>();
-    for (std::size_t i = 0; i < p.categories.size(); ++i) {
-      if (p.categories[i] == n) return std::uint64_t{1} << i;
-    }
-    return fail(at + ": unknown category \"" + n + "\" (declare it in \"categories\")");
-  };
-  if (v.is_string()) return bit(v, path);
-  if (!v.is_array()) return fail(path + ": must be a category name or an array of names");
-  std::uint64_t bits = 0;
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    Result<std::uint64_t> b = bit(v[i], path + "[" + std::to_string(i) + "]");
-    if (!b) return b.error();
-    bits |= *b;
-  }
-  return bits;
-}
-
-// A shape with no filter belongs to every category and accepts every category, so it
-// collides with everything; a filter's category and mask default to all as well.
 Result<Filter> parseFilter(const Parser& p, const json& j, const std::string& path) {
-  Filter f{~std::uint64_t{0}, ~std::uint64_t{0}, 0};
-  if (!j.is_object()) return fail(path + ": must be an object {\"category\", \"mask\", \"group\"}");
-  if (Status s = checkKeys(j, path, {"category", "mask", "group"}); !s) return fail(s.message());
-  if (j.contains("category")) {
-    Result<std::uint64_t> c = categoryBits(p, j.at("category"), path + ".category");
-    if (!c) return c.error();
-    f.category = *c;
-  }
-  if (j.contains("mask")) {
-    Result<std::uint64_t> m = categoryBits(p, j.at("mask"), path + ".mask");
-    if (!m) return m.error();
-    f.mask = *m;
-  }
-  Result<int> g = integer(j, "group", path, 0, -1000000000, 1000000000);
-  if (!g) return g.error();
-  f.group = *g;
-  return f;
+  return detail::readFilter(p.categories, j, path);
 }
 
 // Material keys of a shape (or a generator), over the defaults of ShapeDef.
@@ -248,15 +162,6 @@ Result<SceneChain> parseChain(const Parser& p, const json& j, const std::string&
   return chain;
 }
 
-Result<BodyType> parseBodyType(const json& j, const std::string& path, BodyType fallback) {
-  if (!j.contains("type")) return fallback;
-  const json& v = j.at("type");
-  if (v == "static") return BodyType::staticBody;
-  if (v == "kinematic") return BodyType::kinematicBody;
-  if (v == "dynamic") return BodyType::dynamicBody;
-  return fail(join(path, "type") + ": must be \"static\", \"kinematic\" or \"dynamic\"");
-}
-
 // Where a shape of a body is, for messages: its JSON path, and for a generated body the
 // body's name too ("generate[0]: body \"rain0_7\"").
 std::string shapeWhere(const SceneBody& b, const std::string& shapePath) {
@@ -320,12 +225,10 @@ Result<SceneBody> parseBody(const Parser& p, const json& j, const std::string& p
   }
   SceneBody body;
   body.path = path;
-  body.name = "body" + std::to_string(index);
-  if (j.contains("name")) {
-    if (!j.at("name").is_string()) return fail(path + ".name: must be a string");
-    body.name = j.at("name").get<std::string>();
-  }
-  Result<BodyType> type = parseBodyType(j, path, BodyType::dynamicBody);
+  Result<std::string> name = detail::readBodyName(j, path, index);
+  if (!name) return name.error();
+  body.name = std::move(*name);
+  Result<BodyType> type = detail::readBodyType(j, path, BodyType::dynamicBody);
   if (!type) return type.error();
   Result<Vec2> pos = vec(j, "pos", path, {});
   if (!pos) return pos.error();
@@ -575,7 +478,7 @@ Status generate(const Parser& p, const json& g, const std::string& path, std::si
       }
     }
     Result<BodyType> type =
-        parseBodyType(g, path, rain ? BodyType::dynamicBody : BodyType::staticBody);
+        detail::readBodyType(g, path, rain ? BodyType::dynamicBody : BodyType::staticBody);
     if (!type) return type.error();
     Result<ShapeDef> def = material();
     if (!def) return def.error();
@@ -844,7 +747,8 @@ Result<SceneJoint> parseJoint(const json& j, const std::string& path,
 Result<WorldDef> parseWorld(const json& j, const std::string& path) {
   WorldDef def;
   if (!j.is_object()) return fail(path + ": must be an object");
-  if (Status s = checkKeys(j, path, {"gravity", "dt", "substeps", "broadphase", "sleep"}); !s)
+  if (Status s = checkKeys(j, path, {"dim", "gravity", "dt", "substeps", "broadphase", "sleep"});
+      !s)
     return fail(s.message());
   Result<Vec2> gravity = vec(j, "gravity", path, def.gravity);
   if (!gravity) return gravity.error();
@@ -883,16 +787,20 @@ Result<SceneJoint> parseSceneJoint(const json& joint, const std::string& path,
 
 Result<Scene> parseScene(std::string_view text, const std::string& fileName,
                          const SceneProgress& progress) {
+  Result<json> root = detail::parseSceneJson(text, fileName);
+  if (!root) return root.error();
+  return detail::parseSceneRoot(*root, fileName, progress);
+}
+
+Result<Scene> detail::parseSceneRoot(const json& root, const std::string& fileName,
+                                     const SceneProgress& progress) {
   Parser p{fileName, {}, &progress};
-  json root;
-  try {
-    root = json::parse(text);
-  } catch (const json::exception& e) {
-    // nlohmann's message says where ("at line 3, column 7") and what it expected; a number
-    // too big for a double (1e400) is an out_of_range error, also caught here.
-    return p.error("", std::string("not valid JSON: ") + e.what());
+  Result<int> dim = sceneDimension(root, fileName);
+  if (!dim) return dim.error();
+  if (*dim == 3) {
+    return p.error("world.dim",
+                   "3 is a 3D scene (parseScene3 and parseAnyScene read it, quack run runs it)");
   }
-  if (!root.is_object()) return p.error("", "a scene must be a JSON object");
   if (Status s = checkKeys(root, "", {"world", "categories", "bodies", "generate", "joints"}); !s) {
     return p.relabel(fail(s.message()));
   }
@@ -905,19 +813,10 @@ Result<Scene> parseScene(std::string_view text, const std::string& fileName,
     p.worldSleep = w->enableSleep;
   }
   if (root.contains("categories")) {
-    const json& c = root.at("categories");
-    if (!c.is_array()) return p.error("categories", "must be an array of names");
-    if (c.size() > 64) return p.error("categories", "at most 64 categories (one bit each)");
-    for (std::size_t i = 0; i < c.size(); ++i) {
-      std::string at = "categories[" + std::to_string(i) + "]";
-      if (!c[i].is_string() || c[i].get<std::string>().empty())
-        return p.error(at, "must be a non-empty name");
-      std::string name = c[i].get<std::string>();
-      for (const std::string& other : p.categories) {
-        if (other == name) return p.error(at, "\"" + name + "\" is declared twice");
-      }
-      p.categories.push_back(name);
-    }
+    Result<std::vector<std::string>> c =
+        detail::readCategories(root.at("categories"), "categories");
+    if (!c) return p.relabel(c.error());
+    p.categories = std::move(*c);
     scene.categories = p.categories;
   }
   if (root.contains("bodies")) {
@@ -958,17 +857,9 @@ Result<Scene> parseScene(std::string_view text, const std::string& fileName,
 }
 
 Result<Scene> loadScene(const std::string& path, const SceneProgress& progress) {
-  // A directory opens as a stream on Linux and reads as nothing ("unexpected end of
-  // input"); say what it is instead.
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    return fail(path + ": is a directory, not a scene file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return fail(path + ": cannot open the file (" + std::strerror(errno) + ")");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) return fail(path + ": cannot read the file (" + std::strerror(errno) + ")");
-  return parseScene(text.str(), path, progress);
+  Result<std::string> text = detail::readSceneText(path);
+  if (!text) return text.error();
+  return parseScene(*text, path, progress);
 }
 
 Result<SceneWorld> buildWorld(const Scene& scene, const SceneProgress& progress) {

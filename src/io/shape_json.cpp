@@ -480,11 +480,12 @@ bool isMesh3(const json& j) {
          j.at("type").get<std::string>() == "mesh";
 }
 
-Result<Mesh3> parseMesh3(const json& j, const std::string& path) {
+Result<Mesh3> parseMesh3(const json& j, const std::string& path,
+                         std::initializer_list<const char*> extraKeys) {
   Result<std::string> type = typeOf(j, path);
   if (!type) return type.error();
   if (*type != "mesh") return fail(path + ".type: must be \"mesh\"");
-  if (Status s = checkKeys(j, path, {"type", "vertices", "triangles"}, {}); !s)
+  if (Status s = checkKeys(j, path, {"type", "vertices", "triangles"}, extraKeys); !s)
     return fail(s.message());
   Result<std::vector<Vec3>> vertices =
       parsePoints3(j, "vertices", path, 3, static_cast<std::size_t>(kMaxMeshVertices3Json));

@@ -7,6 +7,7 @@
 
 #include "quack/io/number_text.hpp"
 #include "quack/io/scene.hpp"
+#include "quack/io/scene3.hpp"
 
 namespace quack {
 namespace {
@@ -54,6 +55,30 @@ void appendVec(std::string& out, Vec2 v) {
   appendDouble(out, static_cast<double>(v.x));
   out += ", ";
   appendDouble(out, static_cast<double>(v.y));
+  out += ']';
+}
+
+// [x, y, z] or [x, y, z, w]: `count` finite floats.
+Result<std::vector<float>> readFloats(const json& j, std::size_t count, const std::string& path,
+                                      const char* shape) {
+  if (!j.is_array() || j.size() != count) return fail(path + ": must be " + shape);
+  std::vector<float> out(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    Result<float> f = readFloat(j[i], path + "[" + std::to_string(i) + "]");
+    if (!f) return f.error();
+    out[i] = *f;
+  }
+  return out;
+}
+
+void appendFloats(std::string& out, std::initializer_list<float> values) {
+  out += '[';
+  bool first = true;
+  for (float v : values) {
+    if (!first) out += ", ";
+    first = false;
+    appendDouble(out, static_cast<double>(v));
+  }
   out += ']';
 }
 
@@ -194,6 +219,7 @@ Result<StateFile> parseState(std::string_view text, const std::string& fileName)
   auto error = [&](const std::string& what) { return fail(fileName + ": " + what); };
   json j = json::parse(text, nullptr, false);
   if (j.is_discarded() || !j.is_object()) return error("not a JSON object");
+  if (j.contains("dim")) return error("dim: a 3D state file (parseState3 reads it)");
   for (const auto& item : j.items()) {
     const std::string& k = item.key();
     if (k != "time" && k != "steps" && k != "bodies" && k != "joints" && k != "events" &&
@@ -278,6 +304,129 @@ Result<StateFile> parseState(std::string_view text, const std::string& fileName)
   if (j.contains("timing") && !j.at("timing").is_object())
     return error("timing: must be an object");
   return s;
+}
+
+// ---- 3D ----------------------------------------------------------------------------------
+
+StateFile3 captureState3(const SceneWorld3& scene, const EventTotals& events) {
+  StateFile3 s;
+  s.steps = scene.world.stepCount();
+  // quack run steps by the world's dt only, so the time is the product (rounded once).
+  s.time = static_cast<double>(s.steps) * static_cast<double>(scene.world.def().timeStep);
+  s.bodies.reserve(scene.bodies.size());
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const BodyId3 b = scene.bodies[i];
+    if (!scene.world.isValid(b)) continue;  // destroyed during the run
+    s.bodies.push_back({scene.names[i], scene.world.position(b), scene.world.rotation(b),
+                        scene.world.linearVelocity(b), scene.world.angularVelocity(b),
+                        // World3 keeps a static body's flag set; a state file says what the
+                        // 2D one does: a static body is never awake (never simulated).
+                        scene.world.isAwake(b) && scene.world.bodyType(b) != BodyType::staticBody});
+  }
+  s.events = {events.begin, events.end, 0, 0};
+  return s;
+}
+
+std::string writeState3(const StateFile3& state) {
+  std::string out = "{\"dim\": 3,\n \"time\": ";
+  appendDouble(out, state.time);
+  out += ",\n \"steps\": " + std::to_string(state.steps) + ",\n \"bodies\": [";
+  out.reserve(out.size() + 220 * state.bodies.size() + 128);
+  for (std::size_t i = 0; i < state.bodies.size(); ++i) {
+    const BodyState3& b = state.bodies[i];
+    out += i == 0 ? "\n  " : ",\n  ";
+    out += "{\"name\": " + json(b.name).dump() + ", \"pos\": ";
+    appendFloats(out, {b.pos.x, b.pos.y, b.pos.z});
+    out += ", \"quat\": ";
+    appendFloats(out, {b.quat.x, b.quat.y, b.quat.z, b.quat.w});
+    out += ", \"vel\": ";
+    appendFloats(out, {b.vel.x, b.vel.y, b.vel.z});
+    out += ", \"angvel\": ";
+    appendFloats(out, {b.angvel.x, b.angvel.y, b.angvel.z});
+    out += b.awake ? ", \"awake\": true}" : ", \"awake\": false}";
+  }
+  out += state.bodies.empty() ? "],\n" : "\n ],\n";
+  out += " \"events\": {\"begin\": " + std::to_string(state.events.begin) +
+         ", \"end\": " + std::to_string(state.events.end) + "}}\n";
+  return out;
+}
+
+Result<StateFile3> parseState3(std::string_view text, const std::string& fileName) {
+  auto error = [&](const std::string& what) { return fail(fileName + ": " + what); };
+  json j = json::parse(text, nullptr, false);
+  if (j.is_discarded() || !j.is_object()) return error("not a JSON object");
+  if (!j.contains("dim")) {
+    return error(
+        "dim: missing (a 3D state file starts with \"dim\": 3; a file without it is "
+        "2D: parseState reads it)");
+  }
+  if (!j.at("dim").is_number_integer() || j.at("dim").get<long long>() != 3)
+    return error("dim: must be 3");
+  for (const auto& item : j.items()) {
+    const std::string& k = item.key();
+    if (k != "dim" && k != "time" && k != "steps" && k != "bodies" && k != "events")
+      return error(k + ": unknown key");
+  }
+  StateFile3 s;
+  Result<double> time = readDouble(j, "time", "");
+  if (!time) return error(time.error().message.substr(1));
+  s.time = *time;
+  Result<std::uint64_t> steps = readCount(j, "steps", "");
+  if (!steps) return error(steps.error().message.substr(1));
+  s.steps = *steps;
+  if (!j.contains("bodies") || !j.at("bodies").is_array()) return error("bodies: must be an array");
+  const json& bodies = j.at("bodies");
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const json& b = bodies[i];
+    const std::string path = "bodies[" + std::to_string(i) + "]";
+    if (!b.is_object()) return error(path + ": must be an object");
+    for (const auto& item : b.items()) {
+      const std::string& k = item.key();
+      if (k != "name" && k != "pos" && k != "quat" && k != "vel" && k != "angvel" && k != "awake")
+        return error(path + "." + k + ": unknown key");
+    }
+    BodyState3 st;
+    if (!b.contains("name") || !b.at("name").is_string())
+      return error(path + ".name: must be a string");
+    st.name = b.at("name").get<std::string>();
+    for (auto [key, target] :
+         {std::pair{"pos", &st.pos}, std::pair{"vel", &st.vel}, std::pair{"angvel", &st.angvel}}) {
+      if (!b.contains(key)) return error(path + "." + key + ": missing");
+      Result<std::vector<float>> v = readFloats(b.at(key), 3, path + "." + key, "[x, y, z]");
+      if (!v) return error(v.error().message);
+      *target = Vec3{(*v)[0], (*v)[1], (*v)[2]};
+    }
+    if (!b.contains("quat")) return error(path + ".quat: missing");
+    Result<std::vector<float>> q = readFloats(b.at("quat"), 4, path + ".quat", "[x, y, z, w]");
+    if (!q) return error(q.error().message);
+    st.quat = Quat{(*q)[0], (*q)[1], (*q)[2], (*q)[3]};
+    if (!b.contains("awake") || !b.at("awake").is_boolean())
+      return error(path + ".awake: must be true or false");
+    st.awake = b.at("awake").get<bool>();
+    s.bodies.push_back(std::move(st));
+  }
+  if (!j.contains("events") || !j.at("events").is_object())
+    return error("events: must be an object");
+  const json& e = j.at("events");
+  for (auto [key, target] :
+       {std::pair{"begin", &s.events.begin}, std::pair{"end", &s.events.end}}) {
+    Result<std::uint64_t> c = readCount(e, key, "events");
+    if (!c) return error(c.error().message);
+    *target = *c;
+  }
+  return s;
+}
+
+void appendEventLines3(std::string& out, std::uint64_t step, const StepEvents3& events) {
+  const std::string head = "{\"step\": " + std::to_string(step) + ", \"event\": \"";
+  for (const ContactEvent3& e : events.begin) {
+    out += head + "begin\", \"a\": " + std::to_string(e.shapeA.index) +
+           ", \"b\": " + std::to_string(e.shapeB.index) + "}\n";
+  }
+  for (const ContactEvent3& e : events.end) {
+    out += head + "end\", \"a\": " + std::to_string(e.shapeA.index) +
+           ", \"b\": " + std::to_string(e.shapeB.index) + "}\n";
+  }
 }
 
 }  // namespace quack

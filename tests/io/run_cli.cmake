@@ -90,3 +90,19 @@ foreach(bad 0 65 two)
     message(FATAL_ERROR "unexpected answer to --threads ${bad} (${rc}): ${err}")
   endif()
 endforeach()
+
+# A 3D scene: the 3D state file and the WebGL replay.
+execute_process(COMMAND ${QUACK} run ${SRC}/scenes/cards-3d.json --steps 10 --out ${OUT}/state3.json
+                        --html ${OUT}/replay3.html
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "quack run on a 3D scene failed (${rc}):\n${out}\n${err}")
+endif()
+file(READ ${OUT}/state3.json state)
+file(READ ${OUT}/replay3.html replay)
+string(FIND "${state}" "{\"dim\": 3," at_dim)
+string(FIND "${replay}" "getContext(\"webgl\"" at_gl)
+string(FIND "${out}" "cards-3d.json (3D)" at_summary)
+if(at_dim EQUAL -1 OR at_gl EQUAL -1 OR at_summary EQUAL -1)
+  message(FATAL_ERROR "a 3D run wrote the wrong files or summary:\n${out}\n${state}")
+endif()

@@ -14,6 +14,7 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -445,6 +446,115 @@ TEST_F(Run, LargeGeneratedSceneShowsProgressAndStaysWithinSizeBudgets) {
   EXPECT_TRUE(rateReads(err)) << err;
   EXPECT_EQ(err.find(" 0 steps/s"), std::string::npos) << err;
   EXPECT_EQ(err.find(" 0.0 s/step"), std::string::npos) << err;
+}
+
+// ---- 3D scenes ----------------------------------------------------------------------------
+
+// A 3D scene runs: the state file (3D, read back), the event list (agreeing with the
+// totals), the WebGL replay and the timing are written; the summary says it is 3D; two runs
+// write the same state bytes.
+TEST_F(Run, A3DSceneWritesItsStateEventsAndReplay) {
+  RunOptions o = options("hulls-3d.json", 90);
+  o.events = at("events.jsonl");
+  o.html = at("replay.html");
+  o.timing = at("timing.json");
+  std::vector<std::string> phases;
+  o.onPhase = [&](const std::string& p) { phases.push_back(p); };
+  ASSERT_EQ(run(o), kRunOk) << err_.str();
+  EXPECT_EQ(phases,
+            (std::vector<std::string>{"load", "build", "simulate", "render", "write", "commit"}));
+  EXPECT_TRUE(err_.str().empty()) << err_.str();
+  const std::string summary = out_.str();
+  for (const char* line :
+       {"hulls-3d.json (3D)", "bodies    49 (48 dynamic), 53 shapes",
+        "steps     90 (1.500 s simulated", "events    begin ", "1 thread)", "replay    ", "WebGL"})
+    EXPECT_NE(summary.find(line), std::string::npos) << line << "\n" << summary;
+  const std::string text = read(at("state.json"));
+  Result<StateFile3> state = parseState3(text, "state.json");
+  ASSERT_TRUE(state.ok()) << state.error().message;
+  EXPECT_EQ(state->steps, 90u);
+  EXPECT_EQ(state->bodies.size(), 49u);
+  EXPECT_EQ(state->bodies[1].name, "hull0");
+  EXPECT_GT(state->events.begin, 0u);
+  const std::string events = read(at("events.jsonl"));
+  auto count = [&](const std::string& kind) {
+    std::size_t n = 0;
+    const std::string key = "\"event\": \"" + kind + "\"";
+    for (std::size_t pos = events.find(key); pos != std::string::npos;
+         pos = events.find(key, pos + 1))
+      ++n;
+    return n;
+  };
+  EXPECT_EQ(count("begin"), state->events.begin);
+  EXPECT_EQ(count("end"), state->events.end);
+  const std::string html = read(at("replay.html"));
+  EXPECT_NE(html.find("getContext(\"webgl\""), std::string::npos);
+  EXPECT_NE(read(at("timing.json")).find("\"steps\": 90"), std::string::npos);
+  o.out = at("again.json");
+  o.events.clear();
+  o.html.clear();
+  o.timing.clear();
+  o.onPhase = {};
+  ASSERT_EQ(run(o), kRunOk) << err_.str();
+  EXPECT_EQ(read(at("again.json")), text);
+}
+
+// What the 3D world cannot do yet is refused before anything is built, naming the option,
+// and writes nothing; --threads is noted and the run goes on with one thread.
+TEST_F(Run, A3DSceneRefusesWhatTheWorldLacksAndIgnoresThreads) {
+  struct Case {
+    std::function<void(RunOptions&)> set;
+    const char* message;
+  };
+  const Case cases[] = {
+      {[this](RunOptions& o) { o.svg = at("last.svg"); }, "--svg: a 3D scene has no SVG picture"},
+      {[this](RunOptions& o) {
+         o.snapshotAt = 2;
+         o.snapshotFile = at("snap.bin");
+       },
+       "--snapshot-at: the 3D world has no snapshots yet"},
+      {[this](RunOptions& o) { o.resume = at("state.json"); },
+       "--resume: the 3D world has no snapshots yet"},
+      {[this](RunOptions& o) {
+         o.html = at("r.html");
+         o.htmlBoxes = true;
+       },
+       "--html-boxes: the 3D replay does not draw the broad phase's boxes"},
+  };
+  for (const Case& c : cases) {
+    RunOptions o = options("cards-3d.json", 5);
+    c.set(o);
+    std::vector<std::string> phases;
+    o.onPhase = [&](const std::string& p) { phases.push_back(p); };
+    EXPECT_EQ(run(o), kRunFailed) << c.message;
+    EXPECT_NE(err_.str().find(c.message), std::string::npos) << err_.str();
+    EXPECT_NE(err_.str().find("is a 3D scene"), std::string::npos) << err_.str();
+    EXPECT_EQ(phases, std::vector<std::string>{"load"});
+    EXPECT_FALSE(fs::exists(at("state.json")));
+    EXPECT_TRUE(temporaries().empty());
+  }
+  RunOptions o = options("cards-3d.json", 5);
+  o.threads = 4;
+  ASSERT_EQ(run(o), kRunOk) << err_.str();
+  EXPECT_NE(err_.str().find("warning: --threads 4 ignored: the 3D world steps on one thread"),
+            std::string::npos)
+      << err_.str();
+  EXPECT_NE(out_.str().find(", 1 thread)"), std::string::npos) << out_.str();
+}
+
+// A bad 3D scene exits 2 naming the file and the field, and writes nothing.
+TEST_F(Run, ABad3DSceneNamesTheFieldAndWritesNothing) {
+  write(at("bad-3d.json"),
+        R"({"world": {"dim": 3}, "bodies": [{"quat": [0, 0, 0, 0], "shapes": []}]})");
+  RunOptions o = options();
+  o.scene = at("bad-3d.json");
+  o.html = at("r.html");
+  EXPECT_EQ(run(o), kRunFailed);
+  EXPECT_NE(err_.str().find("bad-3d.json: bodies[0].quat: [0, 0, 0, 0] is not a rotation"),
+            std::string::npos)
+      << err_.str();
+  EXPECT_FALSE(fs::exists(at("state.json")));
+  EXPECT_FALSE(fs::exists(at("r.html")));
 }
 
 }  // namespace

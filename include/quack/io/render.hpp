@@ -54,6 +54,33 @@ struct ReplayOptions {
   std::size_t maxBoxesPerFrame = 5000;
 };
 
+namespace detail {
+/// The frames of a replay, 2D or 3D (render.cpp, render3.cpp): which record() calls are
+/// kept (every k-th, and always the last), and the thinning that keeps their text within
+/// a budget (every other frame dropped, evenly, the last kept).
+class ReplayFrames {
+ public:
+  /// `totalCalls`: how many record() calls the run will make; at most `maxFrames` kept.
+  void start(std::uint64_t totalCalls, int maxFrames);
+  /// Counts a record() call; true when its frame is to be kept (then call add()).
+  bool due();
+  /// Keeps the frame of the call due() just counted, then thins the frames until their
+  /// text fits in `budget` bytes (always keeping at least two).
+  void add(std::string frame, std::size_t budget);
+  std::size_t count() const noexcept { return frames_.size(); }
+  std::size_t bytes() const noexcept { return bytes_; }
+  /// The frames as the elements of a JSON array, one a line.
+  void appendJoined(std::string& out) const;
+
+ private:
+  void thin();
+
+  std::uint64_t totalCalls_ = 0, every_ = 1, calls_ = 0, call_ = 0;
+  std::vector<std::pair<std::uint64_t, std::string>> frames_;  // (call, JSON object)
+  std::size_t bytes_ = 0;
+};
+}  // namespace detail
+
 /// Records a run frame by frame and writes the replay page.
 class ReplayRecorder {
  public:
@@ -63,25 +90,19 @@ class ReplayRecorder {
   void record(const SceneWorld& scene);
   /// The replay page.
   std::string html(const std::string& title) const;
-  int frameCount() const noexcept { return static_cast<int>(frames_.size()); }
+  int frameCount() const noexcept { return static_cast<int>(frames_.count()); }
   /// Shapes drawn, and shapes in the world when recording began.
   std::size_t shapesDrawn() const noexcept { return shapesDrawn_; }
   std::size_t shapesTotal() const noexcept { return shapesTotal_; }
 
  private:
-  void thin();
-
   ReplayOptions options_;
-  std::uint64_t totalCalls_ = 0;
-  std::uint64_t every_ = 1;
-  std::uint64_t calls_ = 0;
+  detail::ReplayFrames frames_;
   std::size_t shapesDrawn_ = 0, shapesTotal_ = 0;
   bool contactsCapped_ = false;
   std::string shapes_;                 // JSON: one entry per shape (body index, outline, style)
   std::vector<std::uint32_t> moving_;  // scene indices of drawn non-static bodies
   std::vector<float> reach_;           // per moving_ entry: farthest outline point from origin
-  std::vector<std::pair<std::uint64_t, std::string>> frames_;  // (call, JSON object)
-  std::size_t frameBytes_ = 0;
   Aabb bounds_{{1e30f, 1e30f}, {-1e30f, -1e30f}};
 };
 

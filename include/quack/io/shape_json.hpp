@@ -13,7 +13,7 @@
 ///         (rounded pieces would overlap and bulge at the seams).
 /// Pose:  {"pos": [x, y] (default [0, 0]), "angle": radians (default 0)}; a missing pose
 ///        is the identity.
-/// 3D (the same format with three-component vectors; `quack query` only):
+/// 3D (the same format with three-component vectors; `quack query` and 3D scenes):
 ///        {"type": "sphere", "center": [x, y, z] (default [0, 0, 0]), "radius": r > 0}
 ///        {"type": "capsule", "p1": [x, y, z], "p2": [x, y, z], "radius": r > 0}
 ///        {"type": "box", "half": [hx, hy, hz], "center": [0, 0, 0], "quat": [0, 0, 0, 1],
@@ -89,8 +89,9 @@ bool isMesh3(const nlohmann::json& j);
 /// frame, built by makeMesh3. Every error names the field: "a.vertices[2][1]: ...",
 /// "a.triangles[3][0]: vertex index 9 is out of range (0 to 7)", "a.triangles[1]: ... no
 /// area" (makeMesh3's errors about one triangle), "a.triangles: edge (0, 1) is shared by 3
-/// triangles ...".
-Result<Mesh3> parseMesh3(const nlohmann::json& j, const std::string& path);
+/// triangles ...". Keys in `extraKeys` are allowed and left to the caller, as parseShape.
+Result<Mesh3> parseMesh3(const nlohmann::json& j, const std::string& path,
+                         std::initializer_list<const char*> extraKeys = {});
 /// makeMesh3 with its errors said as fields under `path` (parseMesh3's "a.triangles[1]: ...",
 /// "a.triangles: edge (0, 1) ..."; with an empty path "triangles[1]: ..."), for callers that
 /// read the vertices and triangles themselves (Python's quack.d3.mesh).
