@@ -262,7 +262,9 @@ Result<SceneBody3> parseBody3(const std::vector<std::string>& categories, bool w
   if (Status s =
           refuse2DKeys(j, path,
                        {{"angle", "a 3D body turns by \"quat\": [x, y, z, w], not by an angle"},
-                        {"bullet", "the 3D world has no continuous collision yet"}});
+                        {"bullet",
+                         "the 3D world has no bullets: every fast body is swept against static "
+                         "geometry (world.continuous)"}});
       !s) {
     return fail(s.message());
   }
@@ -305,7 +307,8 @@ Result<WorldDef3> parseWorld3(const json& j, const std::string& path) {
   if (Status s = checkSceneKeys(
           j, path,
           {"dim", "gravity", "dt", "substeps", "sleep", "contactHertz", "contactDampingRatio",
-           "contactPushMaxSpeed", "restitutionThreshold", "speculativeDistance", "aabbMargin"});
+           "contactPushMaxSpeed", "restitutionThreshold", "speculativeDistance", "aabbMargin",
+           "contactRecycleDistance", "continuous"});
       !s) {
     return fail(s.message());
   }
@@ -353,6 +356,15 @@ Result<WorldDef3> parseWorld3(const json& j, const std::string& path) {
   }
   if (Status s = atMost(*margin, kSceneMaxGeneratedSize, path + ".aabbMargin", " m"); !s)
     return fail(s.message());
+  Result<float> recycle =
+      detail::readNonNegative(j, "contactRecycleDistance", path, def.contactRecycleDistance);
+  if (!recycle) return recycle.error();
+  if (Status s = atMost(*recycle, 1.0f, path + ".contactRecycleDistance", " m"); !s)
+    return fail(s.message());
+  Result<bool> continuous = detail::readBoolean(j, "continuous", path, def.enableContinuous);
+  if (!continuous) return continuous.error();
+  def.contactRecycleDistance = *recycle;
+  def.enableContinuous = *continuous;
   def.gravity = *gravity;
   def.timeStep = *dt;
   def.substeps = *substeps;

@@ -30,7 +30,8 @@ TEST(Scene3, EveryKeyReachesTheWorld) {
   const Scene3 scene = parseOk(R"({
     "world": {"dim": 3, "gravity": [1, -9, 0.5], "dt": 0.01, "substeps": 6, "sleep": false,
               "contactHertz": 40, "contactDampingRatio": 5, "contactPushMaxSpeed": 2,
-              "restitutionThreshold": 0.5, "speculativeDistance": 0.03, "aabbMargin": 0.2},
+              "restitutionThreshold": 0.5, "speculativeDistance": 0.03, "aabbMargin": 0.2,
+              "contactRecycleDistance": 0.02, "continuous": false},
     "categories": ["ground", "prop"],
     "bodies": [
       {"name": "floor", "type": "static", "pos": [0, -1, 0],
@@ -59,6 +60,8 @@ TEST(Scene3, EveryKeyReachesTheWorld) {
   EXPECT_EQ(w.restitutionThreshold, 0.5f);
   EXPECT_EQ(w.speculativeDistance, 0.03f);
   EXPECT_EQ(w.aabbMargin, 0.2f);
+  EXPECT_EQ(w.contactRecycleDistance, 0.02f);
+  EXPECT_FALSE(w.enableContinuous);
   EXPECT_EQ(scene.categories, (std::vector<std::string>{"ground", "prop"}));
 
   const SceneBody3& floor = scene.bodies[0];
@@ -186,13 +189,15 @@ TEST(Scene3, EveryBadFieldIsRefusedByName) {
       {R"(, "speculativeDistance": 2)", "", "", "world.speculativeDistance: must be at most 1 m"},
       {R"(, "speculativeDistance": 0.5, "aabbMargin": 0.1)", "", "",
        "world.aabbMargin: must be >= speculativeDistance (0.5 m), got 0.1"},
+      {R"(, "contactRecycleDistance": 2)", "", "", "world.contactRecycleDistance: must be at most"},
+      {R"(, "continuous": 1)", "", "", "world.continuous: must be"},
       {R"(, "hertz": 3)", "", "", "world.hertz: unknown key"},
       {"", "", R"(, "generate": [])", "generate: the 3D scene format has no generators yet"},
       {"", "", R"(, "joints": [])", "joints: the 3D world has no joints yet"},
       {"", "", R"(, "categories": ["a", "a"])", "categories[1]: \"a\" is declared twice"},
       {"", "", R"(, "bodies": {})", "bodies: must be an array"},
       {"", R"({"angle": 1})", "", "bodies[0].angle: a 3D body turns by \"quat\""},
-      {"", R"({"bullet": true})", "", "bodies[0].bullet: the 3D world has no continuous"},
+      {"", R"({"bullet": true})", "", "bodies[0].bullet: the 3D world has no bullets"},
       {"", R"({"spin": 1})", "", "bodies[0].spin: unknown key"},
       {"", R"({"name": 5})", "", "bodies[0].name: must be a string"},
       {"", R"({"type": "rigid"})", "", "bodies[0].type: must be \"static\", \"kinematic\""},
