@@ -94,13 +94,13 @@ bool available() {
   return true;
 }
 
-Run run(const std::string& scene, int workers, int steps, bool continuous) {
+Run run(const Plan& plan) {
   Run out;
   auto t0 = Clock::now();
   b3WorldDef wd = b3DefaultWorldDef();
-  wd.workerCount = static_cast<std::uint32_t>(workers);
-  wd.enableContinuous = continuous;
-  if (scene == "convex_pile") {
+  wd.workerCount = static_cast<std::uint32_t>(plan.workers);
+  wd.enableContinuous = plan.continuous;
+  if (plan.scene == "convex_pile") {
     // The capacities Box3D's benchmark gives this scene (preallocation only).
     wd.capacity.dynamicShapeCount = kPileCountX * kPileCountZ * kPileLayers;
     wd.capacity.dynamicBodyCount = kPileCountX * kPileCountZ * kPileLayers;
@@ -108,28 +108,39 @@ Run run(const std::string& scene, int workers, int steps, bool continuous) {
   }
   const b3WorldId world = b3CreateWorld(&wd);
   std::vector<b3BodyId> bodies;
-  if (scene == "large_pyramid") {
+  if (plan.scene == "large_pyramid") {
     bodies = largePyramid(world);
-  } else if (scene == "convex_pile") {
+  } else if (plan.scene == "convex_pile") {
     bodies = convexPile(world);
   } else {
     b3DestroyWorld(world);
-    throw std::invalid_argument("no scene " + scene);
+    throw std::invalid_argument("no scene " + plan.scene);
   }
   out.buildMs = msSince(t0);
+  auto positions = [&] {
+    std::vector<P3> at;
+    for (b3BodyId b : bodies) {
+      const b3Pos p = b3Body_GetPosition(b);
+      at.push_back({static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z)});
+    }
+    return at;
+  };
+  auto step = [&](int i) {
+    b3World_Step(world, kTimeStep, kSubsteps);
+    if (plan.traceEvery > 0 && (i + 1) % plan.traceEvery == 0) out.trace.push_back(positions());
+  };
   t0 = Clock::now();
-  b3World_Step(world, kTimeStep, kSubsteps);
+  step(0);
   out.firstStepMs = msSince(t0);
   t0 = Clock::now();
-  for (int i = 1; i < steps; ++i)
-    b3World_Step(world, kTimeStep, kSubsteps);
-  out.msPerStep = steps > 1 ? msSince(t0) / (steps - 1) : 0.0;
+  for (int i = 1; i < plan.steps; ++i)
+    step(i);
+  out.msPerStep = plan.steps > 1 ? msSince(t0) / (plan.steps - 1) : 0.0;
   out.contacts = b3World_GetCounters(world).contactCount;
   out.awake = b3World_GetAwakeBodyCount(world);
+  out.positions = positions();
   for (b3BodyId b : bodies) {
     const b3Pos p = b3Body_GetPosition(b);
-    out.positions.push_back(
-        {static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z)});
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) ||
         !finite(b3Body_GetLinearVelocity(b)) || !finite(b3Body_GetAngularVelocity(b)))
       ++out.nonFinite;

@@ -113,33 +113,44 @@ bool available() {
   return true;
 }
 
-Run run(const std::string& scene, int steps) {
+Run run(const Plan& plan) {
   Run out;
   auto t0 = Clock::now();
   auto w = std::make_unique<BulletWorld>();
   std::vector<btRigidBody*> bodies;
-  if (scene == "large_pyramid") {
+  if (plan.scene == "large_pyramid") {
     bodies = largePyramid(*w);
-  } else if (scene == "convex_pile") {
+  } else if (plan.scene == "convex_pile") {
     bodies = convexPile(*w);
   } else {
-    throw std::invalid_argument("no scene " + scene);
+    throw std::invalid_argument("no scene " + plan.scene);
   }
   out.buildMs = msSince(t0);
-  auto step = [&] { (void)w->world.stepSimulation(kTimeStep, 1, kTimeStep); };
+  auto positions = [&] {
+    std::vector<P3> at;
+    for (btRigidBody* b : bodies) {
+      const btVector3& p = b->getWorldTransform().getOrigin();
+      at.push_back({p.x(), p.y(), p.z()});
+    }
+    return at;
+  };
+  auto step = [&](int i) {
+    (void)w->world.stepSimulation(kTimeStep, 1, kTimeStep);
+    if (plan.traceEvery > 0 && (i + 1) % plan.traceEvery == 0) out.trace.push_back(positions());
+  };
   t0 = Clock::now();
-  step();
+  step(0);
   out.firstStepMs = msSince(t0);
   t0 = Clock::now();
-  for (int i = 1; i < steps; ++i)
-    step();
-  out.msPerStep = steps > 1 ? msSince(t0) / (steps - 1) : 0.0;
+  for (int i = 1; i < plan.steps; ++i)
+    step(i);
+  out.msPerStep = plan.steps > 1 ? msSince(t0) / (plan.steps - 1) : 0.0;
   out.contacts = w->dispatcher.getNumManifolds();
+  out.positions = positions();
   for (btRigidBody* b : bodies) {
-    const btVector3& p = b->getWorldTransform().getOrigin();
-    out.positions.push_back({p.x(), p.y(), p.z()});
     if (b->isActive()) ++out.awake;
-    if (!finite(p) || !finite(b->getLinearVelocity()) || !finite(b->getAngularVelocity()))
+    if (!finite(b->getWorldTransform().getOrigin()) || !finite(b->getLinearVelocity()) ||
+        !finite(b->getAngularVelocity()))
       ++out.nonFinite;
   }
   return out;

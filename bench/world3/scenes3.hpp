@@ -121,21 +121,34 @@ struct Run {
   // The dynamic bodies' origins after the last step, in creation order.
   std::vector<P3> positions;
   long nonFinite = 0;  // bodies whose position or velocity is not finite
+  // With Plan::traceEvery > 0: the origins after every traceEvery-th step (the timings then
+  // include taking them).
+  std::vector<std::vector<P3>> trace;
+};
+
+// What a backend is asked to do: build `scene` in a fresh world with `workers` worker
+// threads (Box3D only; Quack's World3 and Bullet are single-threaded), step it `steps` times
+// at kTimeStep with kSubsteps sub-steps (Bullet: one step of kTimeStep, its solver's 10
+// iterations), Box3D's continuous collision on or off.
+struct Plan {
+  std::string scene;
+  int workers = 1;
+  int steps = 2;
+  bool continuous = true;
+  int traceEvery = 0;
 };
 
 }  // namespace bench3
 
-// The backends. Each builds `scene` in a fresh world with `workers` worker threads (Quack and
-// Bullet: 1 only), steps it `steps` times at kTimeStep with kSubsteps sub-steps (Bullet: one
-// step of kTimeStep and its solver's 10 iterations) and returns what it measured.
+// The backends; each throws std::invalid_argument for an unknown scene.
 namespace bench3::quack3 {
-Run run(const std::string& scene, int steps);
+Run run(const Plan& plan);
 }
 namespace bench3::box3d {
 bool available();
-Run run(const std::string& scene, int workers, int steps, bool continuous);
+Run run(const Plan& plan);
 }  // namespace bench3::box3d
 namespace bench3::bullet {
 bool available();
-Run run(const std::string& scene, int steps);
+Run run(const Plan& plan);
 }  // namespace bench3::bullet

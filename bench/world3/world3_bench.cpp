@@ -4,7 +4,7 @@
 // libbullet-dev), side by side in one run.
 //
 //   world3_bench [--scene NAME[,NAME...]] [--workers 1,2] [--runs 3] [--steps N]
-//                [--only quack|box3d|bullet[,...]] [--no-continuous]
+//                [--only quack|box3d|bullet[,...]] [--no-continuous] [--trace K]
 //
 // Each run builds the scene, times that, times the first step on its own and then the mean
 // of the remaining steps (Box3D's benchmark program does the same; its step counts,
@@ -18,7 +18,8 @@
 // comparison is honest: the contact count, the awake bodies, the apex's height (pyramid; it
 // starts at 99.5 m) or the highest centre (pile), the lowest centre, the mean height, the
 // largest distance a body moved from its start, and the bodies whose centre is below the
-// ground's top face (y < 0: through the ground) or not finite.
+// ground's top face (y < 0: through the ground) or not finite. --trace K prints the same
+// columns every K steps of each library's last run (taking them is then timed too).
 //
 // For instruction counts run one library alone under callgrind:
 // `valgrind --tool=callgrind world3_bench --scene large_pyramid --only quack --runs 1
@@ -88,38 +89,49 @@ bool finite(Vec3 v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
-Run run(const std::string& scene, int steps) {
+Run run(const Plan& plan) {
   Run out;
   auto t0 = Clock::now();
   // Sleeping is off in the pyramid (Box3D's b3World_EnableSleeping(false)), on in the pile.
-  World3 world =
-      World3::create(
-          {.timeStep = kTimeStep, .substeps = kSubsteps, .enableSleep = scene != "large_pyramid"})
-          .value();
+  World3 world = World3::create({.timeStep = kTimeStep,
+                                 .substeps = kSubsteps,
+                                 .enableSleep = plan.scene != "large_pyramid"})
+                     .value();
   std::vector<BodyId3> bodies;
-  if (scene == "large_pyramid") {
+  if (plan.scene == "large_pyramid") {
     bodies = largePyramid(world);
-  } else if (scene == "convex_pile") {
+  } else if (plan.scene == "convex_pile") {
     bodies = convexPile(world);
   } else {
-    throw std::invalid_argument("no scene " + scene);
+    throw std::invalid_argument("no scene " + plan.scene);
   }
   out.buildMs = msSince(t0);
+  auto positions = [&] {
+    std::vector<P3> at;
+    for (BodyId3 b : bodies) {
+      const Vec3 p = world.position(b);
+      at.push_back({p.x, p.y, p.z});
+    }
+    return at;
+  };
+  auto step = [&](int i) {
+    (void)world.step(kTimeStep, kSubsteps);
+    if (plan.traceEvery > 0 && (i + 1) % plan.traceEvery == 0) out.trace.push_back(positions());
+  };
   t0 = Clock::now();
-  (void)world.step(kTimeStep, kSubsteps);
+  step(0);
   out.firstStepMs = msSince(t0);
   t0 = Clock::now();
-  for (int i = 1; i < steps; ++i)
-    (void)world.step(kTimeStep, kSubsteps);
-  out.msPerStep = steps > 1 ? msSince(t0) / (steps - 1) : 0.0;
+  for (int i = 1; i < plan.steps; ++i)
+    step(i);
+  out.msPerStep = plan.steps > 1 ? msSince(t0) / (plan.steps - 1) : 0.0;
   out.contacts = static_cast<long>(world.contactCount());
   out.awake = static_cast<long>(world.awakeBodyCount());
-  for (BodyId3 b : bodies) {
-    const Vec3 p = world.position(b);
-    out.positions.push_back({p.x, p.y, p.z});
-    if (!finite(p) || !finite(world.linearVelocity(b)) || !finite(world.angularVelocity(b)))
+  out.positions = positions();
+  for (BodyId3 b : bodies)
+    if (!finite(world.position(b)) || !finite(world.linearVelocity(b)) ||
+        !finite(world.angularVelocity(b)))
       ++out.nonFinite;
-  }
   return out;
 }
 
@@ -130,7 +142,7 @@ namespace box3d {
 bool available() {
   return false;
 }
-Run run(const std::string&, int, int, bool) {
+Run run(const Plan&) {
   throw std::runtime_error("built without Box3D (configure with -DQUACK_BOX3D_DIR=...)");
 }
 }  // namespace box3d
@@ -141,7 +153,7 @@ namespace bullet {
 bool available() {
   return false;
 }
-Run run(const std::string&, int) {
+Run run(const Plan&) {
   throw std::runtime_error("built without Bullet (apt-get install libbullet-dev)");
 }
 }  // namespace bullet
@@ -176,19 +188,21 @@ double median(std::vector<double> v) {
 struct Check {
   double top = 0, low = 0, mean = 0, moved = 0;
   long under = 0;
+  std::size_t mover = 0;  // the body that moved furthest
+  P3 moverAt{};           // and where it is
 };
 
-Check check(const std::string& scene, const Run& run) {
+Check check(const std::string& scene, const std::vector<P3>& at) {
   const std::vector<P3> start =
       scene == "large_pyramid" ? bench3::pyramidPositions() : bench3::pilePositions();
   Check c;
-  if (run.positions.size() != start.size() || start.empty()) return c;
+  if (at.size() != start.size() || start.empty()) return c;
   c.low = std::numeric_limits<double>::infinity();
-  c.top = scene == "large_pyramid" ? static_cast<double>(run.positions.back().y)
+  c.top = scene == "large_pyramid" ? static_cast<double>(at.back().y)
                                    : -std::numeric_limits<double>::infinity();
   double sum = 0;
   for (std::size_t i = 0; i < start.size(); ++i) {
-    const P3 p = run.positions[i];
+    const P3 p = at[i];
     const double y = static_cast<double>(p.y);
     if (scene != "large_pyramid") c.top = std::max(c.top, y);
     c.low = std::min(c.low, y);
@@ -197,17 +211,23 @@ Check check(const std::string& scene, const Run& run) {
     const double dx = static_cast<double>(p.x - start[i].x);
     const double dy = static_cast<double>(p.y - start[i].y);
     const double dz = static_cast<double>(p.z - start[i].z);
-    c.moved = std::max(c.moved, std::sqrt(dx * dx + dy * dy + dz * dz));
+    const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
+    if (d > c.moved) {
+      c.moved = d;
+      c.mover = i;
+      c.moverAt = p;
+    }
   }
   c.mean = sum / static_cast<double>(start.size());
   return c;
 }
 
 int usage(const char* why) {
-  std::fprintf(stderr,
-               "world3_bench: %s\nusage: world3_bench [--scene NAME[,NAME...]] [--workers 1,2] "
-               "[--runs 3] [--steps N] [--only quack|box3d|bullet[,...]] [--no-continuous]\n",
-               why);
+  std::fprintf(
+      stderr,
+      "world3_bench: %s\nusage: world3_bench [--scene NAME[,NAME...]] [--workers 1,2] "
+      "[--runs 3] [--steps N] [--only quack|box3d|bullet[,...]] [--no-continuous] [--trace K]\n",
+      why);
   return 2;
 }
 
@@ -226,7 +246,7 @@ int main(int argc, char** argv) {
   std::vector<int> workers{1, 2};
   std::vector<std::string> libraries{"quack", "box3d", "bullet"};
   bool explicitLibraries = false, continuous = true;
-  int runs = 3, steps = 0;
+  int runs = 3, steps = 0, traceEvery = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--no-continuous") {
@@ -246,6 +266,9 @@ int main(int argc, char** argv) {
     } else if (arg == "--steps") {
       steps = std::atoi(value.c_str());
       if (steps < 2) return usage("--steps must be >= 2");
+    } else if (arg == "--trace") {
+      traceEvery = std::atoi(value.c_str());
+      if (traceEvery < 1) return usage("--trace must be >= 1");
     } else if (arg == "--only") {
       libraries = split(value);
       explicitLibraries = true;
@@ -297,12 +320,17 @@ int main(int argc, char** argv) {
     }
     for (int r = 0; r < runs; ++r) {
       for (Row& row : rows) {
+        const bench3::Plan plan{.scene = name,
+                                .workers = row.workers,
+                                .steps = sceneSteps,
+                                .continuous = continuous,
+                                .traceEvery = traceEvery};
         if (row.library == "quack") {
-          row.last = bench3::quack3::run(name, sceneSteps);
+          row.last = bench3::quack3::run(plan);
         } else if (row.library == "box3d") {
-          row.last = bench3::box3d::run(name, row.workers, sceneSteps, continuous);
+          row.last = bench3::box3d::run(plan);
         } else {
-          row.last = bench3::bullet::run(name, sceneSteps);
+          row.last = bench3::bullet::run(plan);
         }
         row.ms.push_back(row.last.msPerStep);
         row.first.push_back(row.last.firstStepMs);
@@ -314,7 +342,7 @@ int main(int argc, char** argv) {
       if (row.library == "quack") quackMs = median(row.ms);
     for (const Row& row : rows) {
       const double ms = median(row.ms);
-      const Check c = check(name, row.last);
+      const Check c = check(name, row.last.positions);
       char speed[16] = "-";
       if (quackMs > 0.0 && row.library != "quack")
         std::snprintf(speed, sizeof speed, "%.2fx", ms / quackMs);
@@ -327,6 +355,23 @@ int main(int argc, char** argv) {
     }
     std::printf("  (%d steps; Q speed: the row's time over Quack's, above 1: Quack faster)\n",
                 sceneSteps);
+    // The end-state columns every traceEvery steps, the libraries side by side.
+    for (const Row& row : rows) {
+      for (std::size_t k = 0; k < row.last.trace.size(); ++k) {
+        const Check c = check(name, row.last.trace[k]);
+        const P3 from = (name == "large_pyramid" ? bench3::pyramidPositions()
+                                                 : bench3::pilePositions())[c.mover];
+        std::printf(
+            "  trace %-7s %3d step %5zu | top y %8.3f  low y %7.3f  mean y %7.3f  "
+            "moved %7.3f  under %ld | furthest: body %zu from (%.2f %.2f %.2f) at "
+            "(%.2f %.2f %.2f)\n",
+            row.library.c_str(), row.workers, (k + 1) * static_cast<std::size_t>(traceEvery), c.top,
+            c.low, c.mean, c.moved, c.under, c.mover, static_cast<double>(from.x),
+            static_cast<double>(from.y), static_cast<double>(from.z),
+            static_cast<double>(c.moverAt.x), static_cast<double>(c.moverAt.y),
+            static_cast<double>(c.moverAt.z));
+      }
+    }
     std::fflush(stdout);
   }
   return 0;
