@@ -265,7 +265,7 @@ int main(int argc, char** argv) {
       runs = std::atoi(value.c_str());
     } else if (arg == "--steps") {
       steps = std::atoi(value.c_str());
-      if (steps < 2) return usage("--steps must be >= 2");
+      if (steps < 1) return usage("--steps must be >= 1");
     } else if (arg == "--trace") {
       traceEvery = std::atoi(value.c_str());
       if (traceEvery < 1) return usage("--trace must be >= 1");
