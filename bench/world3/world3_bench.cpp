@@ -295,6 +295,10 @@ int main(int argc, char** argv) {
   if (scenes.empty())
     for (const bench3::SceneInfo& s : bench3::kScenes)
       scenes.push_back(s.name);
+  for (const std::string& name : scenes)
+    if (std::none_of(std::begin(bench3::kScenes), std::end(bench3::kScenes),
+                     [&](const bench3::SceneInfo& s) { return name == s.name; }))
+      return usage(("no scene " + name).c_str());
 
   std::printf(
       "60 Hz, 4 sub-steps (Bullet: 1 step, 10 iterations); median of %d runs; Box3D "
