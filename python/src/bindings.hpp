@@ -13,11 +13,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include "quack/collision/mesh3.hpp"
 #include "quack/collision/proxy.hpp"
 #include "quack/core/result.hpp"
 #include "quack/geometry/shapes.hpp"
+#include "quack/geometry/shapes3.hpp"
 #include "quack/math/aabb.hpp"
 #include "quack/math/transform.hpp"
+#include "quack/world/types.hpp"
 
 namespace quack::python {
 
@@ -29,6 +32,17 @@ struct PyShape {
   nlohmann::json json;
   std::vector<ShapeGeometry> pieces;
   bool concave = false;
+};
+
+/// `quack.d3.Shape`: a 3D shape as the JSON format has it, and its geometry (shape frame).
+struct PyShape3 {
+  nlohmann::json json;
+  ShapeGeometry3 geometry;
+};
+
+/// `quack.d3.Mesh`: a static triangle mesh (mesh frame), made by quack.d3.mesh.
+struct PyMesh3 {
+  Mesh3 mesh;
 };
 
 /// Parses a shape in the JSON format (errors raise ValueError with the io layer's message,
@@ -63,6 +77,20 @@ long long toInteger(py::handle value, const std::string& path, long long lo, lon
 /// with `expected`. A value that is no array at all raises the same.
 py::array_t<double, py::array::c_style | py::array::forcecast> toDoubleArray(
     py::handle value, const std::string& path, const std::string& expected);
+/// A Python sequence (or 1-D array) of exactly `n` numbers as doubles (each through
+/// toDouble, naming `path[i]`), or ValueError "`path`: must be `what`".
+std::vector<double> toNumbers(py::handle value, std::size_t n, const std::string& path,
+                              const char* what);
+/// `v` as printf's %g writes it, for messages.
+std::string formatNumber(double v);
+/// An array (N, width) (or (N,) for width 1) of numbers, each finite as a float, for N
+/// bodies; errors name `name` and the row and column.
+py::array_t<double, py::array::c_style | py::array::forcecast> toValues(py::handle v, std::size_t n,
+                                                                        std::size_t width,
+                                                                        const char* name);
+/// A body type by its scene-file name (static, kinematic, dynamic), or ValueError naming
+/// `type`.
+BodyType toBodyType(const std::string& s);
 /// JSON as Python values (objects as dicts, arrays as lists).
 py::object toPython(const nlohmann::json& json);
 
@@ -100,12 +128,20 @@ float toAngle(double angle, const std::string& path);
 py::tuple toTuple(Vec2 v);
 /// A quack.Shape argument (errors name `path`).
 const PyShape& toShape(py::handle value, const std::string& path);
+/// A vector (x, y, z) within the coordinate limit: a position or translation, metres.
+Vec3 toPosition3(py::handle value, const std::string& path);
+/// Why the quaternion q[0..3] (qx, qy, qz, qw) is refused, or "": each component finite as a
+/// float (errors name `path`[first + i]), not all zero.
+std::string checkQuat(const double* q, const std::string& path, int first);
 
 void registerShapes(py::module_& m);
 void registerQueries(py::module_& m);
 void registerBatch(py::module_& m);
 void registerWorld(py::module_& m);
-/// The submodule quack.d3 (3D shapes and queries), with its own answer classes.
+/// The submodule quack.d3 (3D shapes and queries), with its own answer classes; it calls
+/// registerWorld3.
 void registerD3(py::module_& m);
+/// quack.d3.World and its handles, in the submodule `d3`.
+void registerWorld3(py::module_& d3);
 
 }  // namespace quack::python

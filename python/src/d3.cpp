@@ -28,17 +28,6 @@ namespace {
 
 using nlohmann::json;
 
-/// quack.d3.Shape: a 3D shape as the JSON format has it, and its geometry (shape frame).
-struct PyShape3 {
-  nlohmann::json json;
-  ShapeGeometry3 geometry;
-};
-
-/// quack.d3.Mesh: a static triangle mesh (mesh frame), made by quack.d3.mesh.
-struct PyMesh3 {
-  Mesh3 mesh;
-};
-
 PyShape3 makeShape3(nlohmann::json j, const std::string& path) {
   PyShape3 s;
   s.geometry = valueOrRaise(parseShape3(j, path));
@@ -91,21 +80,6 @@ std::vector<double> toNumberList(py::handle value, const std::string& path,
   return out;
 }
 
-// Why the quaternion components are refused ("" when fine): each finite as a float, not all
-// zero. `path` names the pose, `first` the column of qx.
-std::string checkQuat(const double* q, const std::string& path, int first) {
-  for (int i = 0; i < 4; ++i) {
-    if (!std::isfinite(static_cast<float>(q[i])))
-      return path + "[" + std::to_string(first + i) + "]: must be finite (as a float)";
-  }
-  if (static_cast<float>(q[0]) == 0.0f && static_cast<float>(q[1]) == 0.0f &&
-      static_cast<float>(q[2]) == 0.0f && static_cast<float>(q[3]) == 0.0f) {
-    return path + ": the quaternion (qx, qy, qz, qw) is zero, not a rotation (the identity is " +
-           "(0, 0, 0, 1))";
-  }
-  return "";
-}
-
 // The pose numbers' first refusal, or "": the position within the coordinate limit, the
 // quaternion as checkQuat.
 std::string checkPose3(const double* p, const std::string& path) {
@@ -151,17 +125,6 @@ Transform3 toTransform3(py::handle pose, const std::string& path) {
   if (v.size() != 7) raiseValue(path + ": " + expected);
   if (std::string bad = checkPose3(v.data(), path); !bad.empty()) raiseValue(bad);
   return poseFromNumbers(v.data());
-}
-
-// A vector (x, y, z) within the coordinate limit: a position or translation, metres.
-Vec3 toPosition3(py::handle value, const std::string& path) {
-  std::vector<double> v = toNumberList(value, path, "must be a vector (x, y, z)");
-  if (v.size() != 3) raiseValue(path + ": must be a vector (x, y, z)");
-  for (int i = 0; i < 3; ++i) {
-    if (std::string bad = checkCoordinate(v[i], path + "[" + std::to_string(i) + "]"); !bad.empty())
-      raiseValue(bad);
-  }
-  return {static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2])};
 }
 
 // A sweep (pose_from, pose_to) of a shape turning about its proxy's centre, as `quack query`
@@ -705,6 +668,29 @@ del _c
 
 }  // namespace
 
+std::string checkQuat(const double* q, const std::string& path, int first) {
+  for (int i = 0; i < 4; ++i) {
+    if (!std::isfinite(static_cast<float>(q[i])))
+      return path + "[" + std::to_string(first + i) + "]: must be finite (as a float)";
+  }
+  if (static_cast<float>(q[0]) == 0.0f && static_cast<float>(q[1]) == 0.0f &&
+      static_cast<float>(q[2]) == 0.0f && static_cast<float>(q[3]) == 0.0f) {
+    return path + ": the quaternion (qx, qy, qz, qw) is zero, not a rotation (the identity is " +
+           "(0, 0, 0, 1))";
+  }
+  return "";
+}
+
+Vec3 toPosition3(py::handle value, const std::string& path) {
+  std::vector<double> v = toNumberList(value, path, "must be a vector (x, y, z)");
+  if (v.size() != 3) raiseValue(path + ": must be a vector (x, y, z)");
+  for (int i = 0; i < 3; ++i) {
+    if (std::string bad = checkCoordinate(v[i], path + "[" + std::to_string(i) + "]"); !bad.empty())
+      raiseValue(bad);
+  }
+  return {static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2])};
+}
+
 void registerD3(py::module_& root) {
   py::module_ m = root.def_submodule(
       "d3",
@@ -713,10 +699,12 @@ void registerD3(py::module_& root) {
       "raycast, shapecast, toi) and batch queries over numpy arrays (overlap_many, "
       "distance_many, penetration_many, raycast_many), static triangle meshes "
       "(quack.d3.mesh) as shape a of every pair query and raycast_many, or as shape b of "
-      "overlap, distance, penetration and toi. Poses are (x, y, z) or (x, y, z, qx, "
+      "overlap, distance, penetration and toi, and the 3D world (quack.d3.World: bodies and "
+      "shapes that fall, collide and rest). Poses are (x, y, z) or (x, y, z, qx, "
       "qy, qz, qw), the quaternion scalar last and normalised (a zero one is refused); batch "
-      "poses are arrays (N, 7). Constant: EPA_STATUSES (the status codes of "
-      "penetration_many; distance_many's are quack.GJK_STATUSES). docs/python.md, \"3D\".");
+      "poses are arrays (N, 7). Constants: EPA_STATUSES (the status codes of "
+      "penetration_many; distance_many's are quack.GJK_STATUSES), BODY_STATE_COLUMNS (the "
+      "columns of World.body_state). docs/python.md, \"3D\".");
   // `import quack.d3` finds the submodule.
   py::module_::import("sys").attr("modules")["quack.d3"] = m;
   py::exec(kAnswerClasses, m.attr("__dict__"));
@@ -1110,6 +1098,8 @@ void registerD3(py::module_& root) {
       "frame). Returns a quack.BatchResult with hit (N,), fraction (N,), point and normal "
       "(N, 3). With a quack.d3.Mesh as shapes (one mesh for every ray), rayCastMesh per "
       "row and a triangle column (N,) int32 (-1 on a miss).");
+
+  registerWorld3(m);
 }
 
 }  // namespace quack::python

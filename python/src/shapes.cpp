@@ -216,13 +216,13 @@ py::object toPython(const json& j) {
   }
 }
 
-namespace {
-
 std::string formatNumber(double v) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%g", v);
   return buf;
 }
+
+namespace {
 
 // The io layer's rules for one number of a pose or position: finite as a float, and for
 // coordinates within kMaxCoordinate.
@@ -234,7 +234,8 @@ std::string checkNumber(double v, const std::string& path, bool coordinate) {
   return "";
 }
 
-// A Python sequence of `n` numbers as doubles, or ValueError naming `what`.
+}  // namespace
+
 std::vector<double> toNumbers(py::handle value, std::size_t n, const std::string& path,
                               const char* what) {
   const std::string expected = path + ": must be " + what;
@@ -251,8 +252,6 @@ std::vector<double> toNumbers(py::handle value, std::size_t n, const std::string
   if (i != n) raiseValue(expected);
   return out;
 }
-
-}  // namespace
 
 std::string checkCoordinate(double v, const std::string& path) {
   return checkNumber(v, path, true);

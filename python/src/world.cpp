@@ -123,13 +123,6 @@ PyWorld& worldOf(const py::object& o) {
   return o.cast<PyWorld&>();
 }
 
-BodyType toBodyType(const std::string& s) {
-  if (s == "static") return BodyType::staticBody;
-  if (s == "kinematic") return BodyType::kinematicBody;
-  if (s == "dynamic") return BodyType::dynamicBody;
-  raiseValue("type: unknown body type \"" + s + "\" (expected static, kinematic, dynamic)");
-}
-
 BroadPhaseKind toBroadPhase(const std::string& s) {
   for (BroadPhaseKind k : kAllBroadPhaseKinds)
     if (s == toString(k)) return k;
@@ -275,29 +268,6 @@ using Values = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
 // body_state()'s columns: x, y, angle, vx, vy, angular_velocity.
 constexpr std::size_t kStateColumns = 6;
-
-// An array (N, width) (or (N,) for width 1) of finite numbers for N bodies.
-Values toValues(py::handle v, std::size_t n, std::size_t width, const char* name) {
-  const std::string expected = std::string(name) + ": must be a numpy array of shape (" +
-                               std::to_string(n) +
-                               (width == 1 ? ",)" : ", " + std::to_string(width) + ")") + " for " +
-                               std::to_string(n) + " bodies";
-  // Numbers only: a bool, complex or string array is refused, not converted.
-  Values a = toDoubleArray(v, name, expected);
-  const bool ok = (width == 1 ? (a.ndim() == 1 && a.shape(0) == static_cast<py::ssize_t>(n))
-                              : (a.ndim() == 2 && a.shape(0) == static_cast<py::ssize_t>(n) &&
-                                 a.shape(1) == static_cast<py::ssize_t>(width)));
-  if (!ok) raiseValue(expected);
-  const double* d = a.data();
-  for (std::size_t i = 0; i < n * width; ++i) {
-    if (!std::isfinite(static_cast<float>(d[i]))) {
-      raiseValue(std::string(name) + "[" + std::to_string(i / width) + "]" +
-                 (width == 1 ? "" : "[" + std::to_string(i % width) + "]") +
-                 ": must be finite (as a float)");
-    }
-  }
-  return a;
-}
 
 Vec2 vecAt(const double* d, std::size_t i) {
   return {static_cast<float>(d[2 * i]), static_cast<float>(d[2 * i + 1])};
@@ -505,6 +475,35 @@ py::custom_type_setup worldGc() {
 }
 
 }  // namespace
+
+BodyType toBodyType(const std::string& s) {
+  if (s == "static") return BodyType::staticBody;
+  if (s == "kinematic") return BodyType::kinematicBody;
+  if (s == "dynamic") return BodyType::dynamicBody;
+  raiseValue("type: unknown body type \"" + s + "\" (expected static, kinematic, dynamic)");
+}
+
+Values toValues(py::handle v, std::size_t n, std::size_t width, const char* name) {
+  const std::string expected = std::string(name) + ": must be a numpy array of shape (" +
+                               std::to_string(n) +
+                               (width == 1 ? ",)" : ", " + std::to_string(width) + ")") + " for " +
+                               std::to_string(n) + " bodies";
+  // Numbers only: a bool, complex or string array is refused, not converted.
+  Values a = toDoubleArray(v, name, expected);
+  const bool ok = (width == 1 ? (a.ndim() == 1 && a.shape(0) == static_cast<py::ssize_t>(n))
+                              : (a.ndim() == 2 && a.shape(0) == static_cast<py::ssize_t>(n) &&
+                                 a.shape(1) == static_cast<py::ssize_t>(width)));
+  if (!ok) raiseValue(expected);
+  const double* d = a.data();
+  for (std::size_t i = 0; i < n * width; ++i) {
+    if (!std::isfinite(static_cast<float>(d[i]))) {
+      raiseValue(std::string(name) + "[" + std::to_string(i / width) + "]" +
+                 (width == 1 ? "" : "[" + std::to_string(i % width) + "]") +
+                 ": must be finite (as a float)");
+    }
+  }
+  return a;
+}
 
 void registerWorld(py::module_& m) {
   py::exec(R"py(

@@ -252,48 +252,18 @@ Manifold3 collideHullAndCapsule(const Hull3& a, Transform3 worldFromA, const Cap
 
 namespace {
 
-// The hulls' cores (their radii ignored), points whose core separation is at most
-// `speculativeDistance`; collideHulls adds the radii.
-Manifold3 collideHullCores(const Hull3& a, Transform3 worldFromA, const Hull3& b,
-                           Transform3 worldFromB, float speculativeDistance) noexcept {
-  Manifold3 m;
-  SatOutput3 sat = computeSat(a, worldFromA, b, worldFromB, speculativeDistance);
-  if (sat.separation > speculativeDistance) return m;
-
-  if (sat.feature == SatFeature3::edges && sat.separation > 0.0f) {
-    // Apart on an edge axis: the closest features need not be those edges (the separation
-    // is only a lower bound), so GJK gives the one point, exactly.
-    Manifold3 g =
-        collideGeneral(coreProxy(a), worldFromA, coreProxy(b), worldFromB, speculativeDistance);
-    for (int i = 0; i < g.pointCount; ++i)
-      g.points[i].id = kManifold3IdEdges | (static_cast<std::uint32_t>(sat.edgeA) << 8) |
-                       static_cast<std::uint32_t>(sat.edgeB);
-    return g;
-  }
-  if (sat.feature == SatFeature3::edges) {
-    Transform3 aFromB = invMul(worldFromA, worldFromB);
-    const HullEdge3& ea = a.edges[sat.edgeA];
-    const HullEdge3& eb = b.edges[sat.edgeB];
-    Vec3 c1, c2;
-    closestSegmentPoints(a.vertices[ea.v0], a.vertices[ea.v1],
-                         transformPoint(aFromB, b.vertices[eb.v0]),
-                         transformPoint(aFromB, b.vertices[eb.v1]), c1, c2);
-    m.normal = sat.normal;
-    std::uint32_t id = kManifold3IdEdges | (static_cast<std::uint32_t>(sat.edgeA) << 8) |
-                       static_cast<std::uint32_t>(sat.edgeB);
-    m.points[0] = makePoint(transformPoint(worldFromA, 0.5f * (c1 + c2)), sat.separation, id,
-                            worldFromA, worldFromB);
-    m.pointCount = 1;
-    return m;
-  }
-
-  const bool refOnB = sat.feature == SatFeature3::faceB;
+// The face contact of reference face `faceIndex` (of B when refOnB, else of A) whose axis
+// separation is `faceSeparation`: the incident face clipped to the reference face's sides.
+// False, and `result` untouched, when the clipped points lost the deepest vertex.
+bool faceContact(const Hull3& a, Transform3 worldFromA, const Hull3& b, Transform3 worldFromB,
+                 bool refOnB, int faceIndex, float faceSeparation, float speculativeDistance,
+                 Manifold3& result) noexcept {
   const Hull3& ref = refOnB ? b : a;
   const Hull3& inc = refOnB ? a : b;
   const Transform3 worldFromRef = refOnB ? worldFromB : worldFromA;
   const Transform3 worldFromInc = refOnB ? worldFromA : worldFromB;
   const Transform3 refFromInc = invMul(worldFromRef, worldFromInc);
-  const HullFace3& rf = ref.faces[sat.faceIndex];
+  const HullFace3& rf = ref.faces[faceIndex];
   const Vec3 n = rf.normal;
 
   // The incident face: of the faces around the other hull's deepest vertex (its support
@@ -359,7 +329,7 @@ Manifold3 collideHullCores(const Hull3& a, Transform3 worldFromA, const Hull3& b
     float sep = dot(n, poly[i].p) - rf.offset;
     if (sep > speculativeDistance) continue;
     Vec3 mid = poly[i].p - (0.5f * sep) * n;
-    std::uint32_t id = (static_cast<std::uint32_t>(sat.faceIndex) << 16) | poly[i].id;
+    std::uint32_t id = (static_cast<std::uint32_t>(faceIndex) << 16) | poly[i].id;
     if (refOnB) id |= kManifold3IdReferenceOnB;
     pts[n2++] = makePoint(transformPoint(worldFromRef, mid), sep, id, worldFromA, worldFromB);
   }
@@ -375,14 +345,70 @@ Manifold3 collideHullCores(const Hull3& a, Transform3 worldFromA, const Hull3& b
   for (int i = 0; i < ref.vertexCount; ++i)
     size2 = maxf(size2, lengthSquared(ref.vertices[i] - ref.centroid));
   const float size = std::sqrt(size2);
-  if (n2 == 0 || minSep > sat.separation + kClipLostSupportRelative * size) {
-    return collideGeneral(coreProxy(a), worldFromA, coreProxy(b), worldFromB, speculativeDistance);
-  }
+  if (n2 == 0 || minSep > faceSeparation + kClipLostSupportRelative * size) return false;
   n2 = reduceToFour(pts, n2, normalWorld);
+  Manifold3& m = result;
   m.normal = normalWorld;
   for (int i = 0; i < n2; ++i)
     m.points[i] = pts[i];
   m.pointCount = n2;
+  return true;
+}
+
+// The hulls' cores (their radii ignored), points whose core separation is at most
+// `speculativeDistance`; collideHulls adds the radii (their sum: `radii`).
+Manifold3 collideHullCores(const Hull3& a, Transform3 worldFromA, const Hull3& b,
+                           Transform3 worldFromB, float speculativeDistance, float radii) noexcept {
+  Manifold3 m;
+  SatOutput3 sat = computeSat(a, worldFromA, b, worldFromB, speculativeDistance);
+  if (sat.separation > speculativeDistance) return m;
+
+  if (sat.feature == SatFeature3::edges && sat.faceSeparation + kLinearSlop >= sat.separation &&
+      (sat.separation <= radii || sat.faceSeparation >= radii)) {
+    // Face contact within kLinearSlop of the edge axis wins, as Box3D's manifold does: two
+    // boxes resting flush have edge axes as good as the face one to within rounding and
+    // tilt, and one edge point instead of four rocks a column of boxes. Its depth is then
+    // up to kLinearSlop more than the true one; hulls that are apart get no face points
+    // that overlap (the face's own separation must not be below the radii).
+    Manifold3 face;
+    if (faceContact(a, worldFromA, b, worldFromB, sat.faceFeature == SatFeature3::faceB,
+                    sat.faceIndex, sat.faceSeparation, speculativeDistance, face)) {
+      float minSep = std::numeric_limits<float>::infinity();
+      for (int i = 0; i < face.pointCount; ++i)
+        minSep = minf(minSep, face.points[i].separation);
+      if (minSep + kLinearSlop >= sat.separation) return face;
+    }
+  }
+  if (sat.feature == SatFeature3::edges && sat.separation > 0.0f) {
+    // Apart on an edge axis: the closest features need not be those edges (the separation
+    // is only a lower bound), so GJK gives the one point, exactly.
+    Manifold3 g =
+        collideGeneral(coreProxy(a), worldFromA, coreProxy(b), worldFromB, speculativeDistance);
+    for (int i = 0; i < g.pointCount; ++i)
+      g.points[i].id = kManifold3IdEdges | (static_cast<std::uint32_t>(sat.edgeA) << 8) |
+                       static_cast<std::uint32_t>(sat.edgeB);
+    return g;
+  }
+  if (sat.feature == SatFeature3::edges) {
+    Transform3 aFromB = invMul(worldFromA, worldFromB);
+    const HullEdge3& ea = a.edges[sat.edgeA];
+    const HullEdge3& eb = b.edges[sat.edgeB];
+    Vec3 c1, c2;
+    closestSegmentPoints(a.vertices[ea.v0], a.vertices[ea.v1],
+                         transformPoint(aFromB, b.vertices[eb.v0]),
+                         transformPoint(aFromB, b.vertices[eb.v1]), c1, c2);
+    m.normal = sat.normal;
+    std::uint32_t id = kManifold3IdEdges | (static_cast<std::uint32_t>(sat.edgeA) << 8) |
+                       static_cast<std::uint32_t>(sat.edgeB);
+    m.points[0] = makePoint(transformPoint(worldFromA, 0.5f * (c1 + c2)), sat.separation, id,
+                            worldFromA, worldFromB);
+    m.pointCount = 1;
+    return m;
+  }
+
+  if (!faceContact(a, worldFromA, b, worldFromB, sat.feature == SatFeature3::faceB, sat.faceIndex,
+                   sat.separation, speculativeDistance, m))
+    return collideGeneral(coreProxy(a), worldFromA, coreProxy(b), worldFromB, speculativeDistance);
   return m;
 }
 
@@ -391,13 +417,14 @@ Manifold3 collideHullCores(const Hull3& a, Transform3 worldFromA, const Hull3& b
 Manifold3 collideHulls(const Hull3& a, Transform3 worldFromA, const Hull3& b, Transform3 worldFromB,
                        float speculativeDistance) noexcept {
   const float radii = a.radius + b.radius;
-  if (radii == 0.0f) return collideHullCores(a, worldFromA, b, worldFromB, speculativeDistance);
+  if (radii == 0.0f)
+    return collideHullCores(a, worldFromA, b, worldFromB, speculativeDistance, 0.0f);
   // Rounded hulls: the cores' manifold with the radii added to the speculative distance,
   // each point's separation less the radii and the point moved from midway between the
   // cores to midway between the rounded surfaces (A's surface is ra further along the
   // normal, B's rb back), as the capsules' points are; as Box2D's rounded polygons do.
   const Manifold3 core =
-      collideHullCores(a, worldFromA, b, worldFromB, speculativeDistance + radii);
+      collideHullCores(a, worldFromA, b, worldFromB, speculativeDistance + radii, radii);
   Manifold3 m;
   m.normal = core.normal;
   const Vec3 shift = (0.5f * (a.radius - b.radius)) * core.normal;

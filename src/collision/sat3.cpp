@@ -233,6 +233,9 @@ SatOutput3 computeSat(const Hull3& a, Transform3 worldFromA, const Hull3& b, Tra
     out.faceIndex = onA ? seedA : seedB;
     out.normal = onA ? transformVector(worldFromA, a.faces[seedA].normal)
                      : -transformVector(worldFromB, b.faces[seedB].normal);
+    out.faceFeature = out.feature;
+    out.faceSeparation = seed;
+    out.faceNormal = out.normal;
     return out;
   }
 
@@ -276,9 +279,12 @@ SatOutput3 computeSat(const Hull3& a, Transform3 worldFromA, const Hull3& b, Tra
   }
   // A face axis beyond stopAbove: the final separation (this face's, or an edge's larger
   // by the bias) exceeds it whatever the edges say.
+  out.faceFeature = out.feature;
+  out.faceSeparation = bestFace;
+  out.faceNormal = transformVector(worldFromA, bestNormal);
   if (bestFace > stopAbove) {
     out.separation = bestFace;
-    out.normal = transformVector(worldFromA, bestNormal);
+    out.normal = out.faceNormal;
     return out;
   }
 

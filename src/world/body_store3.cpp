@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "quack/collision/proxy3.hpp"
 #include "quack/geometry/mass3.hpp"
@@ -15,7 +16,7 @@ std::uint32_t BodyStore3::addBody(const BodyDef3& def) {
   b = Body3{};
   b.type = def.type;
   b.origin = def.position;
-  b.rotation = normalize(def.rotation);
+  b.rotation = unitRotation(def.rotation);
   b.center = def.position;
   if (def.type != BodyType::staticBody) {
     b.linearVelocity = def.linearVelocity;
@@ -40,8 +41,11 @@ void BodyStore3::removeBody(std::uint32_t body) {
 }
 
 Aabb3 BodyStore3::shapeBox(std::uint32_t shape) const {
+  return shapeBox(shape, bodies[shapes[shape].body].transform());
+}
+
+Aabb3 BodyStore3::shapeBox(std::uint32_t shape, Transform3 xf) const {
   const Shape3& s = shapes[shape];
-  const Transform3 xf = bodies[s.body].transform();
   if (s.mesh) {
     const Aabb3 local = s.mesh->bounds();
     Aabb3 box{};
@@ -112,12 +116,31 @@ void BodyStore3::moveProxies(std::uint32_t body, Vec3 displacement) {
 // Mass, centre of mass and inertia from the shapes (parallel-axis theorem about the body's
 // centre of mass, summed in double). A dynamic body whose shapes have no mass moves as a
 // 1 kg body that does not turn, as the 2D world's does.
+namespace {
+
+// A shape's half-thickness: the radius of a ball about its centre that it holds.
+float thickness(const ShapeGeometry3& g) noexcept {
+  if (const Sphere* s = std::get_if<Sphere>(&g)) return s->radius;
+  if (const Capsule3* c = std::get_if<Capsule3>(&g)) return c->radius;
+  if (const Hull3* h = std::get_if<Hull3>(&g)) {
+    float least = std::numeric_limits<float>::infinity();
+    for (int f = 0; f < h->faceCount; ++f)
+      least = std::min(least, h->faces[f].offset - dot(h->faces[f].normal, h->centroid));
+    return std::max(least, 0.0f) + h->radius;
+  }
+  return 0.0f;  // a triangle has no thickness
+}
+
+}  // namespace
+
 void BodyStore3::updateMass(std::uint32_t index) {
   Body3& b = bodies[index];
+  ++b.poseVersion;  // the centre of mass may move: contacts get new manifolds
   b.mass = b.invMass = 0.0f;
   b.inertiaLocal = b.invInertiaLocal = Mat3{};
   b.localCenter = Vec3{};
   b.maxExtent = 0.0f;
+  b.minExtent = 0.0f;
   if (b.type != BodyType::dynamicBody) {
     b.center = transformPoint(b.transform(), b.localCenter);
     return;
@@ -163,12 +186,16 @@ void BodyStore3::updateMass(std::uint32_t index) {
     b.mass = 1.0f;
     b.invMass = 1.0f;
   }
+  bool first = true;
   for (std::uint32_t shape : b.shapes) {
     const ShapeProxy3 proxy = makeProxy(shapes[shape].geometry);
     for (int i = 0; i < proxy.count(); ++i) {
       b.maxExtent =
           std::max(b.maxExtent, length(proxy.points()[i] - b.localCenter) + proxy.radius());
     }
+    const float thin = thickness(shapes[shape].geometry);
+    b.minExtent = first ? thin : std::min(b.minExtent, thin);
+    first = false;
   }
   b.center = transformPoint(b.transform(), b.localCenter);
 }

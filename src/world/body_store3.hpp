@@ -3,7 +3,10 @@
 // mass properties from the shapes, and the shapes' boxes in the 3D broad phase. Private to
 // the world layer.
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -27,8 +30,15 @@ struct Body3 {
   float sleepThreshold = 0.05f;
   float sleepTime = 0.0f;  // seconds at rest
   float maxExtent = 0.0f;  // farthest shape point from the centre of mass, m
+  // The thinnest of its shapes (a sphere's or capsule's radius, a hull's inscribed ball
+  // about its centroid, 0 for a triangle): moving more than half of it in a step makes the
+  // body fast, for continuous collision.
+  float minExtent = 0.0f;
   bool enableSleep = true;
   bool awake = true;
+  // Counts teleports and mass changes: a contact recycles its manifold only while both
+  // bodies' counts are what they were when it was computed.
+  std::uint32_t poseVersion = 0;
   std::vector<std::uint32_t> shapes;  // in creation order
   std::uint64_t userData = 0;
 
@@ -39,6 +49,24 @@ struct Body3 {
     return r * invInertiaLocal * transpose(r);
   }
 };
+
+// A rotation as given, made unit: scaled first by an exact power of two when its largest
+// component is huge (its squared length would overflow to infinity and normalising give
+// zero), and left to the bit when it is already unit to rounding, so that a rotation read
+// back from a body writes back unchanged.
+inline Quat unitRotation(Quat q) noexcept {
+  const float largest =
+      std::max(std::max(std::fabs(q.x), std::fabs(q.y)), std::max(std::fabs(q.z), std::fabs(q.w)));
+  if (largest > 0x1p60f) {
+    int exponent = 0;
+    (void)std::frexp(largest, &exponent);
+    const float scale = std::ldexp(1.0f, -exponent);
+    q = {scale * q.x, scale * q.y, scale * q.z, scale * q.w};
+  }
+  const float n2 = dot(q, q);
+  if (std::fabs(n2 - 1.0f) <= 4.0f * std::numeric_limits<float>::epsilon()) return q;
+  return normalize(q);
+}
 
 struct Shape3 {
   std::uint32_t body = 0;
@@ -67,8 +95,9 @@ class BodyStore3 {
   }
   // Moves the body's proxies to its present pose (displacement: its centre's motion).
   void moveProxies(std::uint32_t body, Vec3 displacement);
-  // The shape's box, world frame, at the body's present pose.
+  // The shape's box, world frame, at the body's present pose (or at worldFromBody).
   Aabb3 shapeBox(std::uint32_t shape) const;
+  Aabb3 shapeBox(std::uint32_t shape, Transform3 worldFromBody) const;
 
   IdPool bodyIds, shapeIds;
   std::vector<Body3> bodies;

@@ -20,6 +20,11 @@ struct ContactManifold3 {
   Vec3 frictionImpulse[kMaxManifoldPoints3];  // world frame, so a turned tangent basis keeps it
   float maxNormalImpulse[kMaxManifoldPoints3] = {};
   Vec3 rollingImpulse;  // angular, world frame
+  // As computed (for recycling and the solver): each point fixed in A's and in B's body
+  // frame, its separation then, and the arms from the centres of mass then (world axes).
+  Vec3 localA[kMaxManifoldPoints3], localB[kMaxManifoldPoints3];
+  float computedSeparation[kMaxManifoldPoints3] = {};
+  Vec3 armA[kMaxManifoldPoints3], armB[kMaxManifoldPoints3];
 };
 
 struct Contact3 {
@@ -28,6 +33,11 @@ struct Contact3 {
   float friction = 0.0f, restitution = 0.0f;
   float rollingResistance = 0.0f;  // rolling coefficient times the rolling radius, m
   bool touching = false;
+  bool flat = false;  // B is a hull (A a hull or a mesh): the manifolds may be recycled
+  // The poses (and bodies' pose versions) the manifolds were computed at.
+  bool recycleValid = false;
+  Transform3 cachedA, cachedB;
+  std::uint32_t versionA = 0, versionB = 0;
 };
 
 // The most a contact looks ahead (metres): the speculative distance grown by how far the
@@ -41,11 +51,12 @@ class ContactSet3 {
   // Creates a contact for each new broad-phase pair the world's rules accept (two bodies,
   // at least one dynamic), in sorted pair order.
   void findNew(BodyStore3& store);
-  // For every contact with an awake body: destroys it when the fat boxes parted, else
-  // computes its manifolds at `speculativeDistance` plus how far the bodies can close in
-  // dt, and carries the impulses over by triangle and feature id (or position). Begin and
-  // end events in contact order.
-  void update(const BodyStore3& store, float speculativeDistance, float dt, StepEvents3& events);
+  // For every contact with an awake body: destroys it when the fat boxes parted; else
+  // recycles its manifolds (a resting flat pair near the pose they were computed at), or
+  // computes them at the speculative distance plus how far the bodies can close in dt and
+  // carries the impulses over by triangle and feature id (or position). Begin and end
+  // events in contact order.
+  void update(const BodyStore3& store, const WorldDef3& def, float dt, StepEvents3& events);
   // Destroys the contacts of a shape about to go (end events for the touching ones).
   void removeShape(const BodyStore3& store, std::uint32_t shape, StepEvents3& events);
 

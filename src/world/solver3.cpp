@@ -94,8 +94,12 @@ void warmStart(Constraint& c, std::vector<BodyState>& states) {
 
 // Normal impulses (soft with the push when useBias, rigid without it in the relax pass;
 // speculative points ahead of contact in both), then friction, then rolling resistance.
+// The points go first-to-last or, when `reverse`, last-to-first: the first point solved
+// takes more of the load in a pass, and always the same corner first would push a box
+// sideways a little every sub-step (the 2D solver alternates the same way).
 template <bool useBias>
-void solveConstraint(Constraint& c, std::vector<BodyState>& states, const StepParams& params) {
+void solveConstraint(Constraint& c, std::vector<BodyState>& states, const StepParams& params,
+                     bool reverse) {
   BodyState& a = states[c.slotA];
   BodyState& b = states[c.slotB];
   // The bodies' turns since the step began, as rotation vectors (2 x the vector part of the
@@ -108,7 +112,9 @@ void solveConstraint(Constraint& c, std::vector<BodyState>& states, const StepPa
   const Vec3 turnA = (dqA.w < 0.0f ? -2.0f : 2.0f) * dqA.vector();
   const Vec3 turnB = (dqB.w < 0.0f ? -2.0f : 2.0f) * dqB.vector();
   float totalNormalImpulse = 0.0f;
-  for (int k = 0; k < c.count; ++k) {
+  const int first = reverse ? c.count - 1 : 0;
+  const int stride = reverse ? -1 : 1;
+  for (int n = 0, k = first; n < c.count; ++n, k += stride) {
     PointConstraint& p = c.points[k];
     // The separation now, from the bodies' motion since the manifold was made.
     const Vec3 d = (b.dp - a.dp) + ((p.rB + cross(turnB, p.rB)) - (p.rA + cross(turnA, p.rA)));
@@ -130,7 +136,7 @@ void solveConstraint(Constraint& c, std::vector<BodyState>& states, const StepPa
     totalNormalImpulse += total;
     applyImpulse(a, b, p.rA, p.rB, impulse * c.normal);
   }
-  for (int k = 0; k < c.count; ++k) {
+  for (int n = 0, k = first; n < c.count; ++n, k += stride) {
     PointConstraint& p = c.points[k];
     const Vec3 dv = relativeVelocityAt(a, b, p.rA, p.rB);
     float f1 = p.tangentImpulse[0] - p.tangentMass[0] * dot(dv, c.t1);
@@ -250,7 +256,6 @@ void Solver3::step(BodyStore3& store, ContactSet3& contacts, const WorldDef3& de
     if (slotA == 0 && slotB == 0) continue;
     const BodyState& a = states[slotA];
     const BodyState& b = states[slotB];
-    const Vec3 centerA = store.bodies[bodyA].center, centerB = store.bodies[bodyB].center;
     for (ContactManifold3& m : contact.manifolds) {
       Constraint c;
       c.source = &m;
@@ -269,8 +274,10 @@ void Solver3::step(BodyStore3& store, ContactSet3& contacts, const WorldDef3& de
       for (int i = 0; i < c.count; ++i) {
         const ManifoldPoint3& mp = m.manifold.points[i];
         PointConstraint& p = c.points[i];
-        p.rA = mp.point - centerA;
-        p.rB = mp.point - centerB;
+        // The arms as the manifold was computed (kept while it is recycled: arms turned
+        // with the bodies under a normal that stays put tilt a column further).
+        p.rA = m.armA[i];
+        p.rB = m.armB[i];
         p.baseSeparation = mp.separation - dot(p.rB - p.rA, c.normal);
         p.normalMass = invEffectiveMass(a.invMass, a.invI, p.rA, b.invMass, b.invI, p.rB, c.normal);
         p.tangentMass[0] = invEffectiveMass(a.invMass, a.invI, p.rA, b.invMass, b.invI, p.rB, c.t1);
@@ -288,11 +295,12 @@ void Solver3::step(BodyStore3& store, ContactSet3& contacts, const WorldDef3& de
     integrateVelocities(states, movers_, store, params);
     for (Constraint& c : constraints)
       warmStart(c, states);
+    const bool odd = (sub & 1) != 0;
     for (Constraint& c : constraints)
-      solveConstraint<true>(c, states, params);
+      solveConstraint<true>(c, states, params, odd);
     integratePositions(states, params.h);
     for (Constraint& c : constraints)
-      solveConstraint<false>(c, states, params);
+      solveConstraint<false>(c, states, params, !odd);
   }
   for (Constraint& c : constraints)
     applyRestitution(c, states, params.restitutionThreshold);

@@ -8,6 +8,7 @@
 
 #include "body_store3.hpp"
 #include "contact_set3.hpp"
+#include "continuous3.hpp"
 #include "islands3.hpp"
 #include "quack/world/world.hpp"
 #include "solver3.hpp"
@@ -25,6 +26,7 @@ struct WorldState3 {
   BodyStore3 store;
   ContactSet3 contacts;
   Solver3 solver;
+  Continuous3 continuous;
   Islands3 islands;
   StepEvents3 events;
   std::vector<ContactEvent3> pendingEnds;  // of shapes destroyed since the last step
@@ -68,6 +70,9 @@ Status checkDef(const WorldDef3& d) {
   }
   if (!(d.speculativeDistance >= 0.0f && d.speculativeDistance <= 1.0f)) {
     return fail("WorldDef3::speculativeDistance: must be in [0, 1] m");
+  }
+  if (!(d.contactRecycleDistance >= 0.0f && d.contactRecycleDistance <= 1.0f)) {
+    return fail("WorldDef3::contactRecycleDistance: must be in [0, 1] m");
   }
   if (!(d.aabbMargin >= d.speculativeDistance && std::isfinite(d.aabbMargin))) {
     return fail("WorldDef3::aabbMargin: must be finite and >= speculativeDistance");
@@ -305,10 +310,11 @@ Status World3::setTransform(BodyId3 body, Vec3 position, Quat rotation) {
   if (Status s = checkBodyDef(probe); !s) return fail("setTransform: " + s.message());
   detail::Body3& b = state_->store.bodies[body.index];
   b.origin = position;
-  b.rotation = normalize(rotation);
+  b.rotation = detail::unitRotation(rotation);
   b.center = transformPoint(b.transform(), b.localCenter);
   b.awake = true;
   b.sleepTime = 0.0f;
+  ++b.poseVersion;  // its contacts get new manifolds
   // A teleport: no displacement to stretch the fat boxes by.
   state_->store.moveProxies(body.index, Vec3{});
   return {};
@@ -379,7 +385,8 @@ Status World3::step() {
 }
 
 // The step, top to bottom: new contacts from the broad phase, manifolds for contacts with
-// an awake body, islands woken by touch, the soft-step solver, sleep.
+// an awake body, islands woken by touch, the soft-step solver, continuous collision of fast
+// bodies against static geometry, sleep.
 Status World3::step(float dt, int substeps) {
   if (!(dt > 0.0f && dt <= kMaxTimeStep)) {
     return fail("step: dt: must be in (0, kMaxTimeStep], got " + str(dt));
@@ -392,9 +399,11 @@ Status World3::step(float dt, int substeps) {
   w.events.end.assign(w.pendingEnds.begin(), w.pendingEnds.end());
   w.pendingEnds.clear();
   w.contacts.findNew(w.store);
-  w.contacts.update(w.store, w.def.speculativeDistance, dt, w.events);
+  w.contacts.update(w.store, w.def, dt, w.events);
   w.islands.wakeTouched(w.store, w.contacts);
+  if (w.def.enableContinuous) w.continuous.recordStarts(w.store);
   w.solver.step(w.store, w.contacts, w.def, dt, substeps);
+  if (w.def.enableContinuous) w.continuous.solve(w.store);
   if (w.def.enableSleep) w.islands.sleepRested(w.store, w.contacts, dt);
   ++w.stepCount;
   return {};

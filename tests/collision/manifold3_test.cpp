@@ -388,7 +388,7 @@ TEST(Manifold3, RandomPairsAgreeWithEpaAndLieOnBothSurfaces) {
   // Pairs (A, B) with A at least as "big" a kind as B: hull/box, capsule, sphere.
   const Kind3 kinds[] = {Kind3::hull, Kind3::box, Kind3::capsule, Kind3::sphere};
   std::mt19937 rng(1001);
-  int mismatches = 0, checked = 0, multi = 0;
+  int mismatches = 0, checked = 0, multi = 0, facePreferred = 0;
   const int n = 6000 * testScale();
   for (int i = 0; i < n; ++i) {
     int ia = i % 4, ib = ia + (i / 4) % (4 - ia);
@@ -415,6 +415,11 @@ TEST(Manifold3, RandomPairsAgreeWithEpaAndLieOnBothSurfaces) {
                    b.kind != Kind3::sphere && b.kind != Kind3::capsule;
       if (m.pointCount == 0) {
         ok = false;
+      } else if (expected < 0 && hulls) {
+        // A face within kLinearSlop of the best (edge) axis is kept, so the deepest point
+        // may be that much deeper than EPA's depth; never shallower.
+        ok = deepest(m) >= expected - kLinearSlop - tol && deepest(m) <= expected + tol;
+        if (deepest(m) < expected - tol) ++facePreferred;
       } else if (expected < 0 || !hulls) {
         ok = std::fabs(deepest(m) - expected) <= tol;
       } else {
@@ -443,6 +448,8 @@ TEST(Manifold3, RandomPairsAgreeWithEpaAndLieOnBothSurfaces) {
   EXPECT_EQ(mismatches, 0);
   EXPECT_GT(checked, n / 4);
   EXPECT_GT(multi, n / 50);
+  EXPECT_GT(facePreferred, 0);  // the tolerance above is used, and only by some pairs
+  EXPECT_LT(facePreferred, checked / 10);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <string>
 
@@ -35,6 +36,8 @@ TEST(World3Api, BadWorldDefsAreRefusedNamingTheField) {
       {{.restitutionThreshold = -1.0f}, "restitutionThreshold"},
       {{.speculativeDistance = 2.0f}, "speculativeDistance"},
       {{.aabbMargin = 0.001f}, "aabbMargin"},
+      {{.contactRecycleDistance = kNaN}, "contactRecycleDistance"},
+      {{.contactRecycleDistance = -0.1f}, "contactRecycleDistance"},
   };
   for (const Case& c : cases) {
     Result<World3> made = World3::create(c.def);
@@ -181,6 +184,27 @@ TEST(World3Api, BeginAndEndEvents) {
   ASSERT_TRUE(world.step().ok());
   ASSERT_EQ(world.events().end.size(), 1u);
   EXPECT_EQ(world.events().end[0].shapeB, shape);
+}
+
+// Rotations: a huge quaternion (its squared length overflows float) becomes the unit one
+// it points along, not zero; a rotation read back from a body writes back to the bit.
+TEST(World3Api, RotationsAreMadeUnitWithoutOverflowAndWriteBackExactly) {
+  World3 world = World3::create().value();
+  const BodyId3 b = world.createBody({.rotation = {0, 1e30f, 0, 1e30f}}).value();
+  const Quat expected = Quat::fromAxisAngle({0, 1, 0}, 0.5f * kPi);
+  EXPECT_GT(std::fabs(dot(world.rotation(b), expected)), 1.0f - 1e-6f);
+  ASSERT_TRUE(world.setTransform(b, {}, {3e38f, 0, 0, 3e38f}).ok());
+  EXPECT_GT(std::fabs(dot(world.rotation(b), Quat::fromAxisAngle({1, 0, 0}, 0.5f * kPi))),
+            1.0f - 1e-6f);
+  // Turned by a spin over some steps: a unit-to-rounding quaternion, written back as read.
+  ASSERT_TRUE(world.setAngularVelocity(b, {0.3f, 1.1f, -0.7f}).ok());
+  for (int i = 0; i < 7; ++i)
+    ASSERT_TRUE(world.step().ok());
+  const Quat read = world.rotation(b);
+  const Vec3 p = world.position(b);
+  ASSERT_TRUE(world.setTransform(b, p, read).ok());
+  const Quat again = world.rotation(b);
+  EXPECT_EQ(std::memcmp(&read, &again, sizeof(Quat)), 0);
 }
 
 }  // namespace

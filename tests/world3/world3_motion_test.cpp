@@ -219,8 +219,8 @@ TEST(World3Motion, BoxRestsOnAMeshFloor) {
             1.0f - 1e-5f);
 }
 
-// A mixed pile on the ground, twice: the same bits. (On a mesh floor, a pile this size
-// pushes bodies through the one-sided triangles: docs/world3.md, "Not yet".)
+// A mixed pile on the ground, twice: the same bits. (The same pile on a mesh floor:
+// world3_stacking_test.cpp.)
 std::vector<float> runPile() {
   World3 world = World3::create().value();
   addGround(world);

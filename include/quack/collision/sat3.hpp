@@ -47,7 +47,12 @@ struct SatOutput3 {
   float separation = 0.0f;
   Vec3 normal;  ///< unit, from A to B
   SatFeature3 feature = SatFeature3::faceA;
-  int faceIndex = 0;        ///< for faceA and faceB
+  int faceIndex = 0;  ///< the best face axis's face (also when an edge axis won)
+  /// The best face axis, also when an edge axis won (the caller may prefer a face within a
+  /// tolerance, as collideHulls does): faceA or faceB, its separation and world normal.
+  SatFeature3 faceFeature = SatFeature3::faceA;
+  float faceSeparation = -std::numeric_limits<float>::infinity();
+  Vec3 faceNormal;
   int edgeA = 0;            ///< for edges
   int edgeB = 0;            ///< for edges
   int edgePairsTested = 0;  ///< edge pairs that the bounds kept and the Gauss map passed

@@ -78,6 +78,14 @@ struct WorldDef3 {
   float speculativeDistance = kSpeculativeDistance;
   /// Broad-phase margin (m, >= speculativeDistance): the fat boxes' growth.
   float aabbMargin = 0.1f;
+  /// A resting pair of flat shapes (hulls and boxes, on each other or on a mesh) keeps its
+  /// manifold while the bodies' relative pose stays within this (m, in [0, 1]; 0: a new
+  /// manifold every step), as the 2D world does (docs/world3.md, "Contact recycling").
+  float contactRecycleDistance = 10.0f * kLinearSlop;  // the 2D kContactRecycleDistance
+  /// Continuous collision: a body that moves more than half its thinnest shape in a step
+  /// is stopped at the first static shape or mesh in its way (docs/world3.md). Off gives
+  /// the discrete solver alone, whose speculative contacts reach at most 1 m.
+  bool enableContinuous = true;
   bool enableSleep = true;
 };
 
