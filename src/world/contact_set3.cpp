@@ -198,7 +198,7 @@ void ContactSet3::update(const BodyStore3& store, const WorldDef3& def, float dt
     }
     const BroadPhase3& bp = store.broadPhase();
     if (!overlaps(bp.fatBox(sa.proxy), bp.fatBox(sb.proxy))) {
-      if (c.touching) events.end.push_back({shapeId(store, c.shapeA), shapeId(store, c.shapeB)});
+      if (c.touching) events.end.push_back(event(store, c.shapeA, c.shapeB));
       // Swap-remove: the last contact takes this slot and is looked at next.
       destroy(i);
       continue;
@@ -249,9 +249,9 @@ void ContactSet3::update(const BodyStore3& store, const WorldDef3& def, float dt
     c.recycleValid = true;
     const bool touching = !c.manifolds.empty();
     if (touching && !c.touching) {
-      events.begin.push_back({shapeId(store, c.shapeA), shapeId(store, c.shapeB)});
+      events.begin.push_back(event(store, c.shapeA, c.shapeB));
     } else if (!touching && c.touching) {
-      events.end.push_back({shapeId(store, c.shapeA), shapeId(store, c.shapeB)});
+      events.end.push_back(event(store, c.shapeA, c.shapeB));
     }
     c.touching = touching;
     ++i;
@@ -265,7 +265,7 @@ void ContactSet3::removeShape(const BodyStore3& store, std::uint32_t shape, Step
       ++i;
       continue;
     }
-    if (c.touching) events.end.push_back({shapeId(store, c.shapeA), shapeId(store, c.shapeB)});
+    if (c.touching) events.end.push_back(event(store, c.shapeA, c.shapeB));
     destroy(i);
   }
 }

@@ -68,6 +68,11 @@ class ContactSet3 {
   ShapeId3 shapeId(const BodyStore3& store, std::uint32_t shape) const noexcept {
     return {shape, store.shapeIds.generation(shape), worldId_};
   }
+  // The event of a contact between live shapes a and b.
+  ContactEvent3 event(const BodyStore3& store, std::uint32_t a, std::uint32_t b) const noexcept {
+    return {shapeId(store, a), shapeId(store, b), store.shapes[a].def.filter.category,
+            store.shapes[b].def.filter.category};
+  }
 
  private:
   static std::uint64_t key(std::uint32_t a, std::uint32_t b) noexcept {

@@ -111,6 +111,8 @@ void writeEvents(Writer& w, const std::vector<ContactEvent3>& events) {
     w.u32(e.shapeA.generation);
     w.var(e.shapeB.index);
     w.u32(e.shapeB.generation);
+    w.u64(e.categoryA);
+    w.u64(e.categoryB);
   }
 }
 
@@ -351,7 +353,7 @@ ShapeGeometry3 readGeometry(Reader& r) {
 
 std::vector<ContactEvent3> readEvents(Reader& r, const char* what, std::uint32_t world,
                                       std::size_t shapes) {
-  std::vector<ContactEvent3> events(r.count(what, 10));
+  std::vector<ContactEvent3> events(r.count(what, 26));
   for (ContactEvent3& e : events) {
     e.shapeA.index = r.index(what, shapes);
     e.shapeA.generation = r.u32(what);
@@ -359,6 +361,8 @@ std::vector<ContactEvent3> readEvents(Reader& r, const char* what, std::uint32_t
     e.shapeB.index = r.index(what, shapes);
     e.shapeB.generation = r.u32(what);
     e.shapeB.world = world;
+    e.categoryA = r.u64(what);
+    e.categoryB = r.u64(what);
   }
   return events;
 }
@@ -579,8 +583,11 @@ std::vector<std::uint8_t> World3::snapshot() const {
 }
 
 Status World3::restore(std::span<const std::uint8_t> bytes) {
+  if (state_->inCallbacks) return fail("restore: called from a contact callback");
   auto decoded = detail::decode(bytes, state_->id);
   if (!decoded) return fail("restore: " + decoded.error().message);
+  // The callbacks are the world's, not the snapshot's: they stay.
+  decoded.value()->callbacks = std::move(state_->callbacks);
   state_ = std::move(decoded).value();
   return {};
 }

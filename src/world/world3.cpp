@@ -375,6 +375,7 @@ Status World3::step(float dt, int substeps) {
     return fail("step: substeps: must be in 1..64, got " + std::to_string(substeps));
   }
   detail::WorldState3& w = *state_;
+  if (w.inCallbacks) return fail("step: called from a contact callback");
   w.events.begin.clear();
   w.events.end.assign(w.pendingEnds.begin(), w.pendingEnds.end());
   w.pendingEnds.clear();
@@ -386,7 +387,43 @@ Status World3::step(float dt, int substeps) {
   if (w.def.enableContinuous) w.continuous.solve(w.store);
   if (w.def.enableSleep) w.islands.sleepRested(w.store, w.contacts, dt);
   ++w.stepCount;
+  dispatchCallbacks();
   return {};
+}
+
+// The step's events to the callbacks, begin events first, each in event order. Copies of
+// both lists are walked, so a callback may destroy shapes (their end events go to the next
+// step) or register callbacks (they run from the next step).
+void World3::dispatchCallbacks() {
+  detail::WorldState3& w = *state_;
+  if (w.callbacks.empty()) return;
+  const std::vector<detail::WorldState3::Callback> callbacks = w.callbacks;
+  const StepEvents3 events = w.events;
+  w.inCallbacks = true;
+  for (int pass = 0; pass < 2; ++pass) {
+    const bool begin = pass == 0;
+    for (const ContactEvent3& e : begin ? events.begin : events.end) {
+      for (const detail::WorldState3::Callback& c : callbacks) {
+        if (c.begin != begin) continue;
+        if ((e.categoryA & c.categoriesA) != 0 && (e.categoryB & c.categoriesB) != 0) {
+          c.f(*this, e.shapeA, e.shapeB);
+        } else if ((e.categoryB & c.categoriesA) != 0 && (e.categoryA & c.categoriesB) != 0) {
+          c.f(*this, e.shapeB, e.shapeA);
+        }
+      }
+    }
+  }
+  w.inCallbacks = false;
+}
+
+void World3::onContactBegin(std::uint64_t categoriesA, std::uint64_t categoriesB,
+                            ContactCallback3 f) {
+  if (f) state_->callbacks.push_back({true, categoriesA, categoriesB, std::move(f)});
+}
+
+void World3::onContactEnd(std::uint64_t categoriesA, std::uint64_t categoriesB,
+                          ContactCallback3 f) {
+  if (f) state_->callbacks.push_back({false, categoriesA, categoriesB, std::move(f)});
 }
 
 const StepEvents3& World3::events() const noexcept {

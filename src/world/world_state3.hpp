@@ -31,6 +31,15 @@ struct WorldState3 {
   std::vector<ContactEvent3> pendingEnds;  // of shapes destroyed since the last step
   std::uint64_t stepCount = 0;
 
+  // The user's callbacks (World3::onContactBegin, onContactEnd), in registration order.
+  struct Callback {
+    bool begin = true;
+    std::uint64_t categoriesA = 0, categoriesB = 0;
+    World3::ContactCallback3 f;
+  };
+  std::vector<Callback> callbacks;
+  bool inCallbacks = false;
+
   ShapeId3 shapeId(std::uint32_t shape) const noexcept {
     return {shape, store.shapeIds.generation(shape), id};
   }

@@ -207,5 +207,54 @@ TEST(World3Api, RotationsAreMadeUnitWithoutOverflowAndWriteBackExactly) {
   EXPECT_EQ(std::memcmp(&read, &again, sizeof(Quat)), 0);
 }
 
+// Callbacks: matched by category both ways round, shapes passed in the matching order,
+// once per event; a shape destroyed in a begin callback gets its end callback next step
+// (matched by the categories it had); step() from a callback is refused; a callback
+// registered inside one runs from the next step.
+TEST(World3Api, ContactCallbacksMatchByCategoryAndMayChangeTheWorld) {
+  World3 world = World3::create().value();
+  const BodyId3 ground = world.createBody({.type = BodyType::staticBody}).value();
+  const ShapeId3 floor = world
+                             .createShape(ground, {.filter = {.category = 1}},
+                                          makeBox3({5, 0.5f, 5}, {{0, -0.5f, 0}, {}}).value())
+                             .value();
+  const BodyId3 ball = world.createBody({.position = {0, 0.6f, 0}}).value();
+  const ShapeId3 ballShape =
+      world.createShape(ball, {.filter = {.category = 2}}, Sphere{{}, 0.5f}).value();
+  int groundFirst = 0, ballFirst = 0, ends = 0, late = 0;
+  bool stepRefused = false;
+  world.onContactBegin(1, 2, [&](World3& w, ShapeId3 a, ShapeId3 b) {
+    ++groundFirst;
+    EXPECT_EQ(a, floor);
+    EXPECT_EQ(b, ballShape);
+    stepRefused = !w.step().ok();
+    w.onContactBegin(~std::uint64_t{0}, ~std::uint64_t{0},
+                     [&](World3&, ShapeId3, ShapeId3) { ++late; });
+    EXPECT_TRUE(w.destroyBody(w.body(b)).ok());
+  });
+  world.onContactBegin(2, 1, [&](World3&, ShapeId3 a, ShapeId3 b) {
+    ++ballFirst;
+    EXPECT_EQ(a, ballShape);
+    EXPECT_EQ(b, floor);
+  });
+  world.onContactBegin(4, 4, [&](World3&, ShapeId3, ShapeId3) { ADD_FAILURE() << "category 4"; });
+  world.onContactEnd(2, 1, [&](World3& w, ShapeId3 a, ShapeId3 b) {
+    ++ends;
+    EXPECT_FALSE(w.isValid(a));  // destroyed: its categories matched it
+    EXPECT_EQ(b, floor);
+  });
+  // The ball falls 0.1 m before it touches: step until the begin event.
+  for (int i = 0; i < 60 && groundFirst == 0; ++i)
+    ASSERT_TRUE(world.step().ok());
+  EXPECT_EQ(groundFirst, 1);
+  EXPECT_EQ(ballFirst, 1);
+  EXPECT_TRUE(stepRefused);
+  EXPECT_FALSE(world.isValid(ball));
+  EXPECT_EQ(late, 0);
+  ASSERT_TRUE(world.step().ok());
+  EXPECT_EQ(ends, 1);
+  EXPECT_EQ(late, 0);  // the next step had no begin event
+}
+
 }  // namespace
 }  // namespace quack

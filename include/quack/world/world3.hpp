@@ -25,6 +25,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -124,6 +125,9 @@ struct ShapeDef3 {
 /// shape was destroyed). A is the lower shape index, or the mesh.
 struct ContactEvent3 {
   ShapeId3 shapeA, shapeB;
+  /// The shapes' filter categories when the event happened (so that a callback can match an
+  /// end event whose shape is already destroyed).
+  std::uint64_t categoryA = 0, categoryB = 0;
 };
 
 /// The events of one step.
@@ -279,10 +283,22 @@ class World3 {
                                                     Transform3 worldFromShape, Vec3 translation,
                                                     QueryFilter filter = {}) const;
   const StepEvents3& events() const noexcept;
+
+  // ---- callbacks (called at the end of each step, in event order) -----------------------
+  /// A callback runs for an event whose first shape has a category in `categoriesA` and
+  /// whose second has one in `categoriesB` (tried both ways round; the shapes are passed in
+  /// the matching order), as the 2D world's do. Inside a callback the world may be read and
+  /// changed (bodies created, destroyed, pushed), but not stepped; a callback registered
+  /// from inside one runs from the next step. Snapshots do not hold callbacks: a restored
+  /// world keeps its own.
+  using ContactCallback3 = std::function<void(World3&, ShapeId3 a, ShapeId3 b)>;
+  void onContactBegin(std::uint64_t categoriesA, std::uint64_t categoriesB, ContactCallback3 f);
+  void onContactEnd(std::uint64_t categoriesA, std::uint64_t categoriesB, ContactCallback3 f);
   std::uint64_t stepCount() const noexcept;
 
  private:
   explicit World3(std::unique_ptr<detail::WorldState3> state);
+  void dispatchCallbacks();
   std::unique_ptr<detail::WorldState3> state_;
 };
 
