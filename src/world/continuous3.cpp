@@ -54,17 +54,32 @@ void Continuous3::recordStarts(const BodyStore3& store) {
 }
 
 // Box2D v3's continuous stage (solver.c, read for understanding) does this in 2D: a body is
-// fast when it moved more than half its thinnest extent, and it is swept against static
-// shapes only; a shape it overlaps at the start of the sweep is left to the contacts.
+// fast when it moved more than half its thinnest extent; it is swept against static shapes,
+// and (as v3 does for its bullets) against the bodies that are not fast, held at their
+// poses at the end of the step; a shape it touches at the start of the sweep is met by a
+// small core ball instead. Fast bodies are not swept against each other: each is put back
+// on its own, against shapes no fast body moves, so the order cannot change a result.
 int Continuous3::solve(BodyStore3& store) {
   int putBack = 0;
+  fast_.clear();
+  sweeps_.clear();
   for (const Start& start : starts_) {
-    Body3& body = store.bodies[start.body];
-    if (!body.awake) continue;
-    const Transform3 end = body.transform();
-    const Sweep3 sweep = makeSweep3(body.localCenter, start.pose, end);
+    const Body3& body = store.bodies[start.body];
+    const Sweep3 sweep = makeSweep3(body.localCenter, start.pose, body.transform());
     const float moved = length(sweep.c2 - sweep.c1) + sweepAngle(sweep) * body.maxExtent;
-    if (!(moved > 0.5f * body.minExtent)) continue;
+    if (moved > 0.5f * body.minExtent) {
+      fast_.push_back(start);
+      sweeps_.push_back(sweep);
+    }
+  }
+  isFast_.assign(store.bodies.size(), 0);
+  for (const Start& f : fast_)
+    isFast_[f.body] = 1;
+  for (std::size_t n = 0; n < fast_.size(); ++n) {
+    const Start& start = fast_[n];
+    Body3& body = store.bodies[start.body];
+    const Transform3 end = body.transform();
+    const Sweep3& sweep = sweeps_[n];
 
     float first = 1.0f;
     for (std::uint32_t shape : body.shapes) {
@@ -77,7 +92,7 @@ int Continuous3::solve(BodyStore3& store) {
       store.broadPhase().queryAabb(swept, [&](ProxyId, std::uint64_t userData) {
         const auto other = static_cast<std::uint32_t>(userData);
         const Shape3& s = store.shapes[other];
-        if (store.bodies[s.body].type == BodyType::staticBody &&
+        if (s.body != start.body && isFast_[s.body] == 0 &&
             shouldCollide(s.def.filter, moving.def.filter))
           candidates_.push_back(other);
         return true;
@@ -87,6 +102,7 @@ int Continuous3::solve(BodyStore3& store) {
       std::sort(candidates_.begin(), candidates_.end());
       for (std::uint32_t other : candidates_) {
         const Shape3& s = store.shapes[other];
+        // Static, or a body that is not fast, at its pose after the solver.
         const Transform3 worldFromStatic = store.bodies[s.body].transform();
         bool touching = false;
         float t = impact(s, worldFromStatic, proxy, sweep, first, touching);

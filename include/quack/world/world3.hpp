@@ -85,8 +85,8 @@ struct WorldDef3 {
   /// manifold every step), as the 2D world does (docs/world3.md, "Contact recycling").
   float contactRecycleDistance = 10.0f * kLinearSlop;  // the 2D kContactRecycleDistance
   /// Continuous collision: a body that moves more than half its thinnest shape in a step
-  /// is stopped at the first static shape or mesh in its way (docs/world3.md). Off gives
-  /// the discrete solver alone, whose speculative contacts reach at most 1 m.
+  /// is stopped at the first static shape, mesh or slower body in its way (docs/world3.md).
+  /// Off gives the discrete solver alone, whose speculative contacts reach at most 1 m.
   bool enableContinuous = true;
   bool enableSleep = true;
 };
