@@ -130,6 +130,9 @@ py::tuple toTuple(Vec2 v);
 const PyShape& toShape(py::handle value, const std::string& path);
 /// A vector (x, y, z) within the coordinate limit: a position or translation, metres.
 Vec3 toPosition3(py::handle value, const std::string& path);
+/// A pose: None (the identity), (x, y, z) (no rotation) or (x, y, z, qx, qy, qz, qw), the
+/// quaternion read as floats and normalised in double (as `quack query` reads one).
+Transform3 toTransform3(py::handle pose, const std::string& path);
 /// Why the quaternion q[0..3] (qx, qy, qz, qw) is refused, or "": each component finite as a
 /// float (errors name `path`[first + i]), not all zero.
 std::string checkQuat(const double* q, const std::string& path, int first);

@@ -116,17 +116,6 @@ Transform3 poseFromNumbers(const double* p) {
            static_cast<float>(q[2] / norm), static_cast<float>(q[3] / norm)}};
 }
 
-// A pose: None (the identity), (x, y, z) (no rotation) or (x, y, z, qx, qy, qz, qw).
-Transform3 toTransform3(py::handle pose, const std::string& path) {
-  if (pose.is_none()) return Transform3{};
-  const std::string expected = "must be a pose (x, y, z) or (x, y, z, qx, qy, qz, qw)";
-  std::vector<double> v = toNumberList(pose, path, expected);
-  if (v.size() == 3) v.insert(v.end(), {0.0, 0.0, 0.0, 1.0});
-  if (v.size() != 7) raiseValue(path + ": " + expected);
-  if (std::string bad = checkPose3(v.data(), path); !bad.empty()) raiseValue(bad);
-  return poseFromNumbers(v.data());
-}
-
 // A sweep (pose_from, pose_to) of a shape turning about its proxy's centre, as `quack query`
 // op toi in 3D.
 Sweep3 toSweep3(py::handle sweep, const ShapeProxy3& proxy, const std::string& path) {
@@ -679,6 +668,16 @@ std::string checkQuat(const double* q, const std::string& path, int first) {
            "(0, 0, 0, 1))";
   }
   return "";
+}
+
+Transform3 toTransform3(py::handle pose, const std::string& path) {
+  if (pose.is_none()) return Transform3{};
+  const std::string expected = "must be a pose (x, y, z) or (x, y, z, qx, qy, qz, qw)";
+  std::vector<double> v = toNumberList(pose, path, expected);
+  if (v.size() == 3) v.insert(v.end(), {0.0, 0.0, 0.0, 1.0});
+  if (v.size() != 7) raiseValue(path + ": " + expected);
+  if (std::string bad = checkPose3(v.data(), path); !bad.empty()) raiseValue(bad);
+  return poseFromNumbers(v.data());
 }
 
 Vec3 toPosition3(py::handle value, const std::string& path) {

@@ -1286,6 +1286,7 @@ del _t, _collections
           [](PyWorld& w, const py::bytes& data) {
             w.checkIdle();
             const std::string_view view = data;
+            w.changed();  // body_state() must not hand back the array of before
             check(w.world().restore(std::span<const std::uint8_t>(
                 reinterpret_cast<const std::uint8_t*>(view.data()), view.size())));
           },

@@ -11,6 +11,7 @@
 #include <cctype>
 #include <cmath>
 #include <optional>
+#include <span>
 #include <string_view>
 #include <utility>
 
@@ -29,7 +30,10 @@ class PyWorld3 {
 
   World3 world;
   std::vector<BodyId3> bodies;  // the live bodies, in creation order
-  bool stepping = false;        // a step runs (set and cleared by StepGuard3)
+  // Every body this world made, in creation order, destroyed ones too: after restore() the
+  // live bodies are the valid ones among them (World3 lists no bodies of its own).
+  std::vector<BodyId3> created;
+  bool stepping = false;  // a step runs (set and cleared by StepGuard3)
   unsigned long stepThread = 0;
 
   // body_state(): the array of the last fill and the `version` it was filled at; every step
@@ -49,6 +53,17 @@ class PyWorld3 {
 
   void compact() {
     std::erase_if(bodies, [&](BodyId3 b) { return !world.isValid(b); });
+  }
+
+  // The live bodies after a restore: the valid ones of `created`, in creation order; false
+  // when the world has bodies `created` does not hold (a snapshot of another world).
+  bool relist() {
+    std::vector<BodyId3> live;
+    for (BodyId3 b : created)
+      if (world.isValid(b)) live.push_back(b);
+    if (live.size() != world.bodyCount()) return false;
+    bodies = std::move(live);
+    return true;
   }
 };
 
@@ -250,6 +265,50 @@ Status writeRow(World3& world, BodyId3 id, const BodyRow3& r) {
   return s;
 }
 
+QueryFilter toFilter3(std::uint64_t category, std::uint64_t mask) {
+  QueryFilter f;
+  f.category = category;
+  f.mask = mask;
+  return f;
+}
+
+// The query shape of overlap_shape and cast_shape: a convex quack.d3.Shape.
+const ShapeGeometry3& queryGeometry(py::handle shape) {
+  if (py::isinstance<PyShape3>(shape)) return shape.cast<const PyShape3&>().geometry;
+  if (py::isinstance<PyMesh3>(shape))
+    raiseValue(
+        "shape: a quack.d3.Mesh cannot be a query shape (overlap_shape and cast_shape take a "
+        "convex quack.d3.Shape; a mesh's triangle is one: quack.d3.triangle)");
+  if (py::isinstance<PyShape>(shape))
+    raiseValue(
+        "shape: a 2D quack.Shape in a 3D query (quack.d3.World takes quack.d3.sphere, "
+        "capsule, box, hull, triangle, shape)");
+  raiseValue("shape: must be a quack.d3.Shape, not a " +
+             std::string(py::str(shape.get_type().attr("__name__"))));
+}
+
+// The bytes of a snapshot argument: bytes or bytearray.
+std::span<const std::uint8_t> snapshotBytes(py::handle data) {
+  char* at = nullptr;
+  Py_ssize_t size = 0;
+  if (PyBytes_Check(data.ptr())) {
+    at = PyBytes_AS_STRING(data.ptr());
+    size = PyBytes_GET_SIZE(data.ptr());
+  } else if (PyByteArray_Check(data.ptr())) {
+    at = PyByteArray_AS_STRING(data.ptr());
+    size = PyByteArray_GET_SIZE(data.ptr());
+  } else {
+    raiseValue("snapshot: must be bytes (from quack.d3.World.snapshot()), not a " +
+               std::string(py::str(data.get_type().attr("__name__"))));
+  }
+  return {reinterpret_cast<const std::uint8_t*>(at), static_cast<std::size_t>(size)};
+}
+
+py::object rayHit(const py::module_& m, const py::object& self, const RayHitResult3& h) {
+  return m.attr("RayHit")(ShapeHandle3{self, h.shape}, BodyHandle3{self, h.body}, toTuple3(h.point),
+                          toTuple3(h.normal), static_cast<double>(h.fraction), h.triangle);
+}
+
 }  // namespace
 
 void registerWorld3(py::module_& m) {
@@ -264,7 +323,22 @@ Contact.__doc__ = ("A touching contact of a quack.d3.World: shape_a, shape_b "
                    "(quack.d3.ShapeHandle; shape_a is the mesh when there is one) and "
                    "manifolds (quack.d3.ManifoldResult, world frame, normals from a to b: one "
                    "for two convex shapes, one per touching triangle of a mesh).")
-for _t in (Events, Contact):
+RayHit = _collections.namedtuple("RayHit", "shape body point normal fraction triangle")
+RayHit.__doc__ = ("A shape a ray of a quack.d3.World enters: shape, body (handles), point "
+                  "and normal (world frame; unit, outward; a mesh's: its triangle's face "
+                  "normal), fraction (origin + fraction * translation) and triangle (the mesh "
+                  "triangle entered, else -1).")
+ShapeOverlap = _collections.namedtuple("ShapeOverlap", "shape body depth depenetration")
+ShapeOverlap.__doc__ = ("A shape of a quack.d3.World overlapping a query shape: shape, body, "
+                        "depth (metres, >= 0; a mesh: its deepest triangle's) and "
+                        "depenetration (x, y, z), the move (world frame, metres) that takes "
+                        "the query shape out of it.")
+ShapeCastHit = _collections.namedtuple("ShapeCastHit", "shape body point normal fraction")
+ShapeCastHit.__doc__ = ("The first shape of a quack.d3.World a swept query shape meets: shape, "
+                        "body, point (on the shape met), normal (unit, from the shape met "
+                        "towards the query shape), fraction of the translation (0 when it "
+                        "starts overlapping).")
+for _t in (Events, Contact, RayHit, ShapeOverlap, ShapeCastHit):
     _t.__module__ = "quack.d3"
 del _t, _collections
 )py",
@@ -507,6 +581,7 @@ del _t, _collections
             const BodyId3 id = valueOrRaise3(w.world.createBody(def));
             w.changed();
             w.bodies.push_back(id);
+            w.created.push_back(id);
             return BodyHandle3{self, id};
           },
           py::arg("type") = "dynamic", py::arg("position") = vector(bodyDefaults.position),
@@ -759,6 +834,144 @@ del _t, _collections
           "every number finite, quaternions not zero); then all bodies or none are written (a "
           "row World3 refuses puts the others back). Static bodies keep zero velocities. "
           "Every body is woken.")
+      .def(
+          "ray_cast_closest",
+          [m](py::object self, py::handle origin, py::handle translation, std::uint64_t category,
+              std::uint64_t mask) -> py::object {
+            PyWorld3& w = worldOf(self);
+            w.checkIdle();
+            const Vec3 o = toPosition3(origin, "origin");
+            const Vec3 t = toPosition3(translation, "translation");
+            const std::optional<RayHitResult3> h =
+                w.world.rayCastClosest(o, t, toFilter3(category, mask));
+            if (!h) return py::none();
+            return rayHit(m, self, *h);
+          },
+          py::arg("origin"), py::arg("translation"), py::arg("category") = 1,
+          py::arg("mask") = ~std::uint64_t{0},
+          "The first shape the ray origin + t translation (t in [0, 1], world frame) enters: a "
+          "quack.d3.RayHit, or None (also for a zero translation). A mesh is entered from its "
+          "triangles' fronts only; a ray that starts inside a convex shape does not enter it. "
+          "Ties go to the lower shape index. category and mask filter the shapes as a shape's "
+          "own do (each side's category in the other's mask).")
+      .def(
+          "ray_cast_all",
+          [m](py::object self, py::handle origin, py::handle translation, std::uint64_t category,
+              std::uint64_t mask) {
+            PyWorld3& w = worldOf(self);
+            w.checkIdle();
+            const Vec3 o = toPosition3(origin, "origin");
+            const Vec3 t = toPosition3(translation, "translation");
+            py::list out;
+            for (const RayHitResult3& h : w.world.rayCastAll(o, t, toFilter3(category, mask)))
+              out.append(rayHit(m, self, h));
+            return out;
+          },
+          py::arg("origin"), py::arg("translation"), py::arg("category") = 1,
+          py::arg("mask") = ~std::uint64_t{0},
+          "Every shape the ray enters (quack.d3.RayHit, one per shape), by fraction (ties: "
+          "lower shape index).")
+      .def(
+          "overlap_aabb",
+          [](py::object self, py::handle lower, py::handle upper, std::uint64_t category,
+             std::uint64_t mask) {
+            PyWorld3& w = worldOf(self);
+            w.checkIdle();
+            const Aabb3 box{toPosition3(lower, "lower"), toPosition3(upper, "upper")};
+            const float lo[3] = {box.lower.x, box.lower.y, box.lower.z};
+            const float hi[3] = {box.upper.x, box.upper.y, box.upper.z};
+            for (int i = 0; i < 3; ++i) {
+              if (hi[i] < lo[i])
+                raiseValue("upper[" + std::to_string(i) +
+                           "]: " + formatNumber(static_cast<double>(hi[i])) + " is below lower[" +
+                           std::to_string(i) + "] " + formatNumber(static_cast<double>(lo[i])));
+            }
+            py::list out;
+            for (ShapeId3 s : w.world.overlapAabb(box, toFilter3(category, mask)))
+              out.append(ShapeHandle3{self, s});
+            return out;
+          },
+          py::arg("lower"), py::arg("upper"), py::arg("category") = 1,
+          py::arg("mask") = ~std::uint64_t{0},
+          "Shapes (quack.d3.ShapeHandle) whose bounding boxes overlap the box lower-upper "
+          "(world frame; upper >= lower in each axis), by shape index. The boxes are the "
+          "broad phase's, which moving bodies' grow by the world's aabb_margin.")
+      .def(
+          "overlap_shape",
+          [m](py::object self, py::handle shape, py::handle pose, std::uint64_t category,
+              std::uint64_t mask) {
+            PyWorld3& w = worldOf(self);
+            w.checkIdle();
+            const ShapeGeometry3& g = queryGeometry(shape);
+            const Transform3 xf = toTransform3(pose, "pose");
+            py::list out;
+            for (const ShapeOverlap3& o :
+                 valueOrRaise3(w.world.overlapShape(g, xf, toFilter3(category, mask)))) {
+              out.append(
+                  m.attr("ShapeOverlap")(ShapeHandle3{self, o.shape}, BodyHandle3{self, o.body},
+                                         static_cast<double>(o.depth), toTuple3(o.depenetration)));
+            }
+            return out;
+          },
+          py::arg("shape"), py::arg("pose"), py::arg("category") = 1,
+          py::arg("mask") = ~std::uint64_t{0},
+          "Shapes overlapping a convex quack.d3.Shape placed at pose (None, (x, y, z) or (x, "
+          "y, z, qx, qy, qz, qw)): quack.d3.ShapeOverlap, by shape index, each with its depth "
+          "and the depenetration that moves the query shape out (EPA; a mesh: its deepest "
+          "triangle).")
+      .def(
+          "cast_shape",
+          [m](py::object self, py::handle shape, py::handle pose, py::handle translation,
+              std::uint64_t category, std::uint64_t mask) -> py::object {
+            PyWorld3& w = worldOf(self);
+            w.checkIdle();
+            const ShapeGeometry3& g = queryGeometry(shape);
+            const Transform3 xf = toTransform3(pose, "pose");
+            const Vec3 t = toPosition3(translation, "translation");
+            const std::optional<ShapeCastResult3> r =
+                valueOrRaise3(w.world.castShape(g, xf, t, toFilter3(category, mask)));
+            if (!r) return py::none();
+            return m.attr("ShapeCastHit")(ShapeHandle3{self, r->shape}, BodyHandle3{self, r->body},
+                                          toTuple3(r->point), toTuple3(r->normal),
+                                          static_cast<double>(r->fraction));
+          },
+          py::arg("shape"), py::arg("pose"), py::arg("translation"), py::arg("category") = 1,
+          py::arg("mask") = ~std::uint64_t{0},
+          "Sweeps a convex quack.d3.Shape from pose along translation (x, y, z): the first "
+          "shape it meets (quack.d3.ShapeCastHit; lowest fraction, ties to the lower shape "
+          "index; fraction 0 for one it starts in), or None.")
+      .def(
+          "snapshot",
+          [](PyWorld3& w) {
+            w.checkIdle();
+            const std::vector<std::uint8_t> bytes = w.world.snapshot();
+            return py::bytes(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+          },
+          "The world's whole state as bytes (docs/world3.md, \"Snapshots\"): restore() brings "
+          "it back, and the world then steps on to the same bits as it did from here.")
+      .def(
+          "restore",
+          [](PyWorld3& w, py::handle snapshot) {
+            w.checkIdle();
+            const std::span<const std::uint8_t> bytes = snapshotBytes(snapshot);
+            // The way back if the restored world has bodies this one cannot list.
+            const std::vector<std::uint8_t> before = w.world.snapshot();
+            w.changed();
+            check(w.world.restore(bytes));
+            if (w.relist()) return;
+            // A snapshot of this world, just taken: its restore cannot be refused.
+            check(w.world.restore(before));
+            raiseValue(
+                "snapshot: holds bodies this quack.d3.World did not make (a snapshot of "
+                "another world, which it cannot list in bodies and body_state's rows); the "
+                "world is unchanged");
+          },
+          py::arg("snapshot"),
+          "Puts the world back to a snapshot() of it: bodies and shapes, their handles (valid "
+          "again if destroyed since), contacts and the last step's events. Raises ValueError "
+          "with World3's message, leaving the world unchanged, for bytes that are not a 3D "
+          "snapshot, of another format version, truncated or corrupted; and for a snapshot "
+          "of another world with bodies this one did not make.")
       .def("__repr__", [](PyWorld3& w) {
         if (w.steppingElsewhere()) return std::string("quack.d3.World(stepping)");
         return "quack.d3.World(bodies=" + std::to_string(w.world.bodyCount()) +

@@ -929,3 +929,20 @@ def test_snapshot_and_restore_round_trip_and_refuse_what_does_not_fit():
     with pytest.raises(ValueError, match="checksum"):
         w.restore(bytes(flipped))
     assert w.state_hash() == later
+
+
+def test_body_state_after_restore_is_the_restored_one():
+    """Regression: restore() did not move the world's version on, so body_state() handed
+    back the array of before the restore."""
+    w = quack.World()
+    w.create_body(type="static")
+    ball = w.create_body(pos=(0, 5))
+    w.create_shape(ball, quack.circle(radius=0.5))
+    snap = w.snapshot()
+    first = w.body_state().copy()
+    for _ in range(30):
+        w.step()
+    assert w.body_state()[1, 1] < 5  # it fell
+    w.restore(snap)
+    assert ball.position == (0.0, 5.0)
+    assert w.body_state().tobytes() == first.tobytes()

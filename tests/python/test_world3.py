@@ -2,7 +2,10 @@
 a ball and a box at rest on a box and on a mesh (heights from the geometry), mass and
 impulses against the formulas for a ball, stale and foreign handles, every bad argument
 named, the same bits on two runs, begin and end events, the bulk state, and the GIL
-released while a world steps; docs/python.md's example run and typed."""
+released while a world steps; queries (rays, boxes, shape overlaps and casts) against
+hand-worked answers and against a loop over each shape's own quack.d3 query; snapshots
+restored to the same bits, and bad ones refused with World3's message; docs/python.md's
+example run and typed."""
 
 import math
 import os
@@ -460,6 +463,373 @@ def test_handles_compare_and_hash():
     assert len({a, w.bodies[0]}) == 1
     assert repr(a) == "quack.d3.BodyHandle(index=0, generation=1)"
     assert repr(w) == "quack.d3.World(bodies=1, shapes=0, steps=0)"
+
+
+# ---- queries ----------------------------------------------------------------------------
+
+def square_mesh():
+    """The square -1..1 in x and z at y = 0, fronts up: triangle 0 holds z > x, 1 z < x.
+    (b - a) x (c - a) for triangle 0, (-1, 0, -1) (-1, 0, 1) (1, 0, 1): (0, 4, 0), up."""
+    v = np.array([[-1, 0, -1], [1, 0, -1], [1, 0, 1], [-1, 0, 1]], float)
+    return d3.mesh(v, np.array([[0, 3, 2], [0, 2, 1]]))
+
+
+def test_a_ray_down_onto_the_ground_at_the_hand_worked_fraction():
+    w, ground, ground_shape = ground_world()
+    # From y = 3 down by 4: the top face y = 0 after 3 of the 4 metres.
+    hit = w.ray_cast_closest((1, 3, 2), (0, -4, 0))
+    assert isinstance(hit, d3.RayHit)
+    assert hit.shape == ground_shape and hit.body == ground
+    assert hit.fraction == pytest.approx(0.75, abs=1e-6)
+    assert hit.point == pytest.approx((1, 0, 2), abs=1e-5)
+    assert hit.normal == pytest.approx((0, 1, 0), abs=1e-6)
+    assert hit.triangle == -1
+    # Slanted: (0, 2, 0) + t (2, -4, 0) meets y = 0 at t = 1/2, x = 1.
+    hit = w.ray_cast_closest((0, 2, 0), (2, -4, 0))
+    assert hit.fraction == pytest.approx(0.5, abs=1e-6)
+    assert hit.point == pytest.approx((1, 0, 0), abs=1e-5)
+    # Short of the ground, a zero translation, from inside, and all of them in ray_cast_all.
+    assert w.ray_cast_closest((1, 3, 2), (0, -2.9, 0)) is None
+    assert w.ray_cast_closest((1, 3, 2), (0, 0, 0)) is None
+    assert w.ray_cast_closest((0, -0.5, 0), (0, 5, 0)) is None
+    assert w.ray_cast_all((1, 3, 2), (0, -2.9, 0)) == []
+    # A ball above the ground: the closest is the ball (top at y = 1.5), all gives both.
+    ball = w.create_body(position=(0, 1, 0))
+    ball_shape = w.create_shape(ball, d3.sphere(radius=0.5))
+    hits = w.ray_cast_all((0, 3, 0), (0, -4, 0))
+    assert [h.shape for h in hits] == [ball_shape, ground_shape]
+    assert [h.fraction for h in hits] == pytest.approx([1.5 / 4, 3 / 4], abs=1e-6)
+    assert w.ray_cast_closest((0, 3, 0), (0, -4, 0)) == hits[0]
+
+
+def test_a_one_sided_mesh_is_hit_from_the_front_and_passed_from_behind():
+    w = d3.World()
+    body = w.create_body(type="static", position=(0, 1, 0))
+    mesh = w.create_shape(body, square_mesh())
+    # Down from y = 3 by 4 onto the front at y = 1: fraction 1/2, in triangle 1 (z < x).
+    hit = w.ray_cast_closest((0.5, 3, 0.2), (0, -4, 0))
+    assert hit.shape == mesh and hit.body == body
+    assert hit.fraction == pytest.approx(0.5, abs=1e-6)
+    assert hit.point == pytest.approx((0.5, 1, 0.2), abs=1e-5)
+    assert hit.normal == pytest.approx((0, 1, 0), abs=1e-6)
+    assert hit.triangle == 1
+    assert w.ray_cast_closest((-0.5, 3, 0.2), (0, -4, 0)).triangle == 0  # z > x
+    # From behind (below, going up) the same line passes through.
+    assert w.ray_cast_closest((0.5, -1, 0.2), (0, 4, 0)) is None
+    assert w.ray_cast_all((0.5, -1, 0.2), (0, 4, 0)) == []
+    # Beside the square: nothing.
+    assert w.ray_cast_closest((1.5, 3, 0.2), (0, -4, 0)) is None
+
+
+def test_filters_keep_and_skip_shapes_as_their_categories_and_masks_say():
+    """A shape is met when its category is in the query's mask and the query's category in
+    its mask (each side's bits in the other's)."""
+    w, ground, ground_shape = ground_world()  # category 1, mask all
+    crate = w.create_body(type="static", position=(0, 1, 0))
+    all_but_4 = quack.ALL_CATEGORIES & ~4
+    crate_shape = w.create_shape(crate, d3.box(half=(0.5, 0.5, 0.5)), category=2,
+                                 mask=all_but_4)
+    origin, down = (0, 3, 0), (0, -4, 0)
+    # Top down: the crate (y 0.5..1.5), then the ground (top at 0).
+    filters = ((crate_shape, 2, all_but_4), (ground_shape, 1, quack.ALL_CATEGORIES))
+
+    def met(category, mask):
+        return [h.shape for h in w.ray_cast_all(origin, down, category=category, mask=mask)]
+
+    for category, mask in [(1, quack.ALL_CATEGORIES), (1, 1), (1, 2), (4, 3), (8, 6), (4, 0),
+                           (2, 1), (5, 2)]:
+        expected = [s for s, cat, msk in filters if cat & mask and category & msk]
+        assert met(category, mask) == expected, (category, mask)
+        closest = w.ray_cast_closest(origin, down, category=category, mask=mask)
+        assert (closest.shape if closest else None) == (expected[0] if expected else None)
+        boxes = w.overlap_aabb((-1, -2, -1), (1, 3, 1), category=category, mask=mask)
+        assert boxes == [s for s in (ground_shape, crate_shape) if s in expected]  # by index
+        overlaps = w.overlap_shape(d3.box(half=(2, 2, 2)), (0, 0, 0), category=category,
+                                   mask=mask)
+        assert {o.shape for o in overlaps} == set(expected)
+        cast = w.cast_shape(d3.sphere(radius=0.25), (0, 3, 0), down, category=category,
+                            mask=mask)
+        assert (cast.shape if cast else None) == (expected[0] if expected else None)
+    assert met(1, 2) == [crate_shape] and met(4, 3) == [ground_shape]
+
+
+def test_overlap_aabb_gives_the_shapes_whose_boxes_meet_the_box():
+    w, ground, ground_shape = ground_world()  # box -10..10, -1..0, -10..10
+    ball = w.create_body(type="static", position=(3, 2, 0))
+    ball_shape = w.create_shape(ball, d3.sphere(radius=0.5))  # box 2.5..3.5, 1.5..2.5
+    assert w.overlap_aabb((-1, -1, -1), (1, 1, 1)) == [ground_shape]
+    assert w.overlap_aabb((2, 1, -1), (4, 3, 1)) == [ball_shape]
+    assert w.overlap_aabb((-20, -20, -20), (20, 20, 20)) == [ground_shape, ball_shape]
+    assert w.overlap_aabb((0, 5, 0), (1, 6, 1)) == []
+
+
+def test_overlap_shape_depth_and_depenetration_by_hand():
+    w, ground, ground_shape = ground_world()
+    # A sphere of radius 0.5 centred 0.3 above the top face reaches 0.2 below it: out by
+    # moving 0.2 up.
+    over = w.overlap_shape(d3.sphere(radius=0.5), (2, 0.3, -1))
+    assert len(over) == 1 and isinstance(over[0], d3.ShapeOverlap)
+    assert over[0].shape == ground_shape and over[0].body == ground
+    assert over[0].depth == pytest.approx(0.2, abs=1e-4)
+    assert over[0].depenetration == pytest.approx((0, 0.2, 0), abs=1e-4)
+    # Two spheres: radii 1 and 0.5, centres 1.2 apart along z: 0.3 deep, out along +z.
+    ball = w.create_body(position=(5, 5, 5))
+    ball_shape = w.create_shape(ball, d3.sphere(radius=1))
+    over = w.overlap_shape(d3.sphere(radius=0.5), (5, 5, 6.2, 0, 0, 0, 1))
+    assert [o.shape for o in over] == [ball_shape] and over[0].body == ball
+    assert over[0].depth == pytest.approx(0.3, abs=1e-4)
+    assert over[0].depenetration == pytest.approx((0, 0, 0.3), abs=1e-4)
+    # A turned query box (45 degrees about z) standing on an edge 0.1 into the ground: its
+    # lowest edge is half * sqrt(2) below its centre.
+    half = 0.5
+    s = math.sin(math.pi / 8)
+    y = half * math.sqrt(2) - 0.1
+    over = w.overlap_shape(d3.box(half=(half, half, half)), (-3, y, 0, 0, 0, s,
+                                                            math.cos(math.pi / 8)))
+    assert [o.shape for o in over] == [ground_shape]
+    assert over[0].depth == pytest.approx(0.1, abs=1e-4)
+    assert over[0].depenetration == pytest.approx((0, 0.1, 0), abs=1e-4)
+    # Apart: nothing.
+    assert w.overlap_shape(d3.sphere(radius=0.5), (0, 0.6, 0)) == []
+
+
+def test_overlap_shape_on_a_mesh_gives_its_deepest_triangle():
+    w = d3.World()
+    body = w.create_body(type="static")
+    mesh = w.create_shape(body, square_mesh())
+    over = w.overlap_shape(d3.sphere(radius=0.5), (0.2, 0.35, -0.3))
+    assert [o.shape for o in over] == [mesh]
+    assert over[0].depth == pytest.approx(0.15, abs=1e-4)
+    assert over[0].depenetration == pytest.approx((0, 0.15, 0), abs=1e-4)
+
+
+def test_cast_shape_fraction_by_hand():
+    w, ground, ground_shape = ground_world()
+    # A ball of radius 0.5 from y = 3 down by 4 touches the top face when its centre is at
+    # y = 0.5: after 2.5 of the 4 metres. A hit is within 1e-4 m of touching
+    # (kShapeCastTolerance), so at most 1e-4 / 4 early.
+    hit = w.cast_shape(d3.sphere(radius=0.5), (1, 3, 1), (0, -4, 0))
+    assert isinstance(hit, d3.ShapeCastHit)
+    assert hit.shape == ground_shape and hit.body == ground
+    assert 0.625 - 1e-4 / 4 - 1e-6 <= hit.fraction <= 0.625 + 1e-6
+    assert hit.point == pytest.approx((1, 0, 1), abs=1e-3)
+    assert hit.normal == pytest.approx((0, 1, 0), abs=1e-4)
+    # A box (half height 0.25) sliding diagonally: its bottom reaches y = 0 when it has come
+    # down 1.75 of the 3.5: fraction 1/2, whatever it does sideways.
+    hit = w.cast_shape(d3.box(half=(0.3, 0.25, 0.3)), (0, 2, 0), (2, -3.5, 1))
+    assert 0.5 - 1e-4 / 3.5 - 1e-6 <= hit.fraction <= 0.5 + 1e-6
+    # Starting in the ground: fraction 0. Going up, or falling short: None.
+    assert w.cast_shape(d3.sphere(radius=0.5), (0, 0.2, 0), (0, 1, 0)).fraction == 0
+    assert w.cast_shape(d3.sphere(radius=0.5), (0, 3, 0), (0, 4, 0)) is None
+    assert w.cast_shape(d3.sphere(radius=0.5), (0, 3, 0), (0, -2, 0)) is None
+
+
+def random_scene(seed):
+    """Static bodies with every kind of shape at random poses, and a mesh; no steps."""
+    rng = np.random.default_rng(seed)
+    w = d3.World()
+    shapes = [d3.sphere(radius=0.4), d3.box(half=(0.5, 0.2, 0.3)),
+              d3.capsule((0, -0.3, 0), (0, 0.3, 0), 0.2),
+              d3.hull(rng.normal(size=(10, 3)) * 0.4),
+              d3.triangle([(0, 0, 0), (0.8, 0, 0), (0, 0.6, 0.3)])]
+    placed = []
+    for i in range(30):
+        body = w.create_body(type="static" if i % 3 else "dynamic",
+                             position=rng.uniform(-3, 3, size=3), rotation=rng.normal(size=4))
+        shape = shapes[i % len(shapes)]
+        placed.append((w.create_shape(body, shape), shape, body))
+    floor = w.create_body(type="static", position=(0, -3.5, 0), rotation=(0.1, 0, 0, 1))
+    mesh = d3.mesh(np.array([[-4, 0, -4], [4, 0, -4], [4, 0, 4], [-4, 0, 4]], float),
+                   np.array([[0, 3, 2], [0, 2, 1]]))
+    placed.append((w.create_shape(floor, mesh), mesh, floor))
+    return w, placed, rng
+
+
+def test_ray_cast_closest_and_all_agree_with_each_shapes_own_raycast():
+    """The world's answer against a loop over every shape with quack.d3.raycast at the
+    body's pose: the least fraction (closest) and every shape entered (all)."""
+    w, placed, rng = random_scene(11)
+    hits = several = 0
+    for _ in range(300):
+        # Most rays aimed through a body's origin, some anywhere.
+        origin = rng.uniform(-5, 5, size=3)
+        aim = np.array(placed[rng.integers(len(placed))][2].position) + rng.normal(size=3) * 0.3
+        translation = (aim - origin) * 1.5 if rng.uniform() < 0.8 else rng.normal(size=3) * 6
+        brute = []
+        for shape, geometry, body in placed:
+            r = d3.raycast(geometry, body.position + body.rotation, origin, translation)
+            if r.hit:
+                brute.append((r.fraction, shape, r))
+        brute.sort(key=lambda b: b[0])
+        closest = w.ray_cast_closest(origin, translation)
+        every = w.ray_cast_all(origin, translation)
+        assert [h.shape for h in every] == [b[1] for b in brute]
+        for h, (fraction, shape, r) in zip(every, brute):
+            assert h.fraction == pytest.approx(fraction, abs=1e-5)
+            assert h.point == pytest.approx(r.point, abs=1e-4)
+            assert h.normal == pytest.approx(r.normal, abs=1e-4)
+            assert h.triangle == getattr(r, "triangle", -1)
+            assert h.body == shape.body
+        if not brute:
+            assert closest is None
+            continue
+        hits += 1
+        several += len(brute) > 1
+        assert closest == every[0]
+    # Most rays met something, many several things: the lists compared are not empty.
+    assert hits > 150 and several > 30
+
+
+def test_cast_shape_agrees_with_each_shapes_own_shapecast():
+    w, placed, rng = random_scene(12)
+    query = d3.box(half=(0.2, 0.3, 0.1))
+    hits = 0
+    for _ in range(60):
+        start = rng.uniform(-5, 5, size=3)
+        pose = tuple(start) + tuple(rng.normal(size=4))
+        aim = np.array(placed[rng.integers(len(placed))][2].position) + rng.normal(size=3) * 0.3
+        translation = (aim - start) * 1.5 if rng.uniform() < 0.8 else rng.normal(size=3) * 4
+        first = None
+        for shape, geometry, body in placed:
+            r = d3.shapecast(geometry, body.position + body.rotation, query, pose, translation)
+            if r.hit and (first is None or r.fraction < first[0]):
+                first = (r.fraction, shape)
+        got = w.cast_shape(query, pose, translation)
+        if first is None:
+            assert got is None
+            continue
+        hits += 1
+        assert got.shape == first[1] and got.fraction == pytest.approx(first[0], abs=1e-5)
+    assert hits > 30
+
+
+def test_a_bad_query_argument_is_named():
+    w, _, _ = ground_world()
+    mesh = square_mesh()
+    for call, message in [
+        (lambda: w.ray_cast_closest((0, math.nan, 0), (0, -1, 0)), r"^origin\[1\]: must be finite"),
+        (lambda: w.ray_cast_all((0, 0, 0), (0, -1)), r"^translation: must be a vector \(x, y, z\)"),
+        (lambda: w.ray_cast_closest((0, 0, 0), (0, 2e9, 0)),
+         r"^translation\[1\]: 2e\+09 m is beyond the coordinate limit"),
+        (lambda: w.overlap_aabb((0, 0, 0), (1, -1, 1)), r"^upper\[1\]: -1 is below lower\[1\] 0"),
+        (lambda: w.overlap_aabb("box", (1, 1, 1)), r"^lower: must be a vector"),
+        (lambda: w.overlap_shape(mesh, None), r"^shape: a quack.d3.Mesh cannot be a query shape"),
+        (lambda: w.overlap_shape(quack.circle(radius=1), None), r"^shape: a 2D quack.Shape"),
+        (lambda: w.cast_shape({"type": "sphere"}, None, (0, 1, 0)),
+         r"^shape: must be a quack.d3.Shape, not a dict"),
+        (lambda: w.overlap_shape(d3.sphere(radius=1), (0, 0, 0, 0, 0, 0, 0)),
+         r"^pose: the quaternion \(qx, qy, qz, qw\) is zero"),
+        (lambda: w.cast_shape(d3.sphere(radius=1), (0, 0), (0, 1, 0)),
+         r"^pose: must be a pose \(x, y, z\) or \(x, y, z, qx, qy, qz, qw\)"),
+        (lambda: w.cast_shape(d3.sphere(radius=1), None, (0, math.inf, 0)),
+         r"^translation\[1\]: must be finite"),
+    ]:
+        with pytest.raises(ValueError, match=message):
+            call()
+
+
+def test_queries_skip_destroyed_shapes_and_hand_out_live_handles():
+    w, ground, ground_shape = ground_world()
+    ball = w.create_body(type="static", position=(0, 1, 0))
+    ball_shape = w.create_shape(ball, d3.sphere(radius=0.5))
+    assert w.ray_cast_closest((0, 3, 0), (0, -4, 0)).shape == ball_shape
+    w.destroy_body(ball)
+    hit = w.ray_cast_closest((0, 3, 0), (0, -4, 0))
+    assert hit.shape == ground_shape and hit.shape.valid and hit.body.world is w
+    assert w.overlap_aabb((-1, 0.6, -1), (1, 2, 1)) == []
+
+
+# ---- snapshots --------------------------------------------------------------------------
+
+def test_a_restored_world_steps_on_to_the_same_bits():
+    w = pile(7)
+    for _ in range(40):
+        w.step()
+    snap = w.snapshot()
+    assert isinstance(snap, bytes) and snap[:8] == b"QUACK3SN"
+    at_snapshot = w.body_state().copy()
+    for _ in range(60):
+        w.step()
+    ahead = w.body_state().copy()
+    assert ahead.tobytes() != at_snapshot.tobytes()  # it moved on: not a trivial equality
+
+    # The same world, put back: the same rows, then the same 60 steps give the same bits.
+    w.restore(snap)
+    assert w.step_count == 40
+    assert w.body_state().tobytes() == at_snapshot.tobytes()
+    for _ in range(60):
+        w.step()
+    assert w.body_state().tobytes() == ahead.tobytes()
+
+    # Another world built the same way (its bodies have the same handles) but stepped
+    # differently, restored from it (as a bytearray): the same bits again.
+    other = pile(7)
+    for _ in range(5):
+        other.step(1 / 30, 2)
+    other.restore(bytearray(snap))
+    assert other.body_state().tobytes() == at_snapshot.tobytes()
+    for _ in range(60):
+        other.step()
+    assert other.body_state().tobytes() == ahead.tobytes()
+    assert other.snapshot() == w.snapshot()
+
+
+def test_restore_brings_back_destroyed_bodies_and_their_handles():
+    w, ground, ground_shape = ground_world()
+    a = w.create_body(position=(0, 1, 0))
+    w.create_shape(a, d3.sphere(radius=0.25))
+    b = w.create_body(position=(2, 1, 0))
+    b_shape = w.create_shape(b, d3.box(half=(0.2, 0.2, 0.2)))
+    snap = w.snapshot()
+    before = w.body_state().copy()
+    w.destroy_body(a)
+    c = w.create_body(position=(-2, 1, 0))  # takes a's slot, a new generation
+    w.step()
+    assert not a.valid and w.bodies == [ground, b, c]
+    w.restore(snap)
+    assert a.valid and b.valid and b_shape.valid and not c.valid
+    assert w.bodies == [ground, a, b] and w.body_count == 3
+    assert w.body_state().tobytes() == before.tobytes()
+    assert a.position == (0.0, 1.0, 0.0)
+    with pytest.raises(ValueError, match="stale quack.d3.BodyHandle"):
+        c.position  # noqa: B018
+    # A snapshot with bodies this world never made (one of another world) is refused, and
+    # the world is left as it was.
+    lone = d3.World()
+    with pytest.raises(ValueError, match=r"^snapshot: holds bodies this quack.d3.World did "
+                                         r"not make"):
+        lone.restore(snap)
+    assert lone.body_count == 0 and lone.bodies == [] and lone.body_state().shape == (0, 13)
+
+
+def test_bad_snapshot_bytes_are_refused_with_world3s_message():
+    """The messages of docs/world3.md's format: the header "QUACK3SN", the version (u32 at
+    byte 8), the payload length (u64 at 12) and its checksum (u64 at 20)."""
+    w = pile(2)
+    for _ in range(10):
+        w.step()
+    state = w.body_state().copy()
+    snap = w.snapshot()
+    other_version = bytearray(snap)
+    other_version[8] = 2
+    corrupted = bytearray(snap)
+    corrupted[-1] ^= 0x40
+    payload = len(snap) - 28
+    for data, message in [
+        (b"junk", "restore: snapshot: not a 3D world snapshot (no QUACK3SN header)"),
+        (quack.World().snapshot(), "restore: snapshot: not a 3D world snapshot"),
+        (bytes(other_version), "restore: snapshot: format version 2, this build reads version 1"),
+        (snap[:-1], f"restore: snapshot: payload of {payload - 1} bytes, the header says "
+                    f"{payload} (truncated?)"),
+        (bytes(corrupted), "restore: snapshot: checksum mismatch (corrupted)"),
+    ]:
+        with pytest.raises(ValueError) as e:
+            w.restore(data)
+        assert str(e.value).startswith(message), str(e.value)
+        assert w.body_state().tobytes() == state.tobytes()  # unchanged
+    with pytest.raises(ValueError, match=r"^snapshot: must be bytes .*, not a str"):
+        w.restore("QUACK3SN")
+    assert w.step_count == 10
 
 
 def _doc_block(source_dir):

@@ -369,6 +369,27 @@ class Contact(NamedTuple):
     shape_b: ShapeHandle
     manifolds: List[ManifoldResult]
 
+class RayHit(NamedTuple):
+    shape: ShapeHandle
+    body: BodyHandle
+    point: Tuple[float, float, float]
+    normal: Tuple[float, float, float]
+    fraction: float
+    triangle: int
+
+class ShapeOverlap(NamedTuple):
+    shape: ShapeHandle
+    body: BodyHandle
+    depth: float
+    depenetration: Tuple[float, float, float]
+
+class ShapeCastHit(NamedTuple):
+    shape: ShapeHandle
+    body: BodyHandle
+    point: Tuple[float, float, float]
+    normal: Tuple[float, float, float]
+    fraction: float
+
 class World:
     """The 3D rigid-body world (World3)."""
     def __init__(self, gravity: _Vec3 = (0.0, -10.0, 0.0), dt: _Number = 1.0 / 60.0,
@@ -407,3 +428,15 @@ class World:
     def step_count(self) -> int: ...
     def body_state(self) -> npt.NDArray[np.float64]: ...
     def set_body_state(self, state: _Array) -> None: ...
+    def ray_cast_closest(self, origin: _Vec3, translation: _Vec3, category: int = 1,
+                         mask: int = ...) -> Optional[RayHit]: ...
+    def ray_cast_all(self, origin: _Vec3, translation: _Vec3, category: int = 1,
+                     mask: int = ...) -> List[RayHit]: ...
+    def overlap_aabb(self, lower: _Vec3, upper: _Vec3, category: int = 1,
+                     mask: int = ...) -> List[ShapeHandle]: ...
+    def overlap_shape(self, shape: Shape, pose: _Pose3, category: int = 1,
+                      mask: int = ...) -> List[ShapeOverlap]: ...
+    def cast_shape(self, shape: Shape, pose: _Pose3, translation: _Vec3, category: int = 1,
+                   mask: int = ...) -> Optional[ShapeCastHit]: ...
+    def snapshot(self) -> bytes: ...
+    def restore(self, snapshot: Union[bytes, bytearray]) -> None: ...
