@@ -317,8 +317,11 @@ def test_the_same_bits_on_two_runs():
             w.step()
         runs.append(w.body_state().copy())
     assert runs[0].tobytes() == runs[1].tobytes()
-    # The pile really moved and settled on the ground (not a trivially equal state).
-    assert runs[0][1:, 1].max() < 6 and runs[0][1:, 1].min() > 0
+    # The pile really moved and settled on the ground (not a trivially equal state). A random
+    # hull need not hold its body's origin, so an origin may sit a little below the ground
+    # (measured: 4.5 mm below, the hull's lowest vertex 0.3 mm above); one that fell through
+    # would be metres down.
+    assert runs[0][1:, 1].max() < 6 and runs[0][1:, 1].min() > -0.1
     # step(dt, substeps) with the world's own values is step().
     w = pile(7)
     for _ in range(150):
