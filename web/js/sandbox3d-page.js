@@ -153,14 +153,25 @@ function render() {
   renderer.render(scene, camera);
 }
 
-// Aims the camera at the scene's dynamic bodies (all bodies when there are none).
+// Aims the camera at the scene: the boxes of its dynamic bodies and of its static ones but
+// floors (a static box under FLOOR_HEIGHT metres high and over FLOOR_WIDTH across: a 40 m
+// floor would shrink the rest), so that a ramp is in the picture.
+const FLOOR_HEIGHT = 1.5;
+const FLOOR_WIDTH = 10;
+const isFloor = (size) => size.y < FLOOR_HEIGHT && Math.max(size.x, size.z) > FLOOR_WIDTH;
+
 function frameScene() {
-  const bodies = state.world.bodies.filter((b) => b.type !== 'static');
+  bodiesGroup.updateMatrixWorld(true);
+  const types = new Map(state.world.bodies.map((b) => [b.index, b.type]));
   const box = new THREE.Box3();
-  for (const b of bodies.length > 0 ? bodies : state.world.bodies) box.expandByPoint(new THREE.Vector3(...b.pos));
+  for (const [index, group] of bodyObjects) {
+    const b = new THREE.Box3().setFromObject(group);
+    if (types.get(index) !== 'static' || !isFloor(b.getSize(new THREE.Vector3()))) box.union(b);
+  }
+  if (box.isEmpty()) box.setFromCenterAndSize(new THREE.Vector3(), new THREE.Vector3(4, 4, 4));
   const centre = box.getCenter(new THREE.Vector3());
   const size = box.getSize(new THREE.Vector3()).length();
-  const distance = Math.max(9, 1.6 * size);
+  const distance = Math.max(8, size);
   controls.target.copy(centre);
   camera.position.copy(centre).add(new THREE.Vector3(0.55, 0.5, 0.8).normalize().multiplyScalar(distance));
   camera.updateProjectionMatrix();

@@ -5,8 +5,10 @@
 import * as THREE from 'three';
 import { ConvexGeometry } from 'three/addons/geometries/ConvexGeometry.js';
 
+// An opaque fill is pushed back a little in depth, so that its edges draw over it whole.
 export const material = (color, opacity = 0.5) => new THREE.MeshLambertMaterial({
   color, transparent: opacity < 1, opacity, side: THREE.DoubleSide, depthWrite: opacity >= 1,
+  polygonOffset: opacity >= 1, polygonOffsetFactor: 1, polygonOffsetUnits: 1,
 });
 export const lineMaterial = (color) => new THREE.LineBasicMaterial({ color });
 
