@@ -238,11 +238,13 @@ function reset() {
   return loadText(state.scene.text, state.scene.name);
 }
 
-// A random rotation (uniform, from three normal deviates' worth of a unit quaternion).
+// A random rotation, uniform over all rotations (Shoemake's unit quaternion from three
+// uniform numbers, Graphics Gems III).
 function randomQuat() {
-  const q = new THREE.Quaternion(Math.random() - 0.5, Math.random() - 0.5, Math.random() - 0.5, Math.random() - 0.5);
-  q.normalize();
-  return [q.x, q.y, q.z, q.w];
+  const [u1, u2, u3] = [Math.random(), Math.random(), Math.random()];
+  const a = Math.sqrt(1 - u1);
+  const b = Math.sqrt(u1);
+  return [a * Math.sin(2 * Math.PI * u2), a * Math.cos(2 * Math.PI * u2), b * Math.sin(2 * Math.PI * u3), b * Math.cos(2 * Math.PI * u3)];
 }
 
 /** Drops a dynamic body (a preset of DROPS) at pos, turned by quat (random unless given);

@@ -179,12 +179,15 @@ test('a bad scene shows the parser\'s message, field named, as quack run says it
       { quat: [0, 0, 0, 0], shapes: [{ type: 'sphere', radius: 1 }] }] }),
     // A 2D box in a 3D scene.
     JSON.stringify({ world: { dim: 3 }, bodies: [{ shapes: [{ type: 'box', half: [1, 2] }] }] }),
+    // A radius that is not a number.
+    JSON.stringify({ world: { dim: 3 }, bodies: [{ type: 'static' }, { shapes: [{ type: 'sphere', radius: 'big' }] }] }),
     // An unknown world key.
     JSON.stringify({ world: { dim: 3, gravty: [0, -10, 0] } }),
     // Not JSON at all (the page's module has no exception catching: this must not abort it).
     '{"world": {"dim": 3}, "bodies": [}',
   ];
-  const fields = ['bodies[1].quat', 'bodies[0].shapes[0].half', 'world.gravty', 'not valid JSON'];
+  const fields = ['bodies[1].quat', 'bodies[0].shapes[0].type', 'bodies[1].shapes[0].radius', 'world.gravty',
+    'not valid JSON'];
   for (let i = 0; i < cases.length; ++i) {
     await page.fill('#scene-text', cases[i]);
     await page.click('#load-text');
