@@ -183,11 +183,13 @@ test('a bad scene shows the parser\'s message, field named, as quack run says it
     JSON.stringify({ world: { dim: 3 }, bodies: [{ type: 'static' }, { shapes: [{ type: 'sphere', radius: 'big' }] }] }),
     // An unknown world key.
     JSON.stringify({ world: { dim: 3, gravty: [0, -10, 0] } }),
-    // Not JSON at all (the page's module has no exception catching: this must not abort it).
+    // Not JSON at all (the page's module has no exception catching: this must not abort it),
+    // and a number beyond a double (nlohmann's out_of_range error, not a parse error).
     '{"world": {"dim": 3}, "bodies": [}',
+    '{"world": {"dim": 3, "gravity": [0, -1e400, 0]}}',
   ];
   const fields = ['bodies[1].quat', 'bodies[0].shapes[0].type', 'bodies[1].shapes[0].radius', 'world.gravty',
-    'not valid JSON'];
+    'not valid JSON', 'number overflow'];
   for (let i = 0; i < cases.length; ++i) {
     await page.fill('#scene-text', cases[i]);
     await page.click('#load-text');
