@@ -55,6 +55,9 @@ mkdir -p "$site/js/vendor/three/addons/controls" "$site/js/vendor/three/addons/g
 cp web/*.html web/style.css "$site/"
 cp web/js/*.js "$site/js/"
 cp build/wasm/quack_web.js build/wasm/quack_web.wasm "$site/"
+# The 3D sample scenes, which the 3D sandbox page loads (sandbox3d.html).
+mkdir -p "$site/scenes"
+cp scenes/*-3d.json "$site/scenes/"
 # three.js as ES modules (the pages' import map names "three" and "three/addons/").
 three=web/node_modules/three
 cp "$three/build/three.module.js" "$three/build/three.core.js" "$three/LICENSE" \
@@ -65,7 +68,7 @@ done
 
 case "$mode" in
   serve)
-    say "serving http://localhost:$port/ (index.html: GJK and EPA; gjk3d.html: the same in 3D; sandbox.html: world); Ctrl-C stops"
+    say "serving http://localhost:$port/ (index.html: GJK and EPA; gjk3d.html: the same in 3D; sandbox.html: world; sandbox3d.html: 3D world); Ctrl-C stops"
     exec python3 -m http.server "$port" --bind 127.0.0.1 --directory "$site"
     ;;
   test)

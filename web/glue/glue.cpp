@@ -29,8 +29,10 @@
 #include "quack/collision/minkowski.hpp"
 #include "quack/collision/pieces.hpp"
 #include "quack/io/answer_json.hpp"
+#include "quack/io/scene3.hpp"
 #include "quack/io/shape_json.hpp"
 #include "quack/world/world.hpp"
+#include "quack/world/world3.hpp"
 
 namespace quack::web {
 namespace {
@@ -424,6 +426,83 @@ Result<std::vector<JointId>> addRagdoll(World& world, Vec2 at) {
 
 json aabbJson(Aabb box) {
   return json::array({box.lower.x, box.lower.y, box.upper.x, box.upper.y});
+}
+
+// ---- the 3D sandbox world ---------------------------------------------------------------
+
+// A World3 and what the page needs to draw it, which World3 does not give back: each
+// shape's geometry (World3 has no geometry getter, so the glue keeps each shape's outline
+// from when it was made) and the body it is on, by sandbox index.
+struct Shape3Record {
+  ShapeId3 id;
+  int body = -1;  // sandbox body index
+  json outline;   // outline3Of, or a mesh's vertices and triangles (body frame)
+};
+struct Sandbox3 {
+  std::optional<World3> world;
+  std::vector<BodyId3> bodies;  // every body ever made, by sandbox index
+  std::vector<std::string> names;
+  std::vector<Shape3Record> shapes;  // every shape ever made, by sandbox index
+  double time = 0.0;                 // seconds stepped (World3 keeps the step count only)
+  int shapesVersion = 0;             // bumped whenever shapes come or go: the page re-reads them
+};
+Sandbox3 gSandbox3;
+
+json vec3Json(Vec3 v) {
+  return json::array({v.x, v.y, v.z});
+}
+
+json meshOutline(const Mesh3& mesh) {
+  json points = json::array(), faces = json::array();
+  for (Vec3 v : mesh.vertices())
+    points.push_back(vec3Json(v));
+  for (const MeshTriangle3& t : mesh.triangles())
+    faces.push_back({t.v[0], t.v[1], t.v[2]});
+  return {{"type", "mesh"}, {"points", points}, {"radius", 0.0f}, {"faces", faces}};
+}
+
+// Checks that `text` is JSON, keeping nlohmann's message (the one json::parse throws)
+// without throwing: this module is built without exception catching, so the try/catch in
+// the io layer's scene reader could not catch a syntax error, and the whole module would
+// abort. Only text that passes reaches parseScene3, which then reads it as `quack run` does;
+// a syntax error is reported in the same words as `quack run` (`FILE: not valid JSON: ...`).
+struct JsonSyntaxCheck {
+  std::string error;
+  bool null() { return true; }
+  bool boolean(bool) { return true; }
+  bool number_integer(json::number_integer_t) { return true; }
+  bool number_unsigned(json::number_unsigned_t) { return true; }
+  bool number_float(json::number_float_t, const json::string_t&) { return true; }
+  bool string(json::string_t&) { return true; }
+  bool binary(json::binary_t&) { return true; }
+  bool start_object(std::size_t) { return true; }
+  bool key(json::string_t&) { return true; }
+  bool end_object() { return true; }
+  bool start_array(std::size_t) { return true; }
+  bool end_array() { return true; }
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception& e) {
+    error = e.what();
+    return false;
+  }
+};
+
+Status checkJsonSyntax(const char* text, const std::string& what) {
+  JsonSyntaxCheck check;
+  if (!json::sax_parse(text, &check) || !check.error.empty()) {
+    return fail(what + ": not valid JSON: " + check.error);
+  }
+  return {};
+}
+
+// Records a body made outside buildWorld3 (qk3_world_add) or in it, with its shapes.
+int recordBody3(BodyId3 body, std::string name) {
+  gSandbox3.bodies.push_back(body);
+  gSandbox3.names.push_back(std::move(name));
+  return static_cast<int>(gSandbox3.bodies.size()) - 1;
+}
+
+bool finite3(double x, double y, double z) {
+  return std::isfinite(x) && std::isfinite(y) && std::isfinite(z);
 }
 
 }  // namespace
@@ -856,6 +935,214 @@ EMSCRIPTEN_KEEPALIVE const char* qk_world_state() {
                  {"contactCount", world.contactCount()},
                  {"time", world.time()},
                  {"steps", world.stepCount()}});
+}
+
+// ---- the 3D sandbox (sandbox3d.html) ---------------------------------------------------
+
+/// Replaces the 3D sandbox's world with the 3D scene `text` (docs/scenes.md, "3D scenes"),
+/// read by the parser `quack run` uses (parseScene3, then buildWorld3): every error is
+/// `quack run`'s message, `fileName` first (`fileName: bodies[2].quat: ...`). On an error the
+/// old world stays. Returns {"ok", "bodies", "shapes", "substeps", "timeStep"} or {"error"}.
+EMSCRIPTEN_KEEPALIVE const char* qk3_world_load(const char* text, const char* fileName) {
+  const std::string file = fileName != nullptr ? fileName : "scene";
+  if (text == nullptr) return errorAnswer(file + ": no text");
+  if (Status s = checkJsonSyntax(text, file); !s) return errorAnswer(s.message());
+  Result<Scene3> scene = parseScene3(text, file);
+  if (!scene) return errorAnswer(scene.error().message);
+  Result<SceneWorld3> built = buildWorld3(*scene);
+  if (!built) return errorAnswer(built.error().message);
+  Sandbox3 next;
+  next.world.emplace(std::move(built->world));
+  const int version = gSandbox3.shapesVersion;
+  gSandbox3 = std::move(next);
+  for (std::size_t b = 0; b < built->bodies.size(); ++b) {
+    const int index = recordBody3(built->bodies[b], built->names[b]);
+    const SceneBody3& sb = scene->bodies[b];
+    for (std::size_t k = 0; k < built->shapes[b].size(); ++k) {
+      const SceneGeometry3& g = sb.shapes[k].geometry;
+      json outline = std::holds_alternative<Mesh3>(g) ? meshOutline(std::get<Mesh3>(g))
+                                                      : outline3Of(std::get<ShapeGeometry3>(g));
+      gSandbox3.shapes.push_back({built->shapes[b][k], index, std::move(outline)});
+    }
+  }
+  gSandbox3.shapesVersion = version + 1;
+  const WorldDef3& def = gSandbox3.world->def();
+  return answer({{"ok", true},
+                 {"bodies", gSandbox3.world->bodyCount()},
+                 {"shapes", gSandbox3.world->shapeCount()},
+                 {"substeps", def.substeps},
+                 {"timeStep", def.timeStep},
+                 {"gravity", vec3Json(def.gravity)}});
+}
+
+/// Adds a dynamic body with one shape: {"shape": 3D shape JSON (as `quack query`), "pos":
+/// [x, y, z], "quat": [x, y, z, w] (optional), "vel": [x, y, z] (optional), "density",
+/// "restitution" (optional numbers)}. Every field is checked, by the io layer's parsers
+/// where there is one, and an error names it. Returns {"body", "shape"} (sandbox indices)
+/// or {"error"}.
+EMSCRIPTEN_KEEPALIVE const char* qk3_world_add(const char* bodyJson) {
+  if (!gSandbox3.world) return errorAnswer("no 3D world: call qk3_world_load first");
+  if (bodyJson == nullptr) return errorAnswer("body: no text");
+  if (Status s = checkJsonSyntax(bodyJson, "body"); !s) return errorAnswer(s.message());
+  const json j = json::parse(bodyJson, nullptr, false);
+  if (!j.is_object()) return errorAnswer("body: must be a JSON object");
+  for (const auto& [key, value] : j.items()) {
+    (void)value;
+    if (key != "shape" && key != "pos" && key != "quat" && key != "vel" && key != "density" &&
+        key != "restitution") {
+      return errorAnswer("body." + key +
+                         ": unknown key (expected shape, pos, quat, vel, density, restitution)");
+    }
+  }
+  if (!j.contains("shape")) return errorAnswer("body.shape: missing");
+  Result<ShapeGeometry3> g = parseShape3(j.at("shape"), "body.shape");
+  if (!g) return errorAnswer(g.error().message);
+  json pose = {{"pos", j.value("pos", json::array({0, 0, 0}))}};
+  if (j.contains("quat")) pose["quat"] = j.at("quat");
+  Result<Transform3> t = parsePose3(pose, "body");
+  if (!t) return errorAnswer(t.error().message);
+  Vec3 vel;
+  if (j.contains("vel")) {
+    Result<Vec3> v = parseVec3(j.at("vel"), "body.vel");
+    if (!v) return errorAnswer(v.error().message);
+    vel = *v;
+  }
+  ShapeDef3 shape;
+  for (const char* key : {"density", "restitution"}) {
+    if (!j.contains(key)) continue;
+    const json& x = j.at(key);
+    if (!x.is_number() || !std::isfinite(x.get<double>())) {
+      return errorAnswer(std::string("body.") + key + ": must be a finite number");
+    }
+    (std::string(key) == "density" ? shape.density : shape.restitution) = x.get<float>();
+  }
+  World3& world = *gSandbox3.world;
+  Result<BodyId3> body = world.createBody(
+      {.type = BodyType::dynamicBody, .position = t->p, .rotation = t->q, .linearVelocity = vel});
+  if (!body) return errorAnswer(body.error().message);
+  Result<ShapeId3> s = world.createShape(*body, shape, *g);
+  if (!s) {
+    (void)world.destroyBody(*body);
+    return errorAnswer(s.error().message);
+  }
+  const int index = recordBody3(*body, "");
+  gSandbox3.shapes.push_back({*s, index, outline3Of(*g)});
+  ++gSandbox3.shapesVersion;
+  return answer({{"body", index}, {"shape", gSandbox3.shapes.size() - 1}});
+}
+
+/// Steps the 3D sandbox `steps` times (1 to 1000) by `dt` seconds in the world's own
+/// sub-steps (the scene's world.substeps). Returns {"time", "steps", "begin", "end"} (the
+/// begin and end events of the last step) or {"error"}; a step the world refuses stops there.
+EMSCRIPTEN_KEEPALIVE const char* qk3_world_step(double dt, int steps) {
+  if (!gSandbox3.world) return errorAnswer("no 3D world: call qk3_world_load first");
+  if (steps < 1 || steps > 1000) return errorAnswer("steps: must be 1 to 1000");
+  World3& world = *gSandbox3.world;
+  for (int i = 0; i < steps; ++i) {
+    Status s = world.step(static_cast<float>(dt), world.def().substeps);
+    if (!s) return errorAnswer(s.message());
+    gSandbox3.time += static_cast<double>(static_cast<float>(dt));
+  }
+  return answer({{"time", gSandbox3.time},
+                 {"steps", world.stepCount()},
+                 {"begin", world.events().begin.size()},
+                 {"end", world.events().end.size()}});
+}
+
+/// The 3D sandbox for drawing: every live body's pose (position of its origin, rotation
+/// [x, y, z, w]), velocity, type and awake flag, the world's counts, and, when
+/// `withContacts` is not 0, the touching contacts' points and normals.
+EMSCRIPTEN_KEEPALIVE const char* qk3_world_state(int withContacts) {
+  if (!gSandbox3.world) return errorAnswer("no 3D world: call qk3_world_load first");
+  const World3& world = *gSandbox3.world;
+  json bodies = json::array();
+  for (std::size_t i = 0; i < gSandbox3.bodies.size(); ++i) {
+    const BodyId3 b = gSandbox3.bodies[i];
+    if (!world.isValid(b)) continue;
+    const Quat q = world.rotation(b);
+    bodies.push_back({{"index", i},
+                      {"name", gSandbox3.names[i]},
+                      {"type", toString(world.bodyType(b))},
+                      {"pos", vec3Json(world.position(b))},
+                      {"quat", {q.x, q.y, q.z, q.w}},
+                      {"vel", vec3Json(world.linearVelocity(b))},
+                      {"awake", world.isAwake(b)}});
+  }
+  json contacts = json::array();
+  if (withContacts != 0) {
+    for (const ContactView3& c : world.touchingContacts()) {
+      for (const Manifold3& m : c.manifolds)
+        contacts.push_back(toJson(m));
+    }
+  }
+  return answer({{"bodies", bodies},
+                 {"bodyCount", world.bodyCount()},
+                 {"shapeCount", world.shapeCount()},
+                 {"awakeBodies", world.awakeBodyCount()},
+                 {"contactCount", world.contactCount()},
+                 {"touching", world.touchingContactCount()},
+                 {"contacts", contacts},
+                 {"steps", world.stepCount()},
+                 {"time", gSandbox3.time},
+                 {"substeps", world.def().substeps},
+                 {"shapesVersion", gSandbox3.shapesVersion}});
+}
+
+/// Every live shape of the 3D sandbox, for building the page's meshes: {"version", "shapes":
+/// [{"index", "body", outline (body frame: outline3Of's, or a mesh's "points" and
+/// triangle "faces")}]}.
+EMSCRIPTEN_KEEPALIVE const char* qk3_world_shapes() {
+  if (!gSandbox3.world) return errorAnswer("no 3D world: call qk3_world_load first");
+  const World3& world = *gSandbox3.world;
+  json shapes = json::array();
+  for (std::size_t i = 0; i < gSandbox3.shapes.size(); ++i) {
+    const Shape3Record& r = gSandbox3.shapes[i];
+    if (!world.isValid(r.id)) continue;
+    json s = r.outline;
+    s["index"] = i;
+    s["body"] = r.body;
+    shapes.push_back(std::move(s));
+  }
+  return answer({{"version", gSandbox3.shapesVersion}, {"shapes", shapes}});
+}
+
+/// The first shape the ray from (ox, oy, oz) along (tx, ty, tz) enters (World3's
+/// rayCastClosest; the page casts through the pointer to drop a body there): {"hit": null}
+/// or {"hit": {"point", "normal", "fraction", "body"}}, or {"error"} for non-finite input.
+EMSCRIPTEN_KEEPALIVE const char* qk3_world_raycast(double ox, double oy, double oz, double tx,
+                                                   double ty, double tz) {
+  if (!gSandbox3.world) return errorAnswer("no 3D world: call qk3_world_load first");
+  if (!finite3(ox, oy, oz)) return errorAnswer("ray origin: must be finite");
+  if (!finite3(tx, ty, tz)) return errorAnswer("ray translation: must be finite");
+  const World3& world = *gSandbox3.world;
+  const Vec3 origin{static_cast<float>(ox), static_cast<float>(oy), static_cast<float>(oz)};
+  const Vec3 translation{static_cast<float>(tx), static_cast<float>(ty), static_cast<float>(tz)};
+  std::optional<RayHitResult3> hit = world.rayCastClosest(origin, translation);
+  if (!hit) return answer({{"hit", nullptr}});
+  int body = -1;
+  for (std::size_t i = 0; i < gSandbox3.bodies.size(); ++i) {
+    if (gSandbox3.bodies[i] == hit->body) body = static_cast<int>(i);
+  }
+  return answer({{"hit",
+                  {{"point", vec3Json(hit->point)},
+                   {"normal", vec3Json(hit->normal)},
+                   {"fraction", hit->fraction},
+                   {"body", body}}}});
+}
+
+/// Removes every dynamic body whose origin is below `y` (bodies that fell off the ground).
+/// Returns how many it removed.
+EMSCRIPTEN_KEEPALIVE int qk3_world_cull(double y) {
+  if (!gSandbox3.world || !std::isfinite(y)) return 0;
+  World3& world = *gSandbox3.world;
+  int removed = 0;
+  for (BodyId3 b : gSandbox3.bodies) {
+    if (world.isValid(b) && world.bodyType(b) == BodyType::dynamicBody && world.position(b).y < y) {
+      removed += world.destroyBody(b) ? 1 : 0;
+    }
+  }
+  if (removed > 0) ++gSandbox3.shapesVersion;
+  return removed;
 }
 
 }  // extern "C"

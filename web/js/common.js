@@ -31,6 +31,16 @@ export async function loadQuack() {
     worldRelease: () => module.ccall('qk_world_release', 'number', [], []),
     worldDrop: (kind, pos) => call('qk_world_drop', [kind, pos[0], pos[1]], ['string', 'number', 'number']),
     worldDrive: (speed) => module.ccall('qk_world_drive', 'number', ['number'], [speed]),
+    // The 3D sandbox (sandbox3d.html): a World3 from a 3D scene's text, read by the parser
+    // of `quack run`; bodies added as {shape, pos, quat, vel, density, restitution}.
+    world3Load: (text, fileName) => call('qk3_world_load', [text, fileName], ['string', 'string']),
+    world3Add: (body) => call('qk3_world_add', [JSON.stringify(body)], ['string']),
+    world3Step: (dt, steps) => call('qk3_world_step', [dt, steps], ['number', 'number']),
+    world3State: (withContacts) => call('qk3_world_state', [withContacts ? 1 : 0], ['number']),
+    world3Shapes: () => call('qk3_world_shapes', [], []),
+    world3RayCast: (origin, translation) =>
+      call('qk3_world_raycast', [...origin, ...translation], Array(6).fill('number')),
+    world3Cull: (y) => module.ccall('qk3_world_cull', 'number', ['number'], [y]),
   };
 }
 

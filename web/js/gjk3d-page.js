@@ -7,6 +7,7 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { ConvexGeometry } from 'three/addons/geometries/ConvexGeometry.js';
+import { material, lineMaterial, triangles, shapeObject } from './three-shapes.js';
 import { loadQuack, fmt, fmtVec3 } from './common.js';
 import { PRESETS3 } from './shapes3.js';
 
@@ -118,11 +119,6 @@ function makeView(canvas, cameraPos) {
   return { canvas, renderer, scene, camera, dynamic, controls: null };
 }
 
-const material = (color, opacity = 0.5) => new THREE.MeshLambertMaterial({
-  color, transparent: opacity < 1, opacity, side: THREE.DoubleSide, depthWrite: opacity >= 1,
-});
-const lineMaterial = (color) => new THREE.LineBasicMaterial({ color });
-
 function dot(group, p, color, size = 0.035) {
   const m = new THREE.Mesh(new THREE.SphereGeometry(size, 12, 8), material(color, 1));
   m.position.set(...p);
@@ -140,62 +136,6 @@ function arrow(group, from, vec, color) {
   if (!(len > 1e-9)) return;
   const head = Math.min(0.12, 0.4 * len);
   group.add(new THREE.ArrowHelper(v.normalize(), new THREE.Vector3(...from), len, color, head, 0.5 * head));
-}
-
-// Triangles (index triples into points) as a see-through mesh with its edges.
-function triangles(group, points, faces, color, opacity) {
-  const g = new THREE.BufferGeometry();
-  g.setAttribute('position', new THREE.Float32BufferAttribute(points.flat(), 3));
-  g.setIndex(faces.flat());
-  g.computeVertexNormals();
-  group.add(new THREE.Mesh(g, material(color, opacity)));
-  group.add(new THREE.LineSegments(new THREE.EdgesGeometry(g, 1), lineMaterial(color)));
-}
-
-// A shape (outline in its shape frame: core points, radius, a hull's faces) as a mesh.
-function shapeObject(outline, color) {
-  const group = new THREE.Group();
-  const pts = outline.points;
-  if (outline.type === 'sphere') {
-    const m = new THREE.Mesh(new THREE.SphereGeometry(outline.radius, 32, 16), material(color));
-    m.position.set(...pts[0]);
-    group.add(m);
-  } else if (outline.type === 'capsule') {
-    const p = new THREE.Vector3(...pts[0]);
-    const q = new THREE.Vector3(...pts[1]);
-    const axis = q.clone().sub(p);
-    const m = new THREE.Mesh(new THREE.CapsuleGeometry(outline.radius, axis.length(), 8, 24), material(color));
-    m.position.copy(p.clone().add(q).multiplyScalar(0.5));
-    if (axis.lengthSq() > 0) m.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), axis.normalize());
-    group.add(m);
-  } else if (outline.type === 'triangle') {
-    triangles(group, pts, [[0, 1, 2]], color, 0.5);
-  } else {
-    // A hull: its faces are polygons of vertex indices; fan them into triangles.
-    const faces = [];
-    for (const f of outline.faces) for (let k = 1; k + 1 < f.length; ++k) faces.push([f[0], f[k], f[k + 1]]);
-    if (outline.radius > 0) {
-      // Rounded: the core, faint, inside the hull of a ball about each core vertex (that hull
-      // is the rounded solid, the core's Minkowski sum with the ball; here each ball is 64
-      // points on its sphere, spread by the golden angle).
-      triangles(group, pts, faces, color, 0.2);
-      const around = [];
-      for (const p of pts) {
-        for (let k = 0; k < 64; ++k) {
-          const y = 1 - (2 * k + 1) / 64;
-          const s = Math.sqrt(1 - y * y);
-          const a = k * Math.PI * (3 - Math.sqrt(5));
-          const r = outline.radius;
-          around.push(new THREE.Vector3(p[0] + r * s * Math.cos(a), p[1] + r * y, p[2] + r * s * Math.sin(a)));
-        }
-      }
-      group.add(new THREE.Mesh(new ConvexGeometry(around), material(color, 0.5)));
-    } else {
-      triangles(group, pts, faces, color, 0.5);
-    }
-  }
-  group.userData.pickable = true;
-  return group;
 }
 
 let view; // the shapes

@@ -9,7 +9,8 @@ import { chromium } from 'playwright-core';
 export const SITE = process.env.QUACK_WEB_SITE ?? path.resolve('../build/web-site');
 export const QUACK_BIN = process.env.QUACK_BIN ?? path.resolve('../build/web-native/apps/quack/quack');
 
-const TYPES = { '.html': 'text/html', '.js': 'text/javascript', '.css': 'text/css', '.wasm': 'application/wasm' };
+const TYPES = { '.html': 'text/html', '.js': 'text/javascript', '.css': 'text/css', '.wasm': 'application/wasm',
+  '.json': 'application/json' };
 
 /** Serves SITE on a free localhost port; returns {url, close}. */
 export async function serve() {
