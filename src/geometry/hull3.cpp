@@ -456,8 +456,13 @@ Result<Hull3Build> computeHull3(std::span<const Vec3> points) {
         next[a] = b;
       }
     }
+    // The loop starts at its lowest vertex index: the map's own order is the standard
+    // library's (libstdc++ and libc++ differ), and a start taken from it gave the WebAssembly
+    // build other face loops, clip orders and manifolds than x86 and aarch64.
     Poly poly;
     int startV = next.begin()->first;
+    for (const auto& [from, to] : next)
+      startV = std::min(startV, from);
     int v = startV;
     do {
       poly.loop.push_back(v);
