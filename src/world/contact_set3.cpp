@@ -53,10 +53,18 @@ void carryImpulses(const ContactManifold3& old, ContactManifold3& now) noexcept 
     }
     if (match[i] >= 0) claimed[match[i]] = true;
   }
+  int matched = 0;
   for (int i = 0; i < now.manifold.pointCount; ++i) {
     if (match[i] < 0) continue;
     now.normalImpulse[i] = old.normalImpulse[match[i]];
-    now.frictionImpulse[i] = old.frictionImpulse[match[i]];
+    ++matched;
+  }
+  // The friction at the centre belongs to the contact patch: carried only when every point
+  // of the patch is the same (a box that tumbled onto another face starts again), as a
+  // stale impulse warm-started into another patch kept a pile jittering.
+  if (matched == now.manifold.pointCount && matched == old.manifold.pointCount) {
+    now.frictionImpulse = old.frictionImpulse;
+    now.twistImpulse = old.twistImpulse;
   }
   now.rollingImpulse = old.rollingImpulse;
 }

@@ -17,8 +17,11 @@ struct ContactManifold3 {
   int triangle = -1;  // the mesh triangle (A is the mesh), or -1
   Manifold3 manifold;
   float normalImpulse[kMaxManifoldPoints3] = {};
-  Vec3 frictionImpulse[kMaxManifoldPoints3];  // world frame, so a turned tangent basis keeps it
   float maxNormalImpulse[kMaxManifoldPoints3] = {};
+  // The friction at the manifold's centre: its linear impulse (world frame, so a turned
+  // tangent basis keeps it) and its twist about the normal.
+  Vec3 frictionImpulse;
+  float twistImpulse = 0.0f;
   Vec3 rollingImpulse;  // angular, world frame
   // As computed (for recycling and the solver): each point fixed in A's and in B's body
   // frame, its separation then, and the arms from the centres of mass then (world axes).

@@ -224,7 +224,6 @@ std::vector<std::uint8_t> encode(const WorldState3& s) {
         w.f32(p.separation);
         w.u32(p.id);
         w.f32(m.normalImpulse[k]);
-        vec3(w, m.frictionImpulse[k]);
         w.f32(m.maxNormalImpulse[k]);
         vec3(w, m.localA[k]);
         vec3(w, m.localB[k]);
@@ -232,6 +231,8 @@ std::vector<std::uint8_t> encode(const WorldState3& s) {
         vec3(w, m.armA[k]);
         vec3(w, m.armB[k]);
       }
+      vec3(w, m.frictionImpulse);
+      w.f32(m.twistImpulse);
       vec3(w, m.rollingImpulse);
     }
   }
@@ -523,7 +524,7 @@ Result<std::unique_ptr<WorldState3>> decode(std::span<const std::uint8_t> bytes,
     c.cachedB = xf3(r, "contact pose");
     c.versionA = r.u32("contact pose version");
     c.versionB = r.u32("contact pose version");
-    c.manifolds.resize(r.count("contact manifolds", 17));
+    c.manifolds.resize(r.count("contact manifolds", 33));
     for (ContactManifold3& m : c.manifolds) {
       m.triangle = r.i32("manifold triangle");
       m.manifold.normal = vec3(r, "manifold normal");
@@ -537,7 +538,6 @@ Result<std::unique_ptr<WorldState3>> decode(std::span<const std::uint8_t> bytes,
         p.separation = r.f32("manifold separation");
         p.id = r.u32("manifold id");
         m.normalImpulse[k] = r.f32("normal impulse");
-        m.frictionImpulse[k] = vec3(r, "friction impulse");
         m.maxNormalImpulse[k] = r.f32("normal impulse");
         m.localA[k] = vec3(r, "recycle point");
         m.localB[k] = vec3(r, "recycle point");
@@ -545,6 +545,8 @@ Result<std::unique_ptr<WorldState3>> decode(std::span<const std::uint8_t> bytes,
         m.armA[k] = vec3(r, "arm");
         m.armB[k] = vec3(r, "arm");
       }
+      m.frictionImpulse = vec3(r, "friction impulse");
+      m.twistImpulse = r.f32("twist impulse");
       m.rollingImpulse = vec3(r, "rolling impulse");
     }
     if (!r.ok()) break;

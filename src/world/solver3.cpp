@@ -61,15 +61,20 @@ void warmStart(Constraint3& c, std::vector<BodyState3>& states) {
   for (int k = 0; k < c.count; ++k) {
     const PointConstraint3& p = c.points[k];
     pushAlong(a, b, c.normal, p.normal, p.normalImpulse);
-    pushAlong(a, b, c.t1, p.tangent[0], p.tangentImpulse[0]);
-    pushAlong(a, b, c.t2, p.tangent[1], p.tangentImpulse[1]);
   }
+  pushAlong(a, b, c.t1, c.tangent[0], c.tangentImpulse[0]);
+  pushAlong(a, b, c.t2, c.tangent[1], c.tangentImpulse[1]);
+  a.w = a.w - c.twistImpulse * c.twistA;
+  b.w = b.w + c.twistImpulse * c.twistB;
   a.w = a.w - a.invI * c.rollingImpulse;
   b.w = b.w + b.invI * c.rollingImpulse;
 }
 
 // Normal impulses (soft with the push when useBias, rigid without it in the relax pass;
-// speculative points ahead of contact in both), then friction, then rolling resistance.
+// speculative points ahead of contact in both), then friction at the manifold's centre
+// (two tangents within the Coulomb circle of the total normal impulse, then the twist
+// within friction times each point's lever arm times its normal impulse), then rolling
+// resistance.
 // The points go first-to-last or, when `reverse`, last-to-first: the first point solved
 // takes more of the load in a pass, and always the same corner first would push a box
 // sideways a little every sub-step (the 2D solver alternates the same way).
@@ -113,22 +118,33 @@ void solveConstraint(Constraint3& c, std::vector<BodyState3>& states, const Step
     totalNormalImpulse += total;
     pushAlong(a, b, c.normal, p.normal, impulse);
   }
-  for (int n = 0, k = first; n < c.count; ++n, k += stride) {
-    PointConstraint3& p = c.points[k];
-    float f1 = p.tangentImpulse[0] - p.tangentMass[0] * speedAlong(a, b, c.t1, p.tangent[0]);
-    float f2 = p.tangentImpulse[1] - p.tangentMass[1] * speedAlong(a, b, c.t2, p.tangent[1]);
-    // The Coulomb cone: the friction impulse within friction times the normal impulse.
-    const float limit = c.friction * p.normalImpulse;
+  {
+    float f1 = c.tangentImpulse[0] - c.tangentMass[0] * speedAlong(a, b, c.t1, c.tangent[0]);
+    float f2 = c.tangentImpulse[1] - c.tangentMass[1] * speedAlong(a, b, c.t2, c.tangent[1]);
+    // The Coulomb circle: the friction impulse within friction times the normal impulse.
+    const float limit = c.friction * totalNormalImpulse;
     const float f = std::sqrt(f1 * f1 + f2 * f2);
     if (f > limit) {
       const float scale = f > 0.0f ? limit / f : 0.0f;
       f1 *= scale;
       f2 *= scale;
     }
-    pushAlong(a, b, c.t1, p.tangent[0], f1 - p.tangentImpulse[0]);
-    pushAlong(a, b, c.t2, p.tangent[1], f2 - p.tangentImpulse[1]);
-    p.tangentImpulse[0] = f1;
-    p.tangentImpulse[1] = f2;
+    pushAlong(a, b, c.t1, c.tangent[0], f1 - c.tangentImpulse[0]);
+    pushAlong(a, b, c.t2, c.tangent[1], f2 - c.tangentImpulse[1]);
+    c.tangentImpulse[0] = f1;
+    c.tangentImpulse[1] = f2;
+  }
+  if (c.count > 1) {
+    float twistLimit = 0.0f;
+    for (int k = 0; k < c.count; ++k)
+      twistLimit += c.points[k].lever * c.points[k].normalImpulse;
+    twistLimit *= c.friction;
+    const float spin = dot(b.w - a.w, c.normal);
+    const float total = std::clamp(c.twistImpulse - c.twistMass * spin, -twistLimit, twistLimit);
+    const float impulse = total - c.twistImpulse;
+    c.twistImpulse = total;
+    a.w = a.w - impulse * c.twistA;
+    b.w = b.w + impulse * c.twistB;
   }
   if (c.rolling > 0.0f) {
     const Vec3 dw = b.w - a.w;
@@ -250,6 +266,16 @@ void Solver3::step(BodyStore3& store, ContactSet3& contacts, const WorldDef3& de
       if (c.rolling > 0.0f && determinant(k) > 0.0f) c.rollingMass = inverse(k);
       c.rollingImpulse = m.rollingImpulse;
       c.count = m.manifold.pointCount;
+      // The centre of the points (its arms the mean of the points' arms), where friction
+      // acts, and each point's lever arm about it for the twist.
+      Vec3 centreA, centreB;
+      for (int i = 0; i < c.count; ++i) {
+        centreA = centreA + m.armA[i];
+        centreB = centreB + m.armB[i];
+      }
+      const float share = 1.0f / static_cast<float>(c.count);
+      centreA = share * centreA;
+      centreB = share * centreB;
       for (int i = 0; i < c.count; ++i) {
         const ManifoldPoint3& mp = m.manifold.points[i];
         PointConstraint3& p = c.points[i];
@@ -257,17 +283,26 @@ void Solver3::step(BodyStore3& store, ContactSet3& contacts, const WorldDef3& de
         // with the bodies under a normal that stays put tilt a column further).
         const Vec3 rA = m.armA[i], rB = m.armB[i];
         p.normal = makeAxis(a, b, rA, rB, c.normal);
-        p.tangent[0] = makeAxis(a, b, rA, rB, c.t1);
-        p.tangent[1] = makeAxis(a, b, rA, rB, c.t2);
         p.separation = mp.separation;
         p.normalMass = invEffectiveMass(a, b, p.normal);
-        p.tangentMass[0] = invEffectiveMass(a, b, p.tangent[0]);
-        p.tangentMass[1] = invEffectiveMass(a, b, p.tangent[1]);
         p.normalImpulse = m.normalImpulse[i];
-        p.tangentImpulse[0] = dot(m.frictionImpulse[i], c.t1);
-        p.tangentImpulse[1] = dot(m.frictionImpulse[i], c.t2);
         p.relativeVelocity = speedAlong(a, b, c.normal, p.normal);
+        p.lever = length(rA - centreA);
       }
+      c.tangent[0] = makeAxis(a, b, centreA, centreB, c.t1);
+      c.tangent[1] = makeAxis(a, b, centreA, centreB, c.t2);
+      c.tangentMass[0] = invEffectiveMass(a, b, c.tangent[0]);
+      c.tangentMass[1] = invEffectiveMass(a, b, c.tangent[1]);
+      c.tangentImpulse[0] = dot(m.frictionImpulse, c.t1);
+      c.tangentImpulse[1] = dot(m.frictionImpulse, c.t2);
+      c.twistA = a.invI * c.normal;
+      c.twistB = b.invI * c.normal;
+      const float twist = dot(c.normal, c.twistA) + dot(c.normal, c.twistB);
+      c.twistMass = twist > 0.0f ? 1.0f / twist : 0.0f;
+      // One point has no lever arm and so no twist friction: an impulse carried from when
+      // the manifold had more points must not be applied every sub-step (it spun a hull up
+      // to 25 rad/s in the hull pile before this was caught).
+      c.twistImpulse = c.count > 1 ? m.twistImpulse : 0.0f;
     }
   }
 
@@ -290,9 +325,10 @@ void Solver3::step(BodyStore3& store, ContactSet3& contacts, const WorldDef3& de
     for (int i = 0; i < c.count; ++i) {
       const PointConstraint3& p = c.points[i];
       m.normalImpulse[i] = p.normalImpulse;
-      m.frictionImpulse[i] = p.tangentImpulse[0] * c.t1 + p.tangentImpulse[1] * c.t2;
       m.maxNormalImpulse[i] = p.maxNormalImpulse;
     }
+    m.frictionImpulse = c.tangentImpulse[0] * c.t1 + c.tangentImpulse[1] * c.t2;
+    m.twistImpulse = c.twistImpulse;
     m.rollingImpulse = c.rollingImpulse;
   }
 

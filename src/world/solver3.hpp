@@ -40,14 +40,13 @@ struct Axis3 {
 };
 
 struct PointConstraint3 {
-  Axis3 normal, tangent[2];
+  Axis3 normal;
   float separation = 0.0f;  // as the manifold has it, at the start of the step
   float normalMass = 0.0f;
-  float tangentMass[2] = {};
   float normalImpulse = 0.0f;
-  float tangentImpulse[2] = {};
   float maxNormalImpulse = 0.0f;
   float relativeVelocity = 0.0f;  // normal velocity before the step (restitution)
+  float lever = 0.0f;             // distance from the manifold's centre (twist friction)
 };
 
 struct Constraint3 {
@@ -56,6 +55,15 @@ struct Constraint3 {
   Vec3 normal, t1, t2;
   float friction = 0.0f, restitution = 0.0f, rolling = 0.0f;
   Softness soft;
+  // Friction at the manifold's centre along the two tangents, and about the normal (twist),
+  // limited by friction times the points' total normal impulse (and times each point's
+  // lever arm for the twist), as Box3D's contact solver does (read for understanding).
+  Axis3 tangent[2];
+  float tangentMass[2] = {};
+  float tangentImpulse[2] = {};
+  Vec3 twistA, twistB;  // I_A^-1 n, I_B^-1 n
+  float twistMass = 0.0f;
+  float twistImpulse = 0.0f;
   Mat3 rollingMass;
   Vec3 rollingImpulse;
   PointConstraint3 points[kMaxManifoldPoints3];

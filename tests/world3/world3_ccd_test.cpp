@@ -117,8 +117,7 @@ TEST(World3Continuous, FastSlidingBoxIsNotHeldByTheFloorItTouches) {
 // collision it passes through and the slab never moves.
 TEST(World3Continuous, BallFiredAtAThinDynamicSlabHitsIt) {
   for (bool continuous : {false, true}) {
-    World3 world =
-        World3::create({.gravity = {0, 0, 0}, .enableContinuous = continuous}).value();
+    World3 world = World3::create({.gravity = {0, 0, 0}, .enableContinuous = continuous}).value();
     const BodyId3 slab = world.createBody({.position = {10, 0, 0}}).value();
     ASSERT_TRUE(world.createShape(slab, {.density = 100}, makeBox3({0.02f, 2, 2}).value()).ok());
     const BodyId3 ball =
@@ -133,7 +132,7 @@ TEST(World3Continuous, BallFiredAtAThinDynamicSlabHitsIt) {
                            world.mass(slab) * world.linearVelocity(slab).x;
     EXPECT_NEAR(momentum, world.mass(ball) * 100.0f, 0.01f * world.mass(ball) * 100.0f);
     if (continuous) {
-      EXPECT_LT(furthest, -0.02f - 0.1f + 0.01f);  // never past the slab's near face
+      EXPECT_LT(furthest, -0.02f - 0.1f + 0.01f);     // never past the slab's near face
       EXPECT_GT(world.linearVelocity(slab).x, 0.0f);  // struck
     } else {
       EXPECT_GT(furthest, 0.5f);  // passed through
