@@ -58,7 +58,10 @@ Aabb3 BodyStore3::shapeBox(std::uint32_t shape, Transform3 xf) const {
     }
     return box;
   }
-  const ShapeProxy3 proxy = makeProxy(s.geometry);
+  return proxyBox(makeProxy(s.geometry), xf);
+}
+
+Aabb3 proxyBox(const ShapeProxy3& proxy, Transform3 xf) noexcept {
   Aabb3 box{};
   for (int i = 0; i < proxy.count(); ++i) {
     const Vec3 p = transformPoint(xf, proxy.points()[i]);

@@ -68,6 +68,9 @@ inline Quat unitRotation(Quat q) noexcept {
   return normalize(q);
 }
 
+// The box of a proxy placed by xf (world frame), grown by its radius.
+Aabb3 proxyBox(const ShapeProxy3& proxy, Transform3 xf) noexcept;
+
 struct Shape3 {
   std::uint32_t body = 0;
   ShapeDef3 def;

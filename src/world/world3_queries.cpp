@@ -24,15 +24,17 @@ bool finiteTransform(Transform3 xf) noexcept {
   return isFinite(xf.p) && isFinite(xf.q) && lengthSquared(xf.q) > 0.0f;
 }
 
-// The box of a proxy placed by xf, grown by its radius.
-Aabb3 proxyBox(const ShapeProxy3& proxy, Transform3 xf) noexcept {
-  Aabb3 box{};
-  for (int i = 0; i < proxy.count(); ++i) {
-    const Vec3 p = transformPoint(xf, proxy.points()[i]);
-    box = i == 0 ? Aabb3{p, p} : Aabb3{minv(box.lower, p), maxv(box.upper, p)};
-  }
-  const Vec3 r{proxy.radius(), proxy.radius(), proxy.radius()};
-  return {box.lower - r, box.upper + r};
+// The shapes whose boxes meet `box` and that the filter accepts, by shape index.
+std::vector<std::uint32_t> candidatesIn(const detail::WorldState3& w, Aabb3 box,
+                                        const QueryFilter& filter) {
+  std::vector<std::uint32_t> out;
+  w.store.broadPhase().queryAabb(box, [&](ProxyId, std::uint64_t user) {
+    const auto s = static_cast<std::uint32_t>(user);
+    if (accepts(w.store.shapes[s], filter)) out.push_back(s);
+    return true;
+  });
+  std::sort(out.begin(), out.end());
+  return out;
 }
 
 // The ray against one shape, world frame in and out; `maxFraction` clips it.
@@ -120,16 +122,9 @@ Result<std::vector<ShapeOverlap3>> World3::overlapShape(const ShapeGeometry3& ge
   if (Status s = validateShape(geometry); !s) return fail("overlapShape: geometry: " + s.message());
   xf.q = normalize(xf.q);
   const detail::WorldState3& w = *state_;
-  std::vector<std::uint32_t> candidates;
   const ShapeProxy3 query = makeProxy(geometry);
-  w.store.broadPhase().queryAabb(proxyBox(query, xf), [&](ProxyId, std::uint64_t user) {
-    const auto s = static_cast<std::uint32_t>(user);
-    if (accepts(w.store.shapes[s], filter)) candidates.push_back(s);
-    return true;
-  });
-  std::sort(candidates.begin(), candidates.end());
   std::vector<ShapeOverlap3> out;
-  for (std::uint32_t s : candidates) {
+  for (std::uint32_t s : candidatesIn(w, detail::proxyBox(query, xf), filter)) {
     const detail::Shape3& shape = w.store.shapes[s];
     const Transform3 sx = w.store.bodies[shape.body].transform();
     // The shape met is A, the query B: B moves along the normal (A to B) by the depth.
@@ -154,18 +149,11 @@ Result<std::optional<ShapeCastResult3>> World3::castShape(const ShapeGeometry3& 
   const detail::WorldState3& w = *state_;
   const ShapeProxy3 cast = makeProxy(geometry);
   // Everything the swept box of the cast meets is a candidate.
-  const Aabb3 start = proxyBox(cast, xf);
+  const Aabb3 start = detail::proxyBox(cast, xf);
   const Aabb3 swept{minv(start.lower, start.lower + translation),
                     maxv(start.upper, start.upper + translation)};
-  std::vector<std::uint32_t> candidates;
-  w.store.broadPhase().queryAabb(swept, [&](ProxyId, std::uint64_t user) {
-    const auto s = static_cast<std::uint32_t>(user);
-    if (accepts(w.store.shapes[s], filter)) candidates.push_back(s);
-    return true;
-  });
-  std::sort(candidates.begin(), candidates.end());
   std::optional<ShapeCastResult3> best;
-  for (std::uint32_t s : candidates) {
+  for (std::uint32_t s : candidatesIn(w, swept, filter)) {
     const detail::Shape3& shape = w.store.shapes[s];
     const Transform3 sx = w.store.bodies[shape.body].transform();
     const float maxFraction = best ? best->fraction : 1.0f;
