@@ -357,11 +357,24 @@ bool faceContact(const Hull3& a, Transform3 worldFromA, const Hull3& b, Transfor
 
 // The hulls' cores (their radii ignored), points whose core separation is at most
 // `speculativeDistance`; collideHulls adds the radii (their sum: `radii`).
+// With `cache`, a pair found apart leaves its separating axis there.
 Manifold3 collideHullCores(const Hull3& a, Transform3 worldFromA, const Hull3& b,
-                           Transform3 worldFromB, float speculativeDistance, float radii) noexcept {
+                           Transform3 worldFromB, float speculativeDistance, float radii,
+                           HullPairCache3* cache) noexcept {
   Manifold3 m;
   SatOutput3 sat = computeSat(a, worldFromA, b, worldFromB, speculativeDistance);
-  if (sat.separation > speculativeDistance) return m;
+  if (sat.separation > speculativeDistance) {
+    if (cache != nullptr) {
+      cache->axis = invRotate(worldFromA.q, sat.normal);
+      float maxA = dot(a.vertices[0], cache->axis);
+      for (int i = 1; i < a.vertexCount; ++i)
+        maxA = maxf(maxA, dot(a.vertices[i], cache->axis));
+      cache->maxA = maxA;
+      cache->valid = true;
+    }
+    return m;
+  }
+  if (cache != nullptr) cache->valid = false;
 
   if (sat.feature == SatFeature3::edges && sat.faceSeparation + kLinearSlop >= sat.separation &&
       (sat.separation <= radii || sat.faceSeparation >= radii)) {
@@ -414,17 +427,35 @@ Manifold3 collideHullCores(const Hull3& a, Transform3 worldFromA, const Hull3& b
 
 }  // namespace
 
-Manifold3 collideHulls(const Hull3& a, Transform3 worldFromA, const Hull3& b, Transform3 worldFromB,
-                       float speculativeDistance) noexcept {
+namespace {
+
+Manifold3 collideHullsWith(const Hull3& a, Transform3 worldFromA, const Hull3& b,
+                           Transform3 worldFromB, float speculativeDistance,
+                           HullPairCache3* cache) noexcept {
   const float radii = a.radius + b.radius;
+  if (cache != nullptr && cache->valid) {
+    // B's least projection on the cached axis (B's vertices in A's frame, as dot() forms
+    // each product) less A's greatest: a gap beyond the speculative distance proves there
+    // is no contact.
+    const Transform3 aFromB = invMul(worldFromA, worldFromB);
+    const Vec3 axisInB = invRotate(aFromB.q, cache->axis);
+    float minB = dot(b.vertices[0], axisInB);
+    for (int i = 1; i < b.vertexCount; ++i)
+      minB = minf(minB, dot(b.vertices[i], axisInB));
+    const float gap = minB + dot(cache->axis, aFromB.p) - cache->maxA;
+    // A margin of rounding (the SAT's own numbers differ from these in the last bits) so
+    // that a pair SAT would find touching is never skipped.
+    const float size = a.vertexCount > 0 ? length(a.vertices[0] - a.centroid) : 0.0f;
+    if (gap > speculativeDistance + radii + 1e-5f * (size + length(aFromB.p))) return {};
+  }
   if (radii == 0.0f)
-    return collideHullCores(a, worldFromA, b, worldFromB, speculativeDistance, 0.0f);
+    return collideHullCores(a, worldFromA, b, worldFromB, speculativeDistance, 0.0f, cache);
   // Rounded hulls: the cores' manifold with the radii added to the speculative distance,
   // each point's separation less the radii and the point moved from midway between the
   // cores to midway between the rounded surfaces (A's surface is ra further along the
   // normal, B's rb back), as the capsules' points are; as Box2D's rounded polygons do.
   const Manifold3 core =
-      collideHullCores(a, worldFromA, b, worldFromB, speculativeDistance + radii, radii);
+      collideHullCores(a, worldFromA, b, worldFromB, speculativeDistance + radii, radii, cache);
   Manifold3 m;
   m.normal = core.normal;
   const Vec3 shift = (0.5f * (a.radius - b.radius)) * core.normal;
@@ -435,6 +466,18 @@ Manifold3 collideHulls(const Hull3& a, Transform3 worldFromA, const Hull3& b, Tr
         makePoint(core.points[i].point + shift, sep, core.points[i].id, worldFromA, worldFromB);
   }
   return m;
+}
+
+}  // namespace
+
+Manifold3 collideHulls(const Hull3& a, Transform3 worldFromA, const Hull3& b, Transform3 worldFromB,
+                       float speculativeDistance) noexcept {
+  return collideHullsWith(a, worldFromA, b, worldFromB, speculativeDistance, nullptr);
+}
+
+Manifold3 collideHulls(const Hull3& a, Transform3 worldFromA, const Hull3& b, Transform3 worldFromB,
+                       float speculativeDistance, HullPairCache3& cache) noexcept {
+  return collideHullsWith(a, worldFromA, b, worldFromB, speculativeDistance, &cache);
 }
 
 namespace {

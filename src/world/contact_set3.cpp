@@ -235,7 +235,11 @@ void ContactSet3::update(const BodyStore3& store, const WorldDef3& def, float dt
       }
     } else {
       ContactManifold3 cm;
-      cm.manifold = collide(sa.geometry, ba.transform(), sb.geometry, bb.transform(), reach);
+      const Hull3* ha = std::get_if<Hull3>(&sa.geometry);
+      const Hull3* hb = std::get_if<Hull3>(&sb.geometry);
+      cm.manifold = ha != nullptr && hb != nullptr
+                        ? collideHulls(*ha, ba.transform(), *hb, bb.transform(), reach, c.hullCache)
+                        : collide(sa.geometry, ba.transform(), sb.geometry, bb.transform(), reach);
       if (cm.manifold.pointCount > 0) fresh.push_back(cm);
     }
     // Both lists are in triangle order, so one merge pass matches them.

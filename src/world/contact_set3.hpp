@@ -37,6 +37,7 @@ struct Contact3 {
   float rollingResistance = 0.0f;  // rolling coefficient times the rolling radius, m
   bool touching = false;
   bool flat = false;  // B is a hull (A a hull or a mesh): the manifolds may be recycled
+  HullPairCache3 hullCache;  // two hulls: the axis that last kept them apart
   // The poses (and bodies' pose versions) the manifolds were computed at.
   bool recycleValid = false;
   Transform3 cachedA, cachedB;

@@ -211,6 +211,9 @@ std::vector<std::uint8_t> encode(const WorldState3& s) {
     xf3(w, c.cachedB);
     w.u32(c.versionA);
     w.u32(c.versionB);
+    w.flag(c.hullCache.valid);
+    vec3(w, c.hullCache.axis);
+    w.f32(c.hullCache.maxA);
     w.size(c.manifolds.size());
     for (const ContactManifold3& m : c.manifolds) {
       w.i32(m.triangle);
@@ -508,7 +511,7 @@ Result<std::unique_ptr<WorldState3>> decode(std::span<const std::uint8_t> bytes,
       return fail(std::string(where) + "shape " + std::to_string(i) + "'s proxy is not its own");
   }
 
-  std::vector<Contact3> contacts(r.count("contacts", 60));
+  std::vector<Contact3> contacts(r.count("contacts", 77));
   for (Contact3& c : contacts) {
     c.shapeA = r.index("contact shape", shapes.size());
     c.shapeB = r.index("contact shape", shapes.size());
@@ -524,6 +527,9 @@ Result<std::unique_ptr<WorldState3>> decode(std::span<const std::uint8_t> bytes,
     c.cachedB = xf3(r, "contact pose");
     c.versionA = r.u32("contact pose version");
     c.versionB = r.u32("contact pose version");
+    c.hullCache.valid = r.flag("contact hull cache");
+    c.hullCache.axis = vec3(r, "contact hull cache axis");
+    c.hullCache.maxA = r.f32("contact hull cache");
     c.manifolds.resize(r.count("contact manifolds", 33));
     for (ContactManifold3& m : c.manifolds) {
       m.triangle = r.i32("manifold triangle");

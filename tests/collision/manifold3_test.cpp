@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <random>
 #include <set>
 
 #include "oracle3.hpp"
@@ -450,6 +451,51 @@ TEST(Manifold3, RandomPairsAgreeWithEpaAndLieOnBothSurfaces) {
   EXPECT_GT(multi, n / 50);
   EXPECT_GT(facePreferred, 0);  // the tolerance above is used, and only by some pairs
   EXPECT_LT(facePreferred, checked / 10);
+}
+
+// The pair cache: hull pairs moving towards and past each other in small steps, the cached
+// call beside the plain one at every pose. Wherever the plain manifold touches (a point at
+// or below zero separation) the cached one is the same to the bit; wherever the cache
+// skipped SAT, GJK's distance is beyond the speculative distance (no contact was lost); and
+// the cache does skip (most poses are apart).
+TEST(Manifold3, HullPairCacheSkipsOnlyPairsThatAreApart) {
+  std::mt19937 rng(2024);
+  int skipped = 0, touching = 0;
+  for (int pair = 0; pair < 60; ++pair) {
+    Shape3 a = randomShape3(rng, Kind3::hull, 1.0f, 12),
+           b = randomShape3(rng, Kind3::hull, 1.0f, 12);
+    const Transform3 ta{randomVec(rng, 1), randomQuat(rng)};
+    const Vec3 start = ta.p + Vec3{4, 0.3f, -0.2f}, end = ta.p + Vec3{-4, -0.3f, 0.2f};
+    const Quat q0 = randomQuat(rng);
+    HullPairCache3 cache;
+    for (int k = 0; k <= 80; ++k) {
+      const float t = float(k) / 80.0f;
+      const Transform3 tb{(1 - t) * start + t * end,
+                          normalize(Quat::fromAxisAngle({0, 1, 0}, 0.05f * float(k)) * q0)};
+      const Manifold3 plain = collideHulls(a.hull, ta, b.hull, tb);
+      const bool wasValid = cache.valid;
+      const Manifold3 cached = collideHulls(a.hull, ta, b.hull, tb, kSpeculativeDistance, cache);
+      float deepest = 1e9f;
+      for (int n = 0; n < plain.pointCount; ++n)
+        deepest = std::min(deepest, plain.points[n].separation);
+      if (deepest <= 0.0f) {
+        ++touching;
+        ASSERT_EQ(cached.pointCount, plain.pointCount) << pair << " " << k;
+        for (int n = 0; n < plain.pointCount; ++n) {
+          EXPECT_EQ(cached.points[n].separation, plain.points[n].separation);
+          EXPECT_EQ(cached.points[n].id, plain.points[n].id);
+        }
+      }
+      if (wasValid && cached.pointCount == 0 && plain.pointCount > 0) {
+        // Skipped where SAT's clipping made a speculative point: the shapes are apart.
+        const DistanceOutput3 d = computeDistance(a.proxy(), ta, b.proxy(), tb);
+        EXPECT_GT(d.distance, kSpeculativeDistance) << pair << " " << k;
+      }
+      if (wasValid && cached.pointCount == 0) ++skipped;
+    }
+  }
+  EXPECT_GT(touching, 100);
+  EXPECT_GT(skipped, 2000);
 }
 
 }  // namespace

@@ -80,6 +80,24 @@ Manifold3 collideHullAndCapsule(const Hull3& a, Transform3 worldFromA, const Cap
 Manifold3 collideHulls(const Hull3& a, Transform3 worldFromA, const Hull3& b, Transform3 worldFromB,
                        float speculativeDistance = kSpeculativeDistance) noexcept;
 
+/// What collideHulls keeps between calls for one pair of hulls that were apart: the axis
+/// (A's frame) that separated them and A's greatest projection on it. While B's least
+/// projection on that axis stays beyond A's by more than the speculative distance (plus the
+/// radii), the pair has no contact and SAT is not run (Box3D keeps a SAT cache per contact
+/// for the same reason; read for understanding). The cache is part of the pair's state: a
+/// pair apart along the cached axis by more than the speculative distance gets no points,
+/// where SAT's own axes (a lower bound on the distance) might have let a clipped point
+/// within the speculative distance through; so a caller that saves its state (World3's
+/// snapshots) saves the cache.
+struct HullPairCache3 {
+  Vec3 axis;  ///< unit, A's frame, from A towards B
+  float maxA = 0.0f;
+  bool valid = false;
+};
+/// collideHulls with a cache for the pair (start with a default one; it fills it).
+Manifold3 collideHulls(const Hull3& a, Transform3 worldFromA, const Hull3& b, Transform3 worldFromB,
+                       float speculativeDistance, HullPairCache3& cache) noexcept;
+
 /// A lone triangle (two-sided) against any 3D shape. When the general contact's normal is the
 /// face's (kMeshFaceNormalCosine3, on either side), up to four points along it, the shape's
 /// incident feature clipped to the triangle as for a mesh triangle (mesh3.hpp,
