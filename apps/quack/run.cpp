@@ -535,6 +535,26 @@ std::string speedLine(double msPerStep, int threads) {
   return line;
 }
 
+// The build phase of either dimension: `build()` timed into buildMs with its progress line.
+// Fails with an empty message when a signal stopped it (the caller answers as interrupted),
+// else with the build's error, already printed.
+template <class Build>
+auto buildTimed(RunContext& run, std::size_t bodies, double& buildMs, Build&& build)
+    -> decltype(build()) {
+  run.phase("build");
+  const auto t0 = Clock::now();
+  run.progress.begin("building the world", std::to_string(bodies) + " bodies");
+  auto built = build();
+  if (gSignal != 0) return Error{""};
+  if (!built) {
+    run.err << "quack run: " << built.error().message << '\n';
+    return Error{"build failed"};
+  }
+  run.progress.end([&] { return "done in " + formatSeconds(run.progress.elapsed()); });
+  buildMs = msSince(t0);
+  return built;
+}
+
 // ---- the 2D run ---------------------------------------------------------------------------
 
 int runScene2(RunContext& run, Scene& scene, double loadMs,
@@ -551,17 +571,10 @@ int runScene2(RunContext& run, Scene& scene, double loadMs,
   threads = std::clamp(threads, 1, kMaxWorkers);
   scene.world.workerCount = threads;
 
-  run.phase("build");
-  auto t0 = Clock::now();
-  progress.begin("building the world", std::to_string(scene.bodies.size()) + " bodies");
-  Result<SceneWorld> built = buildWorld(scene, bodiesProgress);
-  if (gSignal != 0) return interruptedStatus();
-  if (!built) {
-    err << "quack run: " << built.error().message << '\n';
-    return kRunFailed;
-  }
-  progress.end([&] { return "done in " + formatSeconds(progress.elapsed()); });
-  const double buildMs = msSince(t0);
+  double buildMs = 0.0;
+  Result<SceneWorld> built = buildTimed(run, scene.bodies.size(), buildMs,
+                                        [&] { return buildWorld(scene, bodiesProgress); });
+  if (!built) return built.error().message.empty() ? interruptedStatus() : kRunFailed;
   SceneWorld& sw = built.value();
   warnAboutSmallShapes(sw, err);
   // The world has its own copy of everything now: free the parsed bodies (about 1 GB for a
@@ -610,7 +623,7 @@ int runScene2(RunContext& run, Scene& scene, double loadMs,
 
   run.phase("simulate");
   std::string eventLines;
-  t0 = Clock::now();
+  auto t0 = Clock::now();
   const int simulated = simulate(run, stepsToRun, [&](std::uint64_t i) {
     if (Status s = sw.world.step(); !s) {
       err << "quack run: step " << firstStep + i + 1 << ": " << s.message() << '\n';
@@ -739,17 +752,10 @@ int runScene3(RunContext& run, const Scene3& scene, double loadMs,
   Progress& progress = run.progress;
   if (!checkOptions3(options, err)) return kRunFailed;
 
-  run.phase("build");
-  auto t0 = Clock::now();
-  progress.begin("building the world", std::to_string(scene.bodies.size()) + " bodies");
-  Result<SceneWorld3> built = buildWorld3(scene, bodiesProgress);
-  if (gSignal != 0) return interruptedStatus();
-  if (!built) {
-    err << "quack run: " << built.error().message << '\n';
-    return kRunFailed;
-  }
-  progress.end([&] { return "done in " + formatSeconds(progress.elapsed()); });
-  const double buildMs = msSince(t0);
+  double buildMs = 0.0;
+  Result<SceneWorld3> built = buildTimed(run, scene.bodies.size(), buildMs,
+                                         [&] { return buildWorld3(scene, bodiesProgress); });
+  if (!built) return built.error().message.empty() ? interruptedStatus() : kRunFailed;
   SceneWorld3& sw = built.value();
 
   // The replay draws the scene's shapes (World3 does not hand them back), so the parsed
@@ -763,7 +769,7 @@ int runScene3(RunContext& run, const Scene3& scene, double loadMs,
   run.phase("simulate");
   EventTotals totals;
   std::string eventLines;
-  t0 = Clock::now();
+  auto t0 = Clock::now();
   const int simulated = simulate(run, options.steps, [&](std::uint64_t i) {
     if (Status s = sw.world.step(); !s) {
       err << "quack run: step " << i + 1 << ": " << s.message() << '\n';

@@ -215,6 +215,22 @@ void appendEventLines(std::string& out, std::uint64_t step, const StepEvents& ev
   }
 }
 
+namespace {
+
+// The keys both state files begin with: time, steps, and a bodies array (read by the caller).
+Status readHeader(const json& j, double& time, std::uint64_t& steps) {
+  Result<double> t = readDouble(j, "time", "");
+  if (!t) return fail(t.error().message.substr(1));
+  Result<std::uint64_t> n = readCount(j, "steps", "");
+  if (!n) return fail(n.error().message.substr(1));
+  if (!j.contains("bodies") || !j.at("bodies").is_array()) return fail("bodies: must be an array");
+  time = *t;
+  steps = *n;
+  return {};
+}
+
+}  // namespace
+
 Result<StateFile> parseState(std::string_view text, const std::string& fileName) {
   auto error = [&](const std::string& what) { return fail(fileName + ": " + what); };
   json j = json::parse(text, nullptr, false);
@@ -228,13 +244,7 @@ Result<StateFile> parseState(std::string_view text, const std::string& fileName)
     }
   }
   StateFile s;
-  Result<double> time = readDouble(j, "time", "");
-  if (!time) return error(time.error().message.substr(1));
-  s.time = *time;
-  Result<std::uint64_t> steps = readCount(j, "steps", "");
-  if (!steps) return error(steps.error().message.substr(1));
-  s.steps = *steps;
-  if (!j.contains("bodies") || !j.at("bodies").is_array()) return error("bodies: must be an array");
+  if (Status h = readHeader(j, s.time, s.steps); !h) return error(h.message());
   const json& bodies = j.at("bodies");
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const json& b = bodies[i];
@@ -368,13 +378,7 @@ Result<StateFile3> parseState3(std::string_view text, const std::string& fileNam
       return error(k + ": unknown key");
   }
   StateFile3 s;
-  Result<double> time = readDouble(j, "time", "");
-  if (!time) return error(time.error().message.substr(1));
-  s.time = *time;
-  Result<std::uint64_t> steps = readCount(j, "steps", "");
-  if (!steps) return error(steps.error().message.substr(1));
-  s.steps = *steps;
-  if (!j.contains("bodies") || !j.at("bodies").is_array()) return error("bodies: must be an array");
+  if (Status h = readHeader(j, s.time, s.steps); !h) return error(h.message());
   const json& bodies = j.at("bodies");
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const json& b = bodies[i];

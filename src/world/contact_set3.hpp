@@ -36,7 +36,7 @@ struct Contact3 {
   float friction = 0.0f, restitution = 0.0f;
   float rollingResistance = 0.0f;  // rolling coefficient times the rolling radius, m
   bool touching = false;
-  bool flat = false;  // B is a hull (A a hull or a mesh): the manifolds may be recycled
+  bool flat = false;         // B is a hull (A a hull or a mesh): the manifolds may be recycled
   HullPairCache3 hullCache;  // two hulls: the axis that last kept them apart
   // The poses (and bodies' pose versions) the manifolds were computed at.
   bool recycleValid = false;
