@@ -35,6 +35,18 @@ struct alignas(32) BodyState {
 };
 static_assert(sizeof(BodyState) == 32);
 
+// The 3D solver's per-body state (64 bytes: four rows of four floats, two AVX2 rows). The
+// pads are unused (scatter writes 0). Slot 0 is the 3D body at rest, as above.
+struct alignas(64) BodyState3 {
+  float vx = 0.0f, vy = 0.0f, vz = 0.0f, pad0 = 0.0f;     // linear velocity
+  float wx = 0.0f, wy = 0.0f, wz = 0.0f, pad1 = 0.0f;     // angular velocity (world axes)
+  float dpx = 0.0f, dpy = 0.0f, dpz = 0.0f, pad2 = 0.0f;  // motion of the centre of mass
+  // The turn since the step began as a rotation vector, to first order (twice the vector
+  // part of the delta quaternion): the solver turns the anchors by it.
+  float tx = 0.0f, ty = 0.0f, tz = 0.0f, pad3 = 0.0f;
+};
+static_assert(sizeof(BodyState3) == 64);
+
 // ---- one lane -------------------------------------------------------------------------
 
 struct FloatS {
@@ -98,6 +110,36 @@ inline void scatter(BodyState* states, const std::int32_t* slots, std::uint32_t 
   s.vx = b.vx.v;
   s.vy = b.vy.v;
   s.w = b.w.v;
+}
+
+inline FloatS operator/(FloatS a, FloatS b) {
+  return {a.v / b.v};
+}
+inline FloatS sqrtW(FloatS a) {
+  return {__builtin_sqrtf(a.v)};
+}
+
+// Lanes of 3D body state.
+template <class F>
+struct BodyLanes3 {
+  F vx, vy, vz, wx, wy, wz, dpx, dpy, dpz, tx, ty, tz;
+};
+
+inline BodyLanes3<FloatS> gather3(const BodyState3* states, const std::int32_t* slots, FloatS) {
+  const BodyState3& s = states[slots[0]];
+  return {{s.vx},  {s.vy},  {s.vz},  {s.wx}, {s.wy}, {s.wz},
+          {s.dpx}, {s.dpy}, {s.dpz}, {s.tx}, {s.ty}, {s.tz}};
+}
+inline void scatter3(BodyState3* states, const std::int32_t* slots, std::uint32_t writeMask,
+                     const BodyLanes3<FloatS>& b) {
+  if ((writeMask & 1u) == 0) return;
+  BodyState3& s = states[slots[0]];
+  s.vx = b.vx.v;
+  s.vy = b.vy.v;
+  s.vz = b.vz.v;
+  s.wx = b.wx.v;
+  s.wy = b.wy.v;
+  s.wz = b.wz.v;
 }
 
 // ---- the build's SIMD lanes ---------------------------------------------------------------
@@ -194,6 +236,34 @@ inline void scatter(BodyState* states, const std::int32_t* slots, std::uint32_t 
   }
 }
 
+inline FloatW operator/(FloatW a, FloatW b) {
+  return {_mm256_div_ps(a.v, b.v)};
+}
+inline FloatW sqrtW(FloatW a) {
+  return {_mm256_sqrt_ps(a.v)};
+}
+// Eight bodies: rows 0-1 (v, w) and rows 2-3 (dp, turn) are one 256-bit load each, turned
+// to lanes by the 8 x 8 transpose.
+inline BodyLanes3<FloatW> gather3(const BodyState3* states, const std::int32_t* slots, FloatW) {
+  __m256 r[8], u[8];
+  for (int i = 0; i < 8; ++i) {
+    r[i] = _mm256_load_ps(&states[slots[i]].vx);
+    u[i] = _mm256_load_ps(&states[slots[i]].dpx);
+  }
+  transpose8(r);
+  transpose8(u);
+  return {{r[0]}, {r[1]}, {r[2]}, {r[4]}, {r[5]}, {r[6]},
+          {u[0]}, {u[1]}, {u[2]}, {u[4]}, {u[5]}, {u[6]}};
+}
+inline void scatter3(BodyState3* states, const std::int32_t* slots, std::uint32_t writeMask,
+                     const BodyLanes3<FloatW>& b) {
+  const __m256 zero = _mm256_setzero_ps();
+  __m256 r[8] = {b.vx.v, b.vy.v, b.vz.v, zero, b.wx.v, b.wy.v, b.wz.v, zero};
+  transpose8(r);
+  for (int i = 0; i < 8; ++i)
+    if ((writeMask >> i) & 1u) _mm256_store_ps(&states[slots[i]].vx, r[i]);
+}
+
 #elif defined(QUACK_SIMD_SSE2)
 
 inline constexpr const char* kSimdPath = "sse2";
@@ -260,6 +330,39 @@ inline void scatter(BodyState* states, const std::int32_t* slots, std::uint32_t 
   if (writeMask & 2u) _mm_store_ps(&states[slots[1]].vx, r1);
   if (writeMask & 4u) _mm_store_ps(&states[slots[2]].vx, r2);
   if (writeMask & 8u) _mm_store_ps(&states[slots[3]].vx, r3);
+}
+
+inline FloatW operator/(FloatW a, FloatW b) {
+  return {_mm_div_ps(a.v, b.v)};
+}
+inline FloatW sqrtW(FloatW a) {
+  return {_mm_sqrt_ps(a.v)};
+}
+// Four bodies: each of the four rows turned to lanes by a 4 x 4 transpose.
+inline BodyLanes3<FloatW> gather3(const BodyState3* states, const std::int32_t* slots, FloatW) {
+  const float* p[4] = {&states[slots[0]].vx, &states[slots[1]].vx, &states[slots[2]].vx,
+                       &states[slots[3]].vx};
+  __m128 r[4][4];
+  for (int row = 0; row < 4; ++row) {
+    for (int i = 0; i < 4; ++i)
+      r[row][i] = _mm_load_ps(p[i] + 4 * row);
+    _MM_TRANSPOSE4_PS(r[row][0], r[row][1], r[row][2], r[row][3]);
+  }
+  return {{r[0][0]}, {r[0][1]}, {r[0][2]}, {r[1][0]}, {r[1][1]}, {r[1][2]},
+          {r[2][0]}, {r[2][1]}, {r[2][2]}, {r[3][0]}, {r[3][1]}, {r[3][2]}};
+}
+inline void scatter3(BodyState3* states, const std::int32_t* slots, std::uint32_t writeMask,
+                     const BodyLanes3<FloatW>& b) {
+  __m128 v0 = b.vx.v, v1 = b.vy.v, v2 = b.vz.v, v3 = _mm_setzero_ps();
+  __m128 w0 = b.wx.v, w1 = b.wy.v, w2 = b.wz.v, w3 = _mm_setzero_ps();
+  _MM_TRANSPOSE4_PS(v0, v1, v2, v3);
+  _MM_TRANSPOSE4_PS(w0, w1, w2, w3);
+  const __m128 v[4] = {v0, v1, v2, v3}, w[4] = {w0, w1, w2, w3};
+  for (int i = 0; i < 4; ++i) {
+    if (((writeMask >> i) & 1u) == 0) continue;
+    _mm_store_ps(&states[slots[i]].vx, v[i]);
+    _mm_store_ps(&states[slots[i]].wx, w[i]);
+  }
 }
 
 #elif defined(QUACK_SIMD_NEON)
@@ -335,6 +438,39 @@ inline void scatter(BodyState* states, const std::int32_t* slots, std::uint32_t 
   if (writeMask & 2u) vst1q_f32(&states[slots[1]].vx, r1);
   if (writeMask & 4u) vst1q_f32(&states[slots[2]].vx, r2);
   if (writeMask & 8u) vst1q_f32(&states[slots[3]].vx, r3);
+}
+
+inline FloatW operator/(FloatW a, FloatW b) {
+  return {vdivq_f32(a.v, b.v)};
+}
+inline FloatW sqrtW(FloatW a) {
+  return {vsqrtq_f32(a.v)};
+}
+// Four bodies: each of the four rows turned to lanes by a 4 x 4 transpose.
+inline BodyLanes3<FloatW> gather3(const BodyState3* states, const std::int32_t* slots, FloatW) {
+  const float* p[4] = {&states[slots[0]].vx, &states[slots[1]].vx, &states[slots[2]].vx,
+                       &states[slots[3]].vx};
+  float32x4_t r[4][4];
+  for (int row = 0; row < 4; ++row) {
+    for (int i = 0; i < 4; ++i)
+      r[row][i] = vld1q_f32(p[i] + 4 * row);
+    transpose4(r[row][0], r[row][1], r[row][2], r[row][3]);
+  }
+  return {{r[0][0]}, {r[0][1]}, {r[0][2]}, {r[1][0]}, {r[1][1]}, {r[1][2]},
+          {r[2][0]}, {r[2][1]}, {r[2][2]}, {r[3][0]}, {r[3][1]}, {r[3][2]}};
+}
+inline void scatter3(BodyState3* states, const std::int32_t* slots, std::uint32_t writeMask,
+                     const BodyLanes3<FloatW>& b) {
+  float32x4_t v0 = b.vx.v, v1 = b.vy.v, v2 = b.vz.v, v3 = vdupq_n_f32(0.0f);
+  float32x4_t w0 = b.wx.v, w1 = b.wy.v, w2 = b.wz.v, w3 = vdupq_n_f32(0.0f);
+  transpose4(v0, v1, v2, v3);
+  transpose4(w0, w1, w2, w3);
+  const float32x4_t v[4] = {v0, v1, v2, v3}, w[4] = {w0, w1, w2, w3};
+  for (int i = 0; i < 4; ++i) {
+    if (((writeMask >> i) & 1u) == 0) continue;
+    vst1q_f32(&states[slots[i]].vx, v[i]);
+    vst1q_f32(&states[slots[i]].wx, w[i]);
+  }
 }
 
 #else

@@ -594,8 +594,15 @@ Status World3::restore(std::span<const std::uint8_t> bytes) {
   if (state_->inCallbacks) return fail("restore: called from a contact callback");
   auto decoded = detail::decode(bytes, state_->id);
   if (!decoded) return fail("restore: " + decoded.error().message);
-  // The callbacks are the world's, not the snapshot's: they stay.
-  decoded.value()->callbacks = std::move(state_->callbacks);
+  // The callbacks, workers and solver path are the world's, not the snapshot's: they stay.
+  detail::WorldState3& next = *decoded.value();
+  next.callbacks = std::move(state_->callbacks);
+  next.def.scalarSolver = state_->def.scalarSolver;
+  next.def.workerCount = state_->def.workerCount;
+  next.def.enqueueTask = state_->def.enqueueTask;
+  next.def.finishTask = state_->def.finishTask;
+  next.def.userTaskContext = state_->def.userTaskContext;
+  next.tasks = std::move(state_->tasks);
   state_ = std::move(decoded).value();
   return {};
 }

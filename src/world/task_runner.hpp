@@ -29,6 +29,11 @@
 
 namespace quack::detail {
 
+// A world's worker count (workerCount, and whether the game's enqueueTask runs them), or
+// the test suites' override (tasks.hpp, setTestWorkerCount) for a world left at one worker
+// on its own pool. In world.cpp, for both worlds.
+int effectiveWorkerCount(int workerCount, bool gameScheduler) noexcept;
+
 /// Type-erased job handed to the participants.
 struct Job {
   using ExecFn = void(void* context, int stage, int block, int participant);

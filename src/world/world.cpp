@@ -20,12 +20,15 @@ void setTestWorkerCount(int workers) noexcept {
   testWorkerCount.store(workers < 1 ? 0 : (workers > kMaxWorkers ? kMaxWorkers : workers),
                         std::memory_order_relaxed);
 }
-int effectiveWorkerCount(const WorldDef& def) noexcept {
-  if (def.workerCount == 1 && def.enqueueTask == nullptr) {
+int effectiveWorkerCount(int workerCount, bool gameScheduler) noexcept {
+  if (workerCount == 1 && !gameScheduler) {
     const int forTests = testWorkerCount.load(std::memory_order_relaxed);
     if (forTests > 1) return forTests;
   }
-  return def.workerCount;
+  return workerCount;
+}
+int effectiveWorkerCount(const WorldDef& def) noexcept {
+  return effectiveWorkerCount(def.workerCount, def.enqueueTask != nullptr);
 }
 }  // namespace quack::detail
 

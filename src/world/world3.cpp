@@ -53,6 +53,15 @@ Status checkDef(const WorldDef3& d) {
   if (!(d.aabbMargin >= d.speculativeDistance && std::isfinite(d.aabbMargin))) {
     return fail("WorldDef3::aabbMargin: must be finite and >= speculativeDistance");
   }
+  if (d.workerCount < 1 || d.workerCount > kMaxWorkers) {
+    return fail("WorldDef3::workerCount: must be in 1..kMaxWorkers (64), got " +
+                std::to_string(d.workerCount));
+  }
+  if ((d.enqueueTask == nullptr) != (d.finishTask == nullptr)) {
+    return fail(std::string("WorldDef3::enqueueTask and WorldDef3::finishTask come together; "
+                            "only ") +
+                (d.enqueueTask != nullptr ? "enqueueTask" : "finishTask") + " was given");
+  }
   return {};
 }
 
@@ -383,7 +392,7 @@ Status World3::step(float dt, int substeps) {
   w.contacts.update(w.store, w.def, dt, w.events);
   w.islands.wakeTouched(w.store, w.contacts);
   if (w.def.enableContinuous) w.continuous.recordStarts(w.store);
-  w.solver.step(w.store, w.contacts, w.def, dt, substeps);
+  w.solver.step(w.store, w.contacts, w.def, dt, substeps, w.tasks);
   if (w.def.enableContinuous) w.continuous.solve(w.store);
   if (w.def.enableSleep) w.islands.sleepRested(w.store, w.contacts, dt);
   ++w.stepCount;
@@ -431,6 +440,13 @@ const StepEvents3& World3::events() const noexcept {
 }
 std::uint64_t World3::stepCount() const noexcept {
   return state_->stepCount;
+}
+World3::SolverStats World3::solverStats() const noexcept {
+  const detail::Solver3::Stats& s = state_->solver.stats();
+  return {s.colors, s.constraints, s.overflow};
+}
+int World3::workerCount() const noexcept {
+  return state_->tasks.workers();
 }
 
 }  // namespace quack

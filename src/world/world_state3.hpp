@@ -10,6 +10,7 @@
 #include "continuous3.hpp"
 #include "islands3.hpp"
 #include "solver3.hpp"
+#include "task_runner.hpp"
 
 namespace quack::detail {
 
@@ -19,7 +20,14 @@ std::uint32_t nextWorldId();  // world.cpp: one sequence for the 2D and 3D world
 
 struct WorldState3 {
   WorldState3(const WorldDef3& d, BroadPhase3 bp, std::uint32_t worldId)
-      : def(d), id(worldId), store(std::move(bp)), contacts(worldId) {}
+      : def(d), id(worldId), store(std::move(bp)), contacts(worldId) {
+    configureTasks();
+  }
+  // The workers from def (or the test suites' override, as the 2D world's).
+  void configureTasks() {
+    tasks.configure(effectiveWorkerCount(def.workerCount, def.enqueueTask != nullptr),
+                    def.enqueueTask, def.finishTask, def.userTaskContext);
+  }
   WorldDef3 def;
   std::uint32_t id;
   BodyStore3 store;
@@ -27,6 +35,7 @@ struct WorldState3 {
   Solver3 solver;
   Continuous3 continuous;
   Islands3 islands;
+  TaskRunner tasks;
   StepEvents3 events;
   std::vector<ContactEvent3> pendingEnds;  // of shapes destroyed since the last step
   std::uint64_t stepCount = 0;

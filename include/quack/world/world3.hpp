@@ -36,6 +36,7 @@
 #include "quack/collision/mesh3.hpp"
 #include "quack/geometry/shapes3.hpp"
 #include "quack/math/quat.hpp"
+#include "quack/world/tasks.hpp"
 #include "quack/world/types.hpp"
 
 namespace quack {
@@ -89,6 +90,19 @@ struct WorldDef3 {
   /// Off gives the discrete solver alone, whose speculative contacts reach at most 1 m.
   bool enableContinuous = true;
   bool enableSleep = true;
+  /// Solve contacts with the portable one-lane path even where the build has SIMD lanes
+  /// (QUACK_SIMD). The answer is the same to the bit (docs/world3.md, "Colours, lanes and
+  /// workers"); this is for tests and for measuring what the lanes buy.
+  bool scalarSolver = false;
+  /// Threads, as the 2D world's (WorldDef::workerCount, docs/world.md, "Threads"): how many
+  /// workers run a step, 1..kMaxWorkers; with enqueueTask and finishTask (both or neither)
+  /// the game's job system runs them, without, a pool of workerCount - 1 threads owned by
+  /// the world. The same bits whatever the count. Not part of a snapshot: restore keeps the
+  /// world's own, fromSnapshot runs on one worker.
+  int workerCount = 1;
+  EnqueueTaskFn enqueueTask = nullptr;
+  FinishTaskFn finishTask = nullptr;
+  void* userTaskContext = nullptr;  ///< passed to enqueueTask and finishTask
 };
 
 /// A new body. World frame.
@@ -295,6 +309,18 @@ class World3 {
   void onContactBegin(std::uint64_t categoriesA, std::uint64_t categoriesB, ContactCallback3 f);
   void onContactEnd(std::uint64_t categoriesA, std::uint64_t categoriesB, ContactCallback3 f);
   std::uint64_t stepCount() const noexcept;
+  /// What the solver did in the last step: colours used, manifolds solved, and how many of
+  /// them went to the overflow set (solved one at a time). docs/world3.md, "Colours, lanes
+  /// and workers".
+  struct SolverStats {
+    int colors = 0;
+    std::size_t constraints = 0;
+    std::size_t overflow = 0;
+  };
+  SolverStats solverStats() const noexcept;
+  /// The workers the step's work is spread over (WorldDef3::workerCount, or fewer when the
+  /// system would not start the pool's threads). The same bits for any number.
+  int workerCount() const noexcept;
 
  private:
   explicit World3(std::unique_ptr<detail::WorldState3> state);
