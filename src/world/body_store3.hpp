@@ -98,6 +98,8 @@ class BodyStore3 {
   }
   // Moves the body's proxies to its present pose (displacement: its centre's motion).
   void moveProxies(std::uint32_t body, Vec3 displacement);
+  // Moves one shape's proxy to `box` (its shapeBox at the body's present pose).
+  void moveProxy(std::uint32_t shape, const Aabb3& box, Vec3 displacement);
   // The shape's box, world frame, at the body's present pose (or at worldFromBody).
   Aabb3 shapeBox(std::uint32_t shape) const;
   Aabb3 shapeBox(std::uint32_t shape, Transform3 worldFromBody) const;

@@ -191,81 +191,106 @@ void ContactSet3::destroy(std::uint32_t index) {
   contacts_.pop_back();
 }
 
-void ContactSet3::update(const BodyStore3& store, const WorldDef3& def, float dt,
-                         StepEvents3& events) {
-  std::vector<ContactManifold3> fresh;
-  for (std::uint32_t i = 0; i < contacts_.size();) {
-    Contact3& c = contacts_[i];
-    const Shape3& sa = store.shapes[c.shapeA];
-    const Shape3& sb = store.shapes[c.shapeB];
-    const Body3& ba = store.bodies[sa.body];
-    const Body3& bb = store.bodies[sb.body];
-    if (!isAwakeMover(ba) && !isAwakeMover(bb)) {
-      ++i;
-      continue;
-    }
-    const BroadPhase3& bp = store.broadPhase();
-    if (!overlaps(bp.fatBox(sa.proxy), bp.fatBox(sb.proxy))) {
-      if (c.touching) events.end.push_back(event(store, c.shapeA, c.shapeB));
-      // Swap-remove: the last contact takes this slot and is looked at next.
-      destroy(i);
-      continue;
-    }
-    if (recycle(c, ba, bb, def.contactRecycleDistance)) {
-      ++i;  // still touching: impulses, ids and events as they were
-      continue;
-    }
-    fresh.clear();
-    // Speculative contact (Catto, "Speculative contacts", 2013): points are kept as far
-    // ahead as the bodies can close in this step, so a body falling onto a floor at a few
-    // metres a second is met at the floor rather than found inside it (or through a thin
-    // mesh) a step later; the solver lets such a point close exactly its gap.
-    const float closing = length(bb.linearVelocity - ba.linearVelocity) +
-                          length(ba.angularVelocity) * ba.maxExtent +
-                          length(bb.angularVelocity) * bb.maxExtent;
-    const float reach = std::min(def.speculativeDistance + dt * closing, kMaxSpeculativeReach3);
-    if (sa.mesh) {
-      meshContacts_.clear();
-      collideMesh(*sa.mesh, ba.transform(), sb.geometry, bb.transform(), meshContacts_, reach);
-      for (const MeshContact3& m : meshContacts_) {
-        ContactManifold3 cm;
-        cm.triangle = m.triangle;
-        cm.manifold = m.manifold;
-        fresh.push_back(cm);
-      }
-    } else {
+// One contact's part of update: what happened to it, written to the contact alone (so the
+// contacts can be updated side by side on the workers).
+ContactSet3::Outcome ContactSet3::updateOne(Contact3& c, const BodyStore3& store,
+                                            const WorldDef3& def, float dt, Scratch& scratch) {
+  const Shape3& sa = store.shapes[c.shapeA];
+  const Shape3& sb = store.shapes[c.shapeB];
+  const Body3& ba = store.bodies[sa.body];
+  const Body3& bb = store.bodies[sb.body];
+  if (!isAwakeMover(ba) && !isAwakeMover(bb)) return Outcome::same;
+  const BroadPhase3& bp = store.broadPhase();
+  if (!overlaps(bp.fatBox(sa.proxy), bp.fatBox(sb.proxy))) return Outcome::parted;
+  // Still touching: impulses, ids and events as they were.
+  if (recycle(c, ba, bb, def.contactRecycleDistance)) return Outcome::same;
+  std::vector<ContactManifold3>& fresh = scratch.fresh;
+  fresh.clear();
+  // Speculative contact (Catto, "Speculative contacts", 2013): points are kept as far
+  // ahead as the bodies can close in this step, so a body falling onto a floor at a few
+  // metres a second is met at the floor rather than found inside it (or through a thin
+  // mesh) a step later; the solver lets such a point close exactly its gap.
+  const float closing = length(bb.linearVelocity - ba.linearVelocity) +
+                        length(ba.angularVelocity) * ba.maxExtent +
+                        length(bb.angularVelocity) * bb.maxExtent;
+  const float reach = std::min(def.speculativeDistance + dt * closing, kMaxSpeculativeReach3);
+  if (sa.mesh) {
+    scratch.mesh.clear();
+    collideMesh(*sa.mesh, ba.transform(), sb.geometry, bb.transform(), scratch.mesh, reach);
+    for (const MeshContact3& m : scratch.mesh) {
       ContactManifold3 cm;
-      const Hull3* ha = std::get_if<Hull3>(&sa.geometry);
-      const Hull3* hb = std::get_if<Hull3>(&sb.geometry);
-      cm.manifold = ha != nullptr && hb != nullptr
-                        ? collideHulls(*ha, ba.transform(), *hb, bb.transform(), reach, c.hullCache)
-                        : collide(sa.geometry, ba.transform(), sb.geometry, bb.transform(), reach);
-      if (cm.manifold.pointCount > 0) fresh.push_back(cm);
+      cm.triangle = m.triangle;
+      cm.manifold = m.manifold;
+      fresh.push_back(cm);
     }
-    // Both lists are in triangle order, so one merge pass matches them.
-    std::size_t old = 0;
-    for (ContactManifold3& now : fresh) {
-      while (old < c.manifolds.size() && c.manifolds[old].triangle < now.triangle)
-        ++old;
-      if (old < c.manifolds.size() && c.manifolds[old].triangle == now.triangle) {
-        carryImpulses(c.manifolds[old], now);
-      }
+  } else {
+    ContactManifold3 cm;
+    const Hull3* ha = std::get_if<Hull3>(&sa.geometry);
+    const Hull3* hb = std::get_if<Hull3>(&sb.geometry);
+    cm.manifold = ha != nullptr && hb != nullptr
+                      ? collideHulls(*ha, ba.transform(), *hb, bb.transform(), reach, c.hullCache)
+                      : collide(sa.geometry, ba.transform(), sb.geometry, bb.transform(), reach);
+    if (cm.manifold.pointCount > 0) fresh.push_back(cm);
+  }
+  // Both lists are in triangle order, so one merge pass matches them.
+  std::size_t old = 0;
+  for (ContactManifold3& now : fresh) {
+    while (old < c.manifolds.size() && c.manifolds[old].triangle < now.triangle)
+      ++old;
+    if (old < c.manifolds.size() && c.manifolds[old].triangle == now.triangle) {
+      carryImpulses(c.manifolds[old], now);
     }
-    c.manifolds.swap(fresh);
-    for (ContactManifold3& m : c.manifolds)
-      recordComputed(m, ba, bb);
-    c.cachedA = ba.transform();
-    c.cachedB = bb.transform();
-    c.versionA = ba.poseVersion;
-    c.versionB = bb.poseVersion;
-    c.recycleValid = true;
-    const bool touching = !c.manifolds.empty();
-    if (touching && !c.touching) {
-      events.begin.push_back(event(store, c.shapeA, c.shapeB));
-    } else if (!touching && c.touching) {
-      events.end.push_back(event(store, c.shapeA, c.shapeB));
+  }
+  c.manifolds.swap(fresh);
+  for (ContactManifold3& m : c.manifolds)
+    recordComputed(m, ba, bb);
+  c.cachedA = ba.transform();
+  c.cachedB = bb.transform();
+  c.versionA = ba.poseVersion;
+  c.versionB = bb.poseVersion;
+  c.recycleValid = true;
+  const bool touching = !c.manifolds.empty();
+  const bool was = c.touching;
+  c.touching = touching;
+  if (touching && !was) return Outcome::began;
+  if (!touching && was) return Outcome::ended;
+  return Outcome::same;
+}
+
+void ContactSet3::update(const BodyStore3& store, const WorldDef3& def, float dt,
+                         StepEvents3& events, TaskRunner& tasks) {
+  // Every contact on the workers (each writes only its own contact and its participant's
+  // scratch), then, in contact order on this thread, the events and the parted contacts
+  // destroyed: the same bits and events whatever the workers did.
+  scratch_.resize(static_cast<std::size_t>(tasks.workers()));
+  outcomes_.resize(contacts_.size());
+  tasks.parallelFor(
+      static_cast<int>(contacts_.size()), 32,
+      [&](int first, int last, int participant) {
+        Scratch& scratch = scratch_[static_cast<std::size_t>(participant)];
+        for (auto i = static_cast<std::size_t>(first); i < static_cast<std::size_t>(last); ++i)
+          outcomes_[i] = updateOne(contacts_[i], store, def, dt, scratch);
+      },
+      TaskRunner::kHeavyRangesPerWorker);
+  for (std::uint32_t i = 0; i < contacts_.size();) {
+    const Contact3& c = contacts_[i];
+    switch (outcomes_[i]) {
+      case Outcome::parted:
+        if (c.touching) events.end.push_back(event(store, c.shapeA, c.shapeB));
+        // Swap-remove: the last contact (and its outcome) takes this slot, looked at next.
+        outcomes_[i] = outcomes_[contacts_.size() - 1];
+        outcomes_.pop_back();
+        destroy(i);
+        continue;
+      case Outcome::began:
+        events.begin.push_back(event(store, c.shapeA, c.shapeB));
+        break;
+      case Outcome::ended:
+        events.end.push_back(event(store, c.shapeA, c.shapeB));
+        break;
+      case Outcome::same:
+        break;
     }
-    c.touching = touching;
     ++i;
   }
 }

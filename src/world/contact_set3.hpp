@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "body_store3.hpp"
+#include "task_runner.hpp"
 
 namespace quack::detail {
 
@@ -60,7 +61,9 @@ class ContactSet3 {
   // computes them at the speculative distance plus how far the bodies can close in dt and
   // carries the impulses over by triangle and feature id (or position). Begin and end
   // events in contact order.
-  void update(const BodyStore3& store, const WorldDef3& def, float dt, StepEvents3& events);
+  // The manifolds are made on `tasks`' workers; the result is the same for any number.
+  void update(const BodyStore3& store, const WorldDef3& def, float dt, StepEvents3& events,
+              TaskRunner& tasks);
   // Destroys the contacts of a shape about to go (end events for the touching ones).
   void removeShape(const BodyStore3& store, std::uint32_t shape, StepEvents3& events);
 
@@ -83,11 +86,19 @@ class ContactSet3 {
     return a < b ? (std::uint64_t{a} << 32) | b : (std::uint64_t{b} << 32) | a;
   }
   void destroy(std::uint32_t index);
+  enum class Outcome : std::uint8_t { same, parted, began, ended };
+  struct Scratch {  // per worker, reused
+    std::vector<ContactManifold3> fresh;
+    std::vector<MeshContact3> mesh;
+  };
+  static Outcome updateOne(Contact3& c, const BodyStore3& store, const WorldDef3& def, float dt,
+                           Scratch& scratch);
+  std::vector<Scratch> scratch_;
+  std::vector<Outcome> outcomes_;
   std::vector<Contact3> contacts_;
   // Lookup only, never iterated: the contacts' order is the vector's.
   std::unordered_map<std::uint64_t, std::uint32_t> index_;
   std::vector<ProxyPair> pairs_;
-  std::vector<MeshContact3> meshContacts_;
   std::uint32_t worldId_;
 };
 

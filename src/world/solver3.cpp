@@ -382,6 +382,8 @@ struct SolverScratch3 {
   std::vector<ContactBlock3<FloatS>> narrow;
   std::vector<ContactBlock3<FloatW>> wide;
   std::vector<int> stageBlocks;
+  std::vector<std::uint8_t> inside;  // per slot: the body stayed inside the world
+  std::vector<Aabb3> boxes;          // per shape of a moved body: its new box
 };
 
 namespace {
@@ -824,28 +826,46 @@ void Solver3::step(BodyStore3& store, ContactSet3& contacts, const WorldDef3& de
   }
 
   // A body whose centre would leave the world (or whose numbers are no longer finite) is
-  // held where the step found it.
+  // held where the step found it. The bodies and their shapes' boxes on the workers (each
+  // writes its own), then the proxies moved in slot order here (the tree is shared).
   const float limit = 0.5f * kMaxCoordinate;
+  s.inside.resize(s.states.size());
+  s.boxes.resize(store.shapes.size());
+  tasks.parallelFor(
+      static_cast<int>(s.states.size()) - 1, kMinSlots,
+      [&](int first, int last, int) {
+        for (auto slot = static_cast<std::size_t>(first) + 1;
+             slot <= static_cast<std::size_t>(last); ++slot) {
+          const BodyState3& st = s.states[slot];
+          const SlotSim3& m = s.sims[slot];
+          Body3& body = store.bodies[m.body];
+          const Vec3 center = body.center + Vec3{st.dpx, st.dpy, st.dpz};
+          const Vec3 far = absv(center);
+          const bool inside = isFinite(center) && isFinite(stateVelocity(st)) &&
+                              isFinite(stateSpin(st)) && isFinite(m.q) && far.x < limit &&
+                              far.y < limit && far.z < limit;
+          s.inside[slot] = inside;
+          if (!inside) {
+            body.linearVelocity = body.angularVelocity = Vec3{};
+            continue;
+          }
+          body.center = center;
+          body.rotation = m.q;
+          body.linearVelocity = stateVelocity(st);
+          body.angularVelocity = stateSpin(st);
+          BodyStore3::syncOrigin(body);
+          const Transform3 xf = body.transform();
+          for (std::uint32_t shape : body.shapes)
+            s.boxes[shape] = store.shapeBox(shape, xf);
+        }
+      },
+      TaskRunner::kHeavyRangesPerWorker);
   for (std::size_t slot = 1; slot < s.states.size(); ++slot) {
+    if (!s.inside[slot]) continue;
     const BodyState3& st = s.states[slot];
-    const SlotSim3& m = s.sims[slot];
-    Body3& body = store.bodies[m.body];
-    const Vec3 dp{st.dpx, st.dpy, st.dpz};
-    const Vec3 center = body.center + dp;
-    const Vec3 far = absv(center);
-    const bool inside = isFinite(center) && isFinite(stateVelocity(st)) &&
-                        isFinite(stateSpin(st)) && isFinite(m.q) && far.x < limit &&
-                        far.y < limit && far.z < limit;
-    if (!inside) {
-      body.linearVelocity = body.angularVelocity = Vec3{};
-      continue;
-    }
-    body.center = center;
-    body.rotation = m.q;
-    body.linearVelocity = stateVelocity(st);
-    body.angularVelocity = stateSpin(st);
-    BodyStore3::syncOrigin(body);
-    store.moveProxies(m.body, dp);
+    const std::uint32_t body = s.sims[slot].body;
+    for (std::uint32_t shape : store.bodies[body].shapes)
+      store.moveProxy(shape, s.boxes[shape], Vec3{st.dpx, st.dpy, st.dpz});
   }
 }
 
