@@ -723,7 +723,7 @@ int runScene2(RunContext& run, Scene& scene, double loadMs,
 // ---- the 3D run ---------------------------------------------------------------------------
 
 // The options World3 cannot honour yet, refused before anything is built (docs/world3.md,
-// "Not yet"); --threads is only noted, as the state does not depend on it.
+// "Not yet").
 bool checkOptions3(const RunOptions& options, std::ostream& err) {
   auto refuse = [&](const char* option, const char* why) {
     err << "quack run: " << option << ": " << why << " (" << options.scene << " is a 3D scene)\n";
@@ -737,20 +737,21 @@ bool checkOptions3(const RunOptions& options, std::ostream& err) {
                   "a 3D scene has no SVG picture; its picture is the WebGL replay (--html)");
   if (options.htmlBoxes)
     return refuse("--html-boxes", "the 3D replay does not draw the broad phase's boxes");
-  if (options.threads > 1) {
-    err << "quack run: warning: --threads " << options.threads
-        << " ignored: the 3D world steps on one thread (docs/world3.md)\n";
-  }
   return true;
 }
 
-int runScene3(RunContext& run, const Scene3& scene, double loadMs,
+int runScene3(RunContext& run, Scene3& scene, double loadMs,
               const std::function<bool(std::size_t, std::size_t)>& bodiesProgress) {
   const RunOptions& options = run.options;
   std::ostream& out = run.out;
   std::ostream& err = run.err;
   Progress& progress = run.progress;
   if (!checkOptions3(options, err)) return kRunFailed;
+  // Threads: whatever the file says, the command line decides (the bits do not depend on it).
+  int threads = options.threads;
+  if (threads == 0) threads = static_cast<int>(std::thread::hardware_concurrency());
+  threads = std::clamp(threads, 1, kMaxWorkers);
+  scene.world.workerCount = threads;
 
   double buildMs = 0.0;
   Result<SceneWorld3> built = buildTimed(run, scene.bodies.size(), buildMs,
@@ -807,7 +808,7 @@ int runScene3(RunContext& run, const Scene3& scene, double loadMs,
   if (int s = commitOutputs(
           run,
           [&](double ms) {
-            return timingJson(options.steps, 1, loadMs, buildMs, simulateMs, renderMs, ms);
+            return timingJson(options.steps, threads, loadMs, buildMs, simulateMs, renderMs, ms);
           },
           writeMs);
       s != kRunOk) {
@@ -843,7 +844,7 @@ int runScene3(RunContext& run, const Scene3& scene, double loadMs,
                 static_cast<unsigned long long>(totals.begin),
                 static_cast<unsigned long long>(totals.end));
   out << line;
-  out << speedLine(msPerStep, 1);
+  out << speedLine(msPerStep, threads);
   std::string replayNote;
   if (replay) {
     replayNote = std::to_string(replay->frameCount()) + " frames";

@@ -455,6 +455,7 @@ TEST_F(Run, LargeGeneratedSceneShowsProgressAndStaysWithinSizeBudgets) {
 // write the same state bytes.
 TEST_F(Run, A3DSceneWritesItsStateEventsAndReplay) {
   RunOptions o = options("hulls-3d.json", 90);
+  o.threads = 1;
   o.events = at("events.jsonl");
   o.html = at("replay.html");
   o.timing = at("timing.json");
@@ -501,7 +502,7 @@ TEST_F(Run, A3DSceneWritesItsStateEventsAndReplay) {
 
 // What the 3D world cannot do yet is refused before anything is built, naming the option,
 // and writes nothing; --threads is noted and the run goes on with one thread.
-TEST_F(Run, A3DSceneRefusesWhatTheWorldLacksAndIgnoresThreads) {
+TEST_F(Run, A3DSceneRefusesWhatTheWorldLacksAndRunsOnAnyThreads) {
   struct Case {
     std::function<void(RunOptions&)> set;
     const char* message;
@@ -533,13 +534,15 @@ TEST_F(Run, A3DSceneRefusesWhatTheWorldLacksAndIgnoresThreads) {
     EXPECT_FALSE(fs::exists(at("state.json")));
     EXPECT_TRUE(temporaries().empty());
   }
+  // --threads N runs the 3D world on N workers, to the same state as one.
   RunOptions o = options("cards-3d.json", 5);
+  o.threads = 1;
+  ASSERT_EQ(run(o), kRunOk) << err_.str();
+  const std::string one = read(at("state.json"));
   o.threads = 4;
   ASSERT_EQ(run(o), kRunOk) << err_.str();
-  EXPECT_NE(err_.str().find("warning: --threads 4 ignored: the 3D world steps on one thread"),
-            std::string::npos)
-      << err_.str();
-  EXPECT_NE(out_.str().find(", 1 thread)"), std::string::npos) << out_.str();
+  EXPECT_NE(out_.str().find(", 4 threads)"), std::string::npos) << out_.str();
+  EXPECT_EQ(read(at("state.json")), one);
 }
 
 // A bad 3D scene exits 2 naming the file and the field, and writes nothing.
