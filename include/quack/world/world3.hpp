@@ -15,9 +15,9 @@
 /// Vec3 where = world.position(ball);
 /// ```
 ///
-/// What it does not do yet (docs/world3.md, "Not yet"): continuous collision (a body that
-/// moves further than its thickness in one step can pass through a thin shape), joints,
-/// sensors, queries, snapshots, threads and SIMD lanes, ghost-collision removal between
+/// It has continuous collision, queries, snapshots, contact callbacks, and a solver that
+/// runs by colour in SIMD lanes on any number of workers with the same bits. What it does
+/// not do yet (docs/world3.md, "Not yet"): joints, sensors, ghost-collision removal between
 /// separate convex shapes (a mesh's triangles have it).
 ///
 /// Units: metres, kilograms, seconds, radians; world frame, y up. Every input is checked at
