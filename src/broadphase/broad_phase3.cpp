@@ -185,8 +185,7 @@ void BroadPhase3::addPair(std::uint32_t a, std::uint32_t b, std::vector<ProxyPai
   pairs.push_back({ia, ib});
 }
 
-void BroadPhase3::updatePairs(std::vector<ProxyPair>& pairs) {
-  pairs.clear();
+void BroadPhase3::beginPass() {
   // Keep live, buffered entries once each (a destroyed proxy lost kBuffered; a reused slot
   // may appear twice).
   std::size_t kept = 0;
@@ -196,23 +195,20 @@ void BroadPhase3::updatePairs(std::vector<ProxyPair>& pairs) {
     moveBuffer_[kept++] = p;
   }
   moveBuffer_.resize(kept);
-  auto inPass = [this](std::uint32_t p) { return (flags_[p] & kInPass) != 0; };
-  std::visit(
-      [&](const auto& index) {
-        for (const std::uint32_t m : moveBuffer_) {
-          index.query(fat_[m], [&](std::uint32_t o) {
-            // When both moved, the pair is reported from the lower index only.
-            if (o == m || (inPass(o) && o < m)) return true;
-            addPair(m, o, pairs);
-            return true;
-          });
-        }
-      },
-      index_);
+}
+
+void BroadPhase3::endPass() {
   for (std::uint32_t p : moveBuffer_) {
     flags_[p] = static_cast<std::uint8_t>(flags_[p] & ~(kBuffered | kInPass));
   }
   moveBuffer_.clear();
+}
+
+void BroadPhase3::updatePairs(std::vector<ProxyPair>& pairs) {
+  pairs.clear();
+  beginPass();
+  std::visit([&](const auto& index) { queryMoved(index, 0, moveBuffer_.size(), pairs); }, index_);
+  endPass();
 }
 
 std::optional<BroadPhaseHit> BroadPhase3::rayCastClosest(Vec3 origin, Vec3 translation) const {

@@ -135,8 +135,15 @@ bool recycle(Contact3& c, const Body3& a, const Body3& b, float recycleDistance)
 
 }  // namespace
 
-void ContactSet3::findNew(BodyStore3& store) {
-  store.broadPhase().updatePairs(pairs_);
+void ContactSet3::findNew(BodyStore3& store, TaskRunner& tasks) {
+  // The moved proxies' queries on the workers, each into its own list.
+  pairParts_.resize(static_cast<std::size_t>(tasks.workers()));
+  store.broadPhase().updatePairs(pairs_, pairParts_, [&](std::size_t count, auto&& body) {
+    tasks.parallelFor(static_cast<int>(count), 64, [&](int first, int last, int participant) {
+      body(static_cast<std::size_t>(first), static_cast<std::size_t>(last),
+           static_cast<std::size_t>(participant));
+    });
+  });
   // Sorted by shape indices, so contacts are made in one order whatever the structure found.
   for (ProxyPair& p : pairs_) {
     const auto sa = static_cast<std::uint32_t>(store.broadPhase().userData(p.a));

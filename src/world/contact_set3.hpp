@@ -55,7 +55,7 @@ class ContactSet3 {
 
   // Creates a contact for each new broad-phase pair the world's rules accept (two bodies,
   // at least one dynamic), in sorted pair order.
-  void findNew(BodyStore3& store);
+  void findNew(BodyStore3& store, TaskRunner& tasks);
   // For every contact with an awake body: destroys it when the fat boxes parted; else
   // recycles its manifolds (a resting flat pair near the pose they were computed at), or
   // computes them at the speculative distance plus how far the bodies can close in dt and
@@ -99,6 +99,7 @@ class ContactSet3 {
   // Lookup only, never iterated: the contacts' order is the vector's.
   std::unordered_map<std::uint64_t, std::uint32_t> index_;
   std::vector<ProxyPair> pairs_;
+  std::vector<std::vector<ProxyPair>> pairParts_;  // per worker
   std::uint32_t worldId_;
 };
 

@@ -388,7 +388,7 @@ Status World3::step(float dt, int substeps) {
   w.events.begin.clear();
   w.events.end.assign(w.pendingEnds.begin(), w.pendingEnds.end());
   w.pendingEnds.clear();
-  w.contacts.findNew(w.store);
+  w.contacts.findNew(w.store, w.tasks);
   w.contacts.update(w.store, w.def, dt, w.events, w.tasks);
   w.islands.wakeTouched(w.store, w.contacts);
   if (w.def.enableContinuous) w.continuous.recordStarts(w.store);

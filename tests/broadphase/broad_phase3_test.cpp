@@ -305,23 +305,30 @@ INSTANTIATE_TEST_SUITE_P(BroadPhase3, Every3DStructure, ::testing::ValuesIn(kAll
 
 TEST(BroadPhase3Pairs, TreeAndOctreeReportTheSamePairsFrameAfterFrame) {
   // The benchmark's workload in miniature: 400 boxes random-walk, pairs every frame; both
-  // structures, fed the same moves, report the same pairs, and those of brute force.
+  // structures, fed the same moves, report the same pairs, and those of brute force. A
+  // third, the tree again, pairs through the overload that splits the moved proxies'
+  // queries into parts (ranges of 7, taken last first, dealt to 3 parts in turn, as
+  // workers might take them).
   std::mt19937 rng(77);
   BroadPhase3Config tc;
   BroadPhase3Config oc;
   oc.kind = BroadPhase3Kind::octree;
   BroadPhase3 tree = BroadPhase3::create(tc).value();
   BroadPhase3 octree = BroadPhase3::create(oc).value();
+  BroadPhase3 split = BroadPhase3::create(tc).value();
   std::map<std::uint32_t, ModelProxy3> live;
   for (int i = 0; i < 400; ++i) {
     ModelProxy3 m;
     m.tight = test::randomBox3(rng, 5.0f, 0.25f, 0.5f);
     m.id = tree.createProxy(m.tight).value();
     ASSERT_EQ(octree.createProxy(m.tight).value(), m.id);
+    ASSERT_EQ(split.createProxy(m.tight).value(), m.id);
     live[m.id.index] = m;
   }
   std::vector<ProxyPair> treePairs;
   std::vector<ProxyPair> octreePairs;
+  std::vector<ProxyPair> splitPairs;
+  std::vector<std::vector<ProxyPair>> parts(3);
   std::size_t total = 0;
   for (int frame = 0; frame < 40; ++frame) {
     std::vector<bool> buffered(400, frame == 0);
@@ -331,16 +338,24 @@ TEST(BroadPhase3Pairs, TreeAndOctreeReportTheSamePairsFrameAfterFrame) {
       const bool t = tree.moveProxy(m.id, m.tight, d).value();
       const bool o = octree.moveProxy(m.id, m.tight, d).value();
       ASSERT_EQ(t, o);
+      ASSERT_EQ(split.moveProxy(m.id, m.tight, d).value(), t);
       if (t) buffered[index] = true;
       m.fat = tree.fatBox(m.id);
       ASSERT_EQ(octree.fatBox(m.id), m.fat);
     }
     tree.updatePairs(treePairs);
     octree.updatePairs(octreePairs);
+    split.updatePairs(splitPairs, parts, [](std::size_t count, auto&& body) {
+      const std::size_t ranges = (count + 6) / 7;
+      for (std::size_t r = ranges; r-- > 0;)
+        body(7 * r, std::min(count, 7 * r + 7), r % 3);
+    });
     const std::vector<IndexPair> expected =
         test::expectedPairs3(live, buffered, false, [](auto, auto) { return true; });
     ASSERT_EQ(test::sortedPairs(treePairs), expected) << "frame " << frame;
     ASSERT_EQ(test::sortedPairs(octreePairs), expected) << "frame " << frame;
+    ASSERT_EQ(test::sortedPairs(splitPairs), expected) << "frame " << frame;
+    ASSERT_EQ(splitPairs.size(), expected.size()) << "frame " << frame;
     total += expected.size();
     ASSERT_TRUE(tree.validate().ok()) << tree.validate().message();
     ASSERT_TRUE(octree.validate().ok()) << octree.validate().message();

@@ -171,6 +171,31 @@ class BroadPhase3 {
   /// Replaces the contents of `pairs` with this step's candidate pairs (see the contract
   /// above) and empties the move buffer.
   void updatePairs(std::vector<ProxyPair>& pairs);
+  /// The same pairs, the moved proxies' queries split over threads (as the 2D broad
+  /// phase's): `parallelFor(count, body)` must call `body(first, last, part)` over ranges
+  /// covering [0, count), with a `part` below parts.size(), no two at once with the same
+  /// part; each part's pairs go to parts[part] and then, part after part, to `pairs`. The
+  /// pairs are those of updatePairs, in an order that depends on the split (sort them for
+  /// determinism), and the user pair filter may be called from several threads at once.
+  template <class ParallelFor>
+  void updatePairs(std::vector<ProxyPair>& pairs, std::vector<std::vector<ProxyPair>>& parts,
+                   ParallelFor&& parallelFor) {
+    pairs.clear();
+    beginPass();
+    for (std::vector<ProxyPair>& part : parts)
+      part.clear();
+    std::visit(
+        [&](const auto& index) {
+          parallelFor(moveBuffer_.size(),
+                      [&](std::size_t first, std::size_t last, std::size_t part) {
+                        queryMoved(index, first, last, parts[part]);
+                      });
+        },
+        index_);
+    for (const std::vector<ProxyPair>& part : parts)
+      pairs.insert(pairs.end(), part.begin(), part.end());
+    endPass();
+  }
 
   /// Calls `visit(ProxyId, userData) -> bool` for each proxy whose tight box overlaps `box`
   /// (touching counts); return false to stop.
@@ -230,6 +255,24 @@ class BroadPhase3 {
     Filter filter;
     std::uint64_t userData = 0;
   };
+
+  // updatePairs' steps: the move buffer deduplicated and marked, each moved proxy's query
+  // (read-only: may run on several threads), the marks and the buffer cleared.
+  void beginPass();
+  void endPass();
+  template <class Index>
+  void queryMoved(const Index& index, std::size_t first, std::size_t last,
+                  std::vector<ProxyPair>& pairs) const {
+    for (std::size_t i = first; i < last; ++i) {
+      const std::uint32_t m = moveBuffer_[i];
+      index.query(fat_[m], [&](std::uint32_t o) {
+        // When both moved, the pair is reported from the lower index only.
+        if (o == m || ((flags_[o] & kInPass) != 0 && o < m)) return true;
+        addPair(m, o, pairs);
+        return true;
+      });
+    }
+  }
 
   // Re-insert a proxy whose fat box has grown past its wanted fat box plus this many margins
   // on a side (after a fast move or a teleport), so stale huge boxes do not linger (2D's).
