@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "quack/collision/mesh3.hpp"
 #include "quack/collision/proxy3.hpp"
@@ -42,6 +43,31 @@ float impact(const Shape3& s, Transform3 worldFromStatic, const ShapeProxy3& pro
   return out.status == ToiStatus::hit && out.t > 0.0f ? out.t : tMax;
 }
 
+// The same for two shapes on their sweeps; `touchingAtStart` as above.
+float impactMoving(const ShapeProxy3& a, const Sweep3& sweepA, const ShapeProxy3& b,
+                   const Sweep3& sweepB, float tMax, bool& touchingAtStart) {
+  const ToiOutput3 out = computeToi(a, sweepA, b, sweepB, tMax);
+  touchingAtStart =
+      (out.status == ToiStatus::hit || out.status == ToiStatus::overlapped) && out.t == 0.0f;
+  return out.status == ToiStatus::hit && out.t > 0.0f ? out.t : tMax;
+}
+
+// The part of `s` from fraction t0 to 1, as a sweep over [0, 1] (same axis, same rate).
+Sweep3 restOf(const Sweep3& s, float t0) noexcept {
+  const Transform3 at = transformAt(s, t0);
+  return {s.localCenter, transformPoint(at, s.localCenter), s.c2, at.q, (1.0f - t0) * s.rotation};
+}
+
+// Earliest first; equal times to the lower body, then the lower other body, then the kind,
+// so that the order is total and the heap pops the same sequence whatever was pushed first.
+template <class Event>
+bool later(const Event& x, const Event& y) noexcept {
+  if (x.t != y.t) return x.t > y.t;
+  if (x.a != y.a) return x.a > y.a;
+  if (x.b != y.b) return x.b > y.b;
+  return x.kind > y.kind;
+}
+
 }  // namespace
 
 void Continuous3::recordStarts(const BodyStore3& store) {
@@ -53,75 +79,240 @@ void Continuous3::recordStarts(const BodyStore3& store) {
   }
 }
 
-// Box2D v3's continuous stage (solver.c, read for understanding) does this in 2D: a body is
-// fast when it moved more than half its thinnest extent; it is swept against static shapes,
-// and (as v3 does for its bullets) against the bodies that are not fast, held at their
-// poses at the end of the step; a shape it touches at the start of the sweep is met by a
-// small core ball instead. Fast bodies are not swept against each other: each is put back
-// on its own, against shapes no fast body moves, so the order cannot change a result.
-int Continuous3::solve(BodyStore3& store) {
-  int putBack = 0;
+// A body is fast when its centre moved, plus its turn times its largest extent, more than
+// half its thinnest shape.
+void Continuous3::findFast(const BodyStore3& store) {
   fast_.clear();
-  sweeps_.clear();
+  isFast_.assign(store.bodies.size(), 0);
   for (const Start& start : starts_) {
     const Body3& body = store.bodies[start.body];
-    const Sweep3 sweep = makeSweep3(body.localCenter, start.pose, body.transform());
+    const Transform3 end = body.transform();
+    const Sweep3 sweep = makeSweep3(body.localCenter, start.pose, end);
     const float moved = length(sweep.c2 - sweep.c1) + sweepAngle(sweep) * body.maxExtent;
-    if (moved > 0.5f * body.minExtent) {
-      fast_.push_back(start);
-      sweeps_.push_back(sweep);
+    if (!(moved > 0.5f * body.minExtent) || body.shapes.empty()) continue;
+    Aabb3 box =
+        merge(store.shapeBox(body.shapes[0], start.pose), store.shapeBox(body.shapes[0], end));
+    for (std::uint32_t shape : body.shapes)
+      box = merge(box, merge(store.shapeBox(shape, start.pose), store.shapeBox(shape, end)));
+    fast_.push_back({start.body, start.pose, sweep, box});
+    isFast_[start.body] = 1;
+  }
+}
+
+// The first impact of fast body f with static shapes, meshes and bodies that are not fast
+// (held at their poses after the solver), or 1.
+float Continuous3::meetStill(const BodyStore3& store, const Fast& f) {
+  const Body3& body = store.bodies[f.body];
+  const Transform3 end = body.transform();
+  float first = 1.0f;
+  for (std::uint32_t shape : body.shapes) {
+    const Shape3& moving = store.shapes[shape];
+    const ShapeProxy3 proxy = makeProxy(moving.geometry);
+    const ShapeProxy3 coreProxy = makeProxy(coreBall(moving.geometry, body.minExtent));
+    const Aabb3 swept = merge(store.shapeBox(shape, f.start), store.shapeBox(shape, end));
+    candidates_.clear();
+    store.broadPhase().queryAabb(swept, [&](ProxyId, std::uint64_t userData) {
+      const auto other = static_cast<std::uint32_t>(userData);
+      const Shape3& s = store.shapes[other];
+      if (s.body != f.body && isFast_[s.body] == 0 &&
+          shouldCollide(s.def.filter, moving.def.filter))
+        candidates_.push_back(other);
+      return true;
+    });
+    // The tree's visiting order is its own: sorted, the earliest hit is found the same way
+    // whatever the tree's shape (ties go to the lowest shape index).
+    std::sort(candidates_.begin(), candidates_.end());
+    for (std::uint32_t other : candidates_) {
+      const Shape3& s = store.shapes[other];
+      const Transform3 worldFromStatic = store.bodies[s.body].transform();
+      bool touching = false;
+      float t = impact(s, worldFromStatic, proxy, f.sweep, first, touching);
+      if (touching) t = impact(s, worldFromStatic, coreProxy, f.sweep, first, touching);
+      first = std::min(first, t);
     }
   }
-  isFast_.assign(store.bodies.size(), 0);
-  for (const Start& f : fast_)
-    isFast_[f.body] = 1;
-  for (std::size_t n = 0; n < fast_.size(); ++n) {
-    const Start& start = fast_[n];
-    Body3& body = store.bodies[start.body];
-    const Transform3 end = body.transform();
-    const Sweep3& sweep = sweeps_[n];
+  return first;
+}
 
-    float first = 1.0f;
-    for (std::uint32_t shape : body.shapes) {
-      const Shape3& moving = store.shapes[shape];
-      const ShapeProxy3 proxy = makeProxy(moving.geometry);
-      const Sphere core = coreBall(moving.geometry, body.minExtent);
-      const ShapeProxy3 coreProxy = makeProxy(core);
-      const Aabb3 swept = merge(store.shapeBox(shape, start.pose), store.shapeBox(shape, end));
-      candidates_.clear();
-      store.broadPhase().queryAabb(swept, [&](ProxyId, std::uint64_t userData) {
-        const auto other = static_cast<std::uint32_t>(userData);
-        const Shape3& s = store.shapes[other];
-        if (s.body != start.body && isFast_[s.body] == 0 &&
-            shouldCollide(s.def.filter, moving.def.filter))
-          candidates_.push_back(other);
-        return true;
-      });
-      // The tree's visiting order is its own: sorted, the earliest hit is found the same way
-      // whatever the tree's shape (ties go to the lowest shape index).
-      std::sort(candidates_.begin(), candidates_.end());
-      for (std::uint32_t other : candidates_) {
-        const Shape3& s = store.shapes[other];
-        // Static, or a body that is not fast, at its pose after the solver.
-        const Transform3 worldFromStatic = store.bodies[s.body].transform();
-        bool touching = false;
-        float t = impact(s, worldFromStatic, proxy, sweep, first, touching);
-        if (touching) t = impact(s, worldFromStatic, coreProxy, sweep, first, touching);
-        first = std::min(first, t);
+// The first impact of fast bodies a and b, each on its sweep, before tMax (else tMax). Two
+// shapes that already touch at the start are left to the solver unless either's core ball
+// meets the other (the rule against static shapes, from both sides so that it is symmetric).
+float Continuous3::meetMoving(const BodyStore3& store, const Fast& a, const Fast& b,
+                              float tMax) const {
+  const Body3& bodyA = store.bodies[a.body];
+  const Body3& bodyB = store.bodies[b.body];
+  const Transform3 endA = bodyA.transform(), endB = bodyB.transform();
+  float first = tMax;
+  for (std::uint32_t sa : bodyA.shapes) {
+    const Shape3& shapeA = store.shapes[sa];
+    const Aabb3 boxA = merge(store.shapeBox(sa, a.start), store.shapeBox(sa, endA));
+    const ShapeProxy3 proxyA = makeProxy(shapeA.geometry);
+    for (std::uint32_t sb : bodyB.shapes) {
+      const Shape3& shapeB = store.shapes[sb];
+      if (!shouldCollide(shapeA.def.filter, shapeB.def.filter)) continue;
+      if (!overlaps(boxA, merge(store.shapeBox(sb, b.start), store.shapeBox(sb, endB)))) continue;
+      const ShapeProxy3 proxyB = makeProxy(shapeB.geometry);
+      bool touching = false;
+      float t = impactMoving(proxyA, a.sweep, proxyB, b.sweep, first, touching);
+      if (touching) {
+        const ShapeProxy3 coreA = makeProxy(coreBall(shapeA.geometry, bodyA.minExtent));
+        const ShapeProxy3 coreB = makeProxy(coreBall(shapeB.geometry, bodyB.minExtent));
+        t = std::min(impactMoving(coreA, a.sweep, proxyB, b.sweep, first, touching),
+                     impactMoving(proxyA, a.sweep, coreB, b.sweep, first, touching));
+      }
+      first = std::min(first, t);
+    }
+  }
+  return first;
+}
+
+// The first impact of `moving`, over `rest` (the part of its sweep after `stopped` was put
+// back), with `stopped` where it was put back: a fraction of `rest`, or 1.
+float Continuous3::meetStopped(const BodyStore3& store, const Fast& moving, const Sweep3& rest,
+                               const Fast& stopped) const {
+  const Body3& bodyM = store.bodies[moving.body];
+  const Body3& bodyS = store.bodies[stopped.body];
+  const Transform3 worldFromStopped = bodyS.transform();
+  float first = 1.0f;
+  for (std::uint32_t sm : bodyM.shapes) {
+    const Shape3& shapeM = store.shapes[sm];
+    const Aabb3 boxM =
+        merge(store.shapeBox(sm, transformAt(rest, 0.0f)), store.shapeBox(sm, bodyM.transform()));
+    const ShapeProxy3 proxy = makeProxy(shapeM.geometry);
+    for (std::uint32_t ss : bodyS.shapes) {
+      const Shape3& shapeS = store.shapes[ss];
+      if (!shouldCollide(shapeS.def.filter, shapeM.def.filter)) continue;
+      if (!overlaps(boxM, store.shapeBox(ss))) continue;
+      bool touching = false;
+      float t = impact(shapeS, worldFromStopped, proxy, rest, first, touching);
+      if (touching) {
+        const ShapeProxy3 core = makeProxy(coreBall(shapeM.geometry, bodyM.minExtent));
+        t = impact(shapeS, worldFromStopped, core, rest, first, touching);
+      }
+      first = std::min(first, t);
+    }
+  }
+  return first;
+}
+
+// Sort and sweep on x over the fast bodies' swept boxes (ties to the lower body), each pair
+// once as (lower, higher) index into fast_, at most maxPairs of them.
+void Continuous3::findPairs(int maxPairs, Continuous3Result& result) {
+  pairs_.clear();
+  byMinX_.resize(fast_.size());
+  for (std::uint32_t i = 0; i < fast_.size(); ++i)
+    byMinX_[i] = i;
+  std::sort(byMinX_.begin(), byMinX_.end(), [&](std::uint32_t x, std::uint32_t y) {
+    const float lx = fast_[x].box.lower.x, ly = fast_[y].box.lower.x;
+    return lx != ly ? lx < ly : x < y;
+  });
+  for (std::size_t n = 0; n < byMinX_.size(); ++n) {
+    const Aabb3& box = fast_[byMinX_[n]].box;
+    for (std::size_t m = n + 1; m < byMinX_.size(); ++m) {
+      const Aabb3& other = fast_[byMinX_[m]].box;
+      if (other.lower.x > box.upper.x) break;
+      if (!overlaps(box, other)) continue;
+      if (static_cast<int>(pairs_.size()) >= maxPairs) {
+        result.status = Continuous3Status::pairsCapped;
+        break;
+      }
+      pairs_.push_back(std::minmax(byMinX_[n], byMinX_[m]));
+    }
+  }
+  result.fastPairs = static_cast<int>(pairs_.size());
+  neighbourStart_.assign(fast_.size() + 1, 0);
+  for (const auto& [a, b] : pairs_) {
+    ++neighbourStart_[a + 1];
+    ++neighbourStart_[b + 1];
+  }
+  for (std::size_t i = 0; i < fast_.size(); ++i)
+    neighbourStart_[i + 1] += neighbourStart_[i];
+  neighbours_.resize(2 * pairs_.size());
+  std::vector<std::uint32_t>& fill = byMinX_;  // reused as each body's next free slot
+  fill.assign(neighbourStart_.begin(), neighbourStart_.end() - 1);
+  for (const auto& [a, b] : pairs_) {
+    neighbours_[fill[a]++] = b;
+    neighbours_[fill[b]++] = a;
+  }
+}
+
+void Continuous3::pushEvent(const Event& e) {
+  events_.push_back(e);
+  std::push_heap(events_.begin(), events_.end(), later<Event>);
+}
+
+// Back to the time of impact; the velocity stays, and the next step's speculative contact
+// (sized by the speed) meets the surface.
+void Continuous3::stop(BodyStore3& store, std::uint32_t f, float t, const Transform3& at) {
+  Fast& fast = fast_[f];
+  Body3& body = store.bodies[fast.body];
+  const Vec3 oldCenter = body.center;
+  body.origin = at.p;
+  body.rotation = at.q;
+  body.center = transformPoint(at, body.localCenter);
+  store.moveProxies(fast.body, body.center - oldCenter);
+  fast.stopped = true;
+  fast.stopTime = t;
+  justStopped_.push_back(f);
+}
+
+// Box2D v3's continuous stage (solver.c, read for understanding) sweeps fast bodies against
+// static shapes and its bullets against the bodies that are not fast; the 2D world's
+// continuous phase (continuous.cpp) adds sweep against sweep in time order. Here: every
+// fast body's first impact with what does not move fast, and every pair of fast bodies'
+// first meeting before either's, go into one queue; the earliest is taken, its bodies put
+// back; a body put back stays there for the rest of the step, and each fast neighbour still
+// moving is swept, from that time on, against it there. Each valid event puts back at least
+// one body, so the loop runs at most once per fast body plus the stale events, which are
+// bounded by the pairs (at most maxPairs).
+Continuous3Result Continuous3::solve(BodyStore3& store, int maxPairs) {
+  Continuous3Result result;
+  findFast(store);
+  result.fastBodies = static_cast<int>(fast_.size());
+  if (fast_.empty()) return result;
+  events_.clear();
+  for (std::uint32_t i = 0; i < fast_.size(); ++i) {
+    const float t = meetStill(store, fast_[i]);
+    fast_[i].stillTime = t;
+    if (t < 1.0f) pushEvent({t, t, i, i, Kind::still});
+  }
+  findPairs(maxPairs, result);
+  // A pair's meeting after either's impact with still shapes never happens as swept: the
+  // first one to be put back is met where it stopped instead.
+  for (const auto& [a, b] : pairs_) {
+    const float tMax = std::min(fast_[a].stillTime, fast_[b].stillTime);
+    const float t = meetMoving(store, fast_[a], fast_[b], tMax);
+    if (t < tMax) pushEvent({t, t, a, b, Kind::moving});
+  }
+  while (!events_.empty()) {
+    std::pop_heap(events_.begin(), events_.end(), later<Event>);
+    const Event e = events_.back();
+    events_.pop_back();
+    Fast& a = fast_[e.a];
+    if (a.stopped) continue;  // stale: a was put back earlier
+    justStopped_.clear();
+    if (e.kind == Kind::still) {
+      stop(store, e.a, e.t, transformAt(a.sweep, e.t));
+    } else if (e.kind == Kind::moving) {
+      if (fast_[e.b].stopped) continue;
+      stop(store, e.a, e.t, transformAt(a.sweep, e.t));
+      stop(store, e.b, e.t, transformAt(fast_[e.b].sweep, e.t));
+    } else {
+      stop(store, e.a, e.t, transformAt(restOf(a.sweep, fast_[e.b].stopTime), e.local));
+    }
+    result.putBack += static_cast<int>(justStopped_.size());
+    for (std::uint32_t s : justStopped_) {
+      const float t0 = fast_[s].stopTime;
+      for (std::uint32_t k = neighbourStart_[s]; k < neighbourStart_[s + 1]; ++k) {
+        const std::uint32_t m = neighbours_[k];
+        if (fast_[m].stopped) continue;
+        const Sweep3 rest = restOf(fast_[m].sweep, t0);
+        const float u = meetStopped(store, fast_[m], rest, fast_[s]);
+        if (u < 1.0f) pushEvent({t0 + u * (1.0f - t0), u, m, s, Kind::stopped});
       }
     }
-    if (first >= 1.0f) continue;
-    // Back to the time of impact; the velocity stays, and the next step's speculative
-    // contact (sized by the speed) meets the surface.
-    const Transform3 at = transformAt(sweep, first);
-    const Vec3 oldCenter = body.center;
-    body.origin = at.p;
-    body.rotation = at.q;
-    body.center = transformPoint(at, body.localCenter);
-    store.moveProxies(start.body, body.center - oldCenter);
-    ++putBack;
   }
-  return putBack;
+  return result;
 }
 
 }  // namespace quack::detail
