@@ -58,6 +58,37 @@ Sweep3 restOf(const Sweep3& s, float t0) noexcept {
   return {s.localCenter, transformPoint(at, s.localCenter), s.c2, at.q, (1.0f - t0) * s.rotation};
 }
 
+// Whether two bodies may come within the target of each other in a step: the gap between
+// their bounding balls (radius `reach` about the centre of mass, at the start) against the
+// most the centres' relative motion and the turns (each angle times its reach) can close it.
+// A cheap test that spares the time of impact the many fast bodies that fall side by side.
+bool ballsMayMeet(Vec3 startA, Vec3 moveA, float turnA, float reachA, Vec3 startB, Vec3 moveB,
+                  float turnB, float reachB) noexcept {
+  const float gap = length(startB - startA) - reachA - reachB;
+  const float closing = length(moveB - moveA) + turnA * reachA + turnB * reachB;
+  return gap <= closing + 2.0f * kToiTargetSeparation;
+}
+
+// The same from the boxes, seen from a's translation: a's box at the start, grown by how
+// far its turn can carry a point (angle times reach), against b's box at the start swept by
+// the centres' relative motion (linear in t) and grown by b's turn; sound because a point
+// turned by an angle w at a distance r from the centre moves at most w r. Fast bodies that
+// fall side by side, their balls touching, have boxes apart.
+template <class Fast>
+bool mayMeet(const Fast& a, float reachA, const Fast& b, float reachB) noexcept {
+  const Vec3 d = (b.sweep.c2 - b.sweep.c1) - (a.sweep.c2 - a.sweep.c1);
+  const float grow =
+      sweepAngle(a.sweep) * reachA + sweepAngle(b.sweep) * reachB + 2.0f * kToiTargetSeparation;
+  const Vec3 g{grow, grow, grow};
+  const Aabb3 swept{minv(b.startBox.lower, b.startBox.lower + d) - g,
+                    maxv(b.startBox.upper, b.startBox.upper + d) + g};
+  return overlaps(a.startBox, swept);
+}
+
+float component(Vec3 v, int axis) noexcept {
+  return axis == 0 ? v.x : axis == 1 ? v.y : v.z;
+}
+
 // Earliest first; equal times to the lower body, then the lower other body, then the kind,
 // so that the order is total and the heap pops the same sequence whatever was pushed first.
 template <class Event>
@@ -90,11 +121,13 @@ void Continuous3::findFast(const BodyStore3& store) {
     const Sweep3 sweep = makeSweep3(body.localCenter, start.pose, end);
     const float moved = length(sweep.c2 - sweep.c1) + sweepAngle(sweep) * body.maxExtent;
     if (!(moved > 0.5f * body.minExtent) || body.shapes.empty()) continue;
-    Aabb3 box =
-        merge(store.shapeBox(body.shapes[0], start.pose), store.shapeBox(body.shapes[0], end));
-    for (std::uint32_t shape : body.shapes)
-      box = merge(box, merge(store.shapeBox(shape, start.pose), store.shapeBox(shape, end)));
-    fast_.push_back({start.body, start.pose, sweep, box});
+    Aabb3 startBox = store.shapeBox(body.shapes[0], start.pose);
+    Aabb3 endBox = store.shapeBox(body.shapes[0], end);
+    for (std::uint32_t shape : body.shapes) {
+      startBox = merge(startBox, store.shapeBox(shape, start.pose));
+      endBox = merge(endBox, store.shapeBox(shape, end));
+    }
+    fast_.push_back({start.body, start.pose, sweep, startBox, merge(startBox, endBox)});
     isFast_[start.body] = 1;
   }
 }
@@ -109,7 +142,9 @@ float Continuous3::meetStill(const BodyStore3& store, const Fast& f) {
     const Shape3& moving = store.shapes[shape];
     const ShapeProxy3 proxy = makeProxy(moving.geometry);
     const ShapeProxy3 coreProxy = makeProxy(coreBall(moving.geometry, body.minExtent));
-    const Aabb3 swept = merge(store.shapeBox(shape, f.start), store.shapeBox(shape, end));
+    const Aabb3 swept = body.shapes.size() == 1
+                            ? f.box
+                            : merge(store.shapeBox(shape, f.start), store.shapeBox(shape, end));
     candidates_.clear();
     store.broadPhase().queryAabb(swept, [&](ProxyId, std::uint64_t userData) {
       const auto other = static_cast<std::uint32_t>(userData);
@@ -141,16 +176,23 @@ float Continuous3::meetMoving(const BodyStore3& store, const Fast& a, const Fast
                               float tMax) const {
   const Body3& bodyA = store.bodies[a.body];
   const Body3& bodyB = store.bodies[b.body];
+  if (!mayMeet(a, bodyA.maxExtent, b, bodyB.maxExtent)) return tMax;
   const Transform3 endA = bodyA.transform(), endB = bodyB.transform();
+  // The bodies' swept boxes met (findPairs): a shape's own is only worth making when there
+  // are others.
+  const bool oneShapeEach = bodyA.shapes.size() == 1 && bodyB.shapes.size() == 1;
   float first = tMax;
   for (std::uint32_t sa : bodyA.shapes) {
     const Shape3& shapeA = store.shapes[sa];
-    const Aabb3 boxA = merge(store.shapeBox(sa, a.start), store.shapeBox(sa, endA));
+    const Aabb3 boxA =
+        oneShapeEach ? a.box : merge(store.shapeBox(sa, a.start), store.shapeBox(sa, endA));
     const ShapeProxy3 proxyA = makeProxy(shapeA.geometry);
     for (std::uint32_t sb : bodyB.shapes) {
       const Shape3& shapeB = store.shapes[sb];
       if (!shouldCollide(shapeA.def.filter, shapeB.def.filter)) continue;
-      if (!overlaps(boxA, merge(store.shapeBox(sb, b.start), store.shapeBox(sb, endB)))) continue;
+      if (!oneShapeEach &&
+          !overlaps(boxA, merge(store.shapeBox(sb, b.start), store.shapeBox(sb, endB))))
+        continue;
       const ShapeProxy3 proxyB = makeProxy(shapeB.geometry);
       bool touching = false;
       float t = impactMoving(proxyA, a.sweep, proxyB, b.sweep, first, touching);
@@ -172,17 +214,22 @@ float Continuous3::meetStopped(const BodyStore3& store, const Fast& moving, cons
                                const Fast& stopped) const {
   const Body3& bodyM = store.bodies[moving.body];
   const Body3& bodyS = store.bodies[stopped.body];
+  if (!ballsMayMeet(rest.c1, rest.c2 - rest.c1, sweepAngle(rest), bodyM.maxExtent, bodyS.center,
+                    Vec3{}, 0.0f, bodyS.maxExtent))
+    return 1.0f;
   const Transform3 worldFromStopped = bodyS.transform();
+  const bool oneShapeEach = bodyM.shapes.size() == 1 && bodyS.shapes.size() == 1;
   float first = 1.0f;
   for (std::uint32_t sm : bodyM.shapes) {
     const Shape3& shapeM = store.shapes[sm];
-    const Aabb3 boxM =
-        merge(store.shapeBox(sm, transformAt(rest, 0.0f)), store.shapeBox(sm, bodyM.transform()));
+    const Aabb3 boxM = oneShapeEach ? Aabb3{}
+                                    : merge(store.shapeBox(sm, transformAt(rest, 0.0f)),
+                                            store.shapeBox(sm, bodyM.transform()));
     const ShapeProxy3 proxy = makeProxy(shapeM.geometry);
     for (std::uint32_t ss : bodyS.shapes) {
       const Shape3& shapeS = store.shapes[ss];
       if (!shouldCollide(shapeS.def.filter, shapeM.def.filter)) continue;
-      if (!overlaps(boxM, store.shapeBox(ss))) continue;
+      if (!oneShapeEach && !overlaps(boxM, store.shapeBox(ss))) continue;
       bool touching = false;
       float t = impact(shapeS, worldFromStopped, proxy, rest, first, touching);
       if (touching) {
@@ -195,28 +242,38 @@ float Continuous3::meetStopped(const BodyStore3& store, const Fast& moving, cons
   return first;
 }
 
-// Sort and sweep on x over the fast bodies' swept boxes (ties to the lower body), each pair
-// once as (lower, higher) index into fast_, at most maxPairs of them.
+// Sort and sweep over the fast bodies' swept boxes along the axis on which their centres
+// spread furthest (a pile falling in columns overlaps on every horizontal axis; ties to x,
+// then y), ties in the sort to the lower body; each pair once as (lower, higher) index into
+// fast_, at most maxPairs of them.
 void Continuous3::findPairs(int maxPairs, Continuous3Result& result) {
   pairs_.clear();
-  byMinX_.resize(fast_.size());
+  Vec3 low = center(fast_[0].box), high = low;
+  for (const Fast& f : fast_) {
+    low = minv(low, center(f.box));
+    high = maxv(high, center(f.box));
+  }
+  const Vec3 spread = high - low;
+  const int axis = spread.x >= spread.y && spread.x >= spread.z ? 0 : spread.y >= spread.z ? 1 : 2;
+  auto lower = [&](std::uint32_t f) { return component(fast_[f].box.lower, axis); };
+  auto upper = [&](std::uint32_t f) { return component(fast_[f].box.upper, axis); };
+  order_.resize(fast_.size());
   for (std::uint32_t i = 0; i < fast_.size(); ++i)
-    byMinX_[i] = i;
-  std::sort(byMinX_.begin(), byMinX_.end(), [&](std::uint32_t x, std::uint32_t y) {
-    const float lx = fast_[x].box.lower.x, ly = fast_[y].box.lower.x;
-    return lx != ly ? lx < ly : x < y;
+    order_[i] = i;
+  std::sort(order_.begin(), order_.end(), [&](std::uint32_t x, std::uint32_t y) {
+    return lower(x) != lower(y) ? lower(x) < lower(y) : x < y;
   });
-  for (std::size_t n = 0; n < byMinX_.size(); ++n) {
-    const Aabb3& box = fast_[byMinX_[n]].box;
-    for (std::size_t m = n + 1; m < byMinX_.size(); ++m) {
-      const Aabb3& other = fast_[byMinX_[m]].box;
-      if (other.lower.x > box.upper.x) break;
-      if (!overlaps(box, other)) continue;
+  for (std::size_t n = 0; n < order_.size(); ++n) {
+    const Aabb3& box = fast_[order_[n]].box;
+    const float end = upper(order_[n]);
+    for (std::size_t m = n + 1; m < order_.size(); ++m) {
+      if (lower(order_[m]) > end) break;
+      if (!overlaps(box, fast_[order_[m]].box)) continue;
       if (static_cast<int>(pairs_.size()) >= maxPairs) {
         result.status = Continuous3Status::pairsCapped;
         break;
       }
-      pairs_.push_back(std::minmax(byMinX_[n], byMinX_[m]));
+      pairs_.push_back(std::minmax(order_[n], order_[m]));
     }
   }
   result.fastPairs = static_cast<int>(pairs_.size());
@@ -228,7 +285,7 @@ void Continuous3::findPairs(int maxPairs, Continuous3Result& result) {
   for (std::size_t i = 0; i < fast_.size(); ++i)
     neighbourStart_[i + 1] += neighbourStart_[i];
   neighbours_.resize(2 * pairs_.size());
-  std::vector<std::uint32_t>& fill = byMinX_;  // reused as each body's next free slot
+  std::vector<std::uint32_t>& fill = order_;  // reused as each body's next free slot
   fill.assign(neighbourStart_.begin(), neighbourStart_.end() - 1);
   for (const auto& [a, b] : pairs_) {
     neighbours_[fill[a]++] = b;

@@ -50,6 +50,7 @@ class Continuous3 {
     std::uint32_t body;
     Transform3 start;
     Sweep3 sweep;
+    Aabb3 startBox;          // its shapes' boxes at the start, together
     Aabb3 box;               // its shapes' swept boxes together
     float stillTime = 1.0f;  // first impact with static or slow shapes (1: none)
     float stopTime = 1.0f;   // when it was put back (1: not put back)
@@ -80,7 +81,7 @@ class Continuous3 {
   std::vector<Fast> fast_;            // the bodies that moved fast, in body order
   std::vector<std::uint8_t> isFast_;  // per body index
   std::vector<std::uint32_t> candidates_;
-  std::vector<std::uint32_t> byMinX_;
+  std::vector<std::uint32_t> order_;  // fast_ by the sweep axis
   // Pairs of fast bodies (indices into fast_) whose swept boxes overlap, and each body's
   // neighbours among them (neighbourStart_[i] .. neighbourStart_[i + 1] in neighbours_).
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs_;
