@@ -61,7 +61,7 @@ Sweep3 restOf(const Sweep3& s, float t0) noexcept {
 // Whether two bodies may come within the target of each other in a step: the gap between
 // their bounding balls (radius `reach` about the centre of mass, at the start) against the
 // most the centres' relative motion and the turns (each angle times its reach) can close it.
-// A cheap test that spares the time of impact the many fast bodies that fall side by side.
+// A cheap test before a time of impact.
 bool ballsMayMeet(Vec3 startA, Vec3 moveA, float turnA, float reachA, Vec3 startB, Vec3 moveB,
                   float turnB, float reachB) noexcept {
   const float gap = length(startB - startA) - reachA - reachB;

@@ -13,6 +13,7 @@
 #include <variant>
 #include <vector>
 
+#include "../../src/world/continuous3.hpp"
 #include "quack/world/world3.hpp"
 
 namespace quack {
@@ -288,6 +289,37 @@ TEST(World3Continuous, AFastBodyMeetsTheEarlierOfTwoFastBodiesFirst) {
       sum += world.linearVelocity(body[i]).x;
     EXPECT_NEAR(sum, -100.0f, 1.0f);
   } while (std::next_permutation(order.begin(), order.end()));
+}
+
+// The phase's cap, on its own store: three 0.3 m balls 0.7 m apart on x that each moved
+// 1 m (fast) toward +x in a step, all their swept boxes meeting, make three pairs; with the
+// cap at one pair it checks one and says so. None meets another (they moved together).
+TEST(World3Continuous, FastPairsPastTheCapAreCountedAndSaid) {
+  for (int cap : {1, detail::kMaxFastPairs3}) {
+    detail::BodyStore3 store(BroadPhase3::create({.margin = 0.1f}).value());
+    for (int i = 0; i < 3; ++i) {
+      const std::uint32_t b = store.addBody({.position = {0.7f * float(i), 0, 0}});
+      ASSERT_TRUE(store.addShape(b, {}, Sphere{{}, 0.3f}, nullptr).ok());
+    }
+    detail::Continuous3 continuous;
+    continuous.recordStarts(store);
+    for (std::uint32_t b = 0; b < 3; ++b) {
+      detail::Body3& body = store.bodies[b];
+      body.origin = body.origin + Vec3{1, 0, 0};
+      body.center = body.center + Vec3{1, 0, 0};
+      store.moveProxies(b, {1, 0, 0});
+    }
+    const detail::Continuous3Result r = continuous.solve(store, cap);
+    EXPECT_EQ(r.fastBodies, 3);
+    EXPECT_EQ(r.putBack, 0);
+    if (cap == 1) {
+      EXPECT_EQ(r.fastPairs, 1);
+      EXPECT_EQ(r.status, detail::Continuous3Status::pairsCapped);
+    } else {
+      EXPECT_EQ(r.fastPairs, 3);
+      EXPECT_EQ(r.status, detail::Continuous3Status::complete);
+    }
+  }
 }
 
 }  // namespace
