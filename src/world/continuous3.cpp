@@ -134,7 +134,8 @@ void Continuous3::findFast(const BodyStore3& store) {
 
 // The first impact of fast body f with static shapes, meshes and bodies that are not fast
 // (held at their poses after the solver), or 1.
-float Continuous3::meetStill(const BodyStore3& store, const Fast& f) {
+float Continuous3::meetStill(const BodyStore3& store, const Fast& f,
+                             std::vector<std::uint32_t>& candidates) const {
   const Body3& body = store.bodies[f.body];
   const Transform3 end = body.transform();
   float first = 1.0f;
@@ -145,19 +146,19 @@ float Continuous3::meetStill(const BodyStore3& store, const Fast& f) {
     const Aabb3 swept = body.shapes.size() == 1
                             ? f.box
                             : merge(store.shapeBox(shape, f.start), store.shapeBox(shape, end));
-    candidates_.clear();
+    candidates.clear();
     store.broadPhase().queryAabb(swept, [&](ProxyId, std::uint64_t userData) {
       const auto other = static_cast<std::uint32_t>(userData);
       const Shape3& s = store.shapes[other];
       if (s.body != f.body && isFast_[s.body] == 0 &&
           shouldCollide(s.def.filter, moving.def.filter))
-        candidates_.push_back(other);
+        candidates.push_back(other);
       return true;
     });
     // The tree's visiting order is its own: sorted, the earliest hit is found the same way
     // whatever the tree's shape (ties go to the lowest shape index).
-    std::sort(candidates_.begin(), candidates_.end());
-    for (std::uint32_t other : candidates_) {
+    std::sort(candidates.begin(), candidates.end());
+    for (std::uint32_t other : candidates) {
       const Shape3& s = store.shapes[other];
       const Transform3 worldFromStatic = store.bodies[s.body].transform();
       bool touching = false;
@@ -322,23 +323,46 @@ void Continuous3::stop(BodyStore3& store, std::uint32_t f, float t, const Transf
 // moving is swept, from that time on, against it there. Each valid event puts back at least
 // one body, so the loop runs at most once per fast body plus the stale events, which are
 // bounded by the pairs (at most maxPairs).
-Continuous3Result Continuous3::solve(BodyStore3& store, int maxPairs) {
+Continuous3Result Continuous3::solve(BodyStore3& store, TaskRunner& tasks, int maxPairs) {
   Continuous3Result result;
   findFast(store);
   result.fastBodies = static_cast<int>(fast_.size());
   if (fast_.empty()) return result;
   events_.clear();
+  // The searches read the store and write only their own body's or pair's time: on the
+  // workers, then queued here in order (the heap's order is total, so the same events pop
+  // in the same sequence whatever the workers did).
+  candidateParts_.resize(static_cast<std::size_t>(tasks.workers()));
+  tasks.parallelFor(
+      static_cast<int>(fast_.size()), 8,
+      [&](int first, int last, int participant) {
+        for (auto i = static_cast<std::size_t>(first); i < static_cast<std::size_t>(last); ++i)
+          fast_[i].stillTime =
+              meetStill(store, fast_[i], candidateParts_[static_cast<std::size_t>(participant)]);
+      },
+      TaskRunner::kHeavyRangesPerWorker);
   for (std::uint32_t i = 0; i < fast_.size(); ++i) {
-    const float t = meetStill(store, fast_[i]);
-    fast_[i].stillTime = t;
+    const float t = fast_[i].stillTime;
     if (t < 1.0f) pushEvent({t, t, i, i, Kind::still});
   }
   findPairs(maxPairs, result);
   // A pair's meeting after either's impact with still shapes never happens as swept: the
   // first one to be put back is met where it stopped instead.
-  for (const auto& [a, b] : pairs_) {
+  pairTimes_.resize(pairs_.size());
+  tasks.parallelFor(
+      static_cast<int>(pairs_.size()), 16,
+      [&](int first, int last, int) {
+        for (auto k = static_cast<std::size_t>(first); k < static_cast<std::size_t>(last); ++k) {
+          const auto [a, b] = pairs_[k];
+          const float tMax = std::min(fast_[a].stillTime, fast_[b].stillTime);
+          pairTimes_[k] = meetMoving(store, fast_[a], fast_[b], tMax);
+        }
+      },
+      TaskRunner::kHeavyRangesPerWorker);
+  for (std::size_t k = 0; k < pairs_.size(); ++k) {
+    const auto [a, b] = pairs_[k];
     const float tMax = std::min(fast_[a].stillTime, fast_[b].stillTime);
-    const float t = meetMoving(store, fast_[a], fast_[b], tMax);
+    const float t = pairTimes_[k];
     if (t < tMax) pushEvent({t, t, a, b, Kind::moving});
   }
   while (!events_.empty()) {

@@ -13,6 +13,7 @@
 
 #include "body_store3.hpp"
 #include "quack/math/sweep3.hpp"
+#include "task_runner.hpp"
 
 namespace quack::detail {
 
@@ -39,7 +40,8 @@ class Continuous3 {
   void recordStarts(const BodyStore3& store);
   // After the solver: sweeps the fast bodies and puts them back, meetings in time order
   // (ties to the lower body index), so the result does not depend on the order of the bodies.
-  Continuous3Result solve(BodyStore3& store, int maxPairs = kMaxFastPairs3);
+  // The searches run on `tasks`' workers; the result is the same for any number.
+  Continuous3Result solve(BodyStore3& store, TaskRunner& tasks, int maxPairs = kMaxFastPairs3);
 
  private:
   struct Start {
@@ -69,7 +71,8 @@ class Continuous3 {
   };
 
   void findFast(const BodyStore3& store);
-  float meetStill(const BodyStore3& store, const Fast& f);
+  float meetStill(const BodyStore3& store, const Fast& f,
+                  std::vector<std::uint32_t>& candidates) const;
   float meetMoving(const BodyStore3& store, const Fast& a, const Fast& b, float tMax) const;
   float meetStopped(const BodyStore3& store, const Fast& moving, const Sweep3& rest,
                     const Fast& stopped) const;
@@ -78,9 +81,10 @@ class Continuous3 {
   void pushEvent(const Event& e);
 
   std::vector<Start> starts_;
+  std::vector<std::vector<std::uint32_t>> candidateParts_;  // per worker: meetStill's
+  std::vector<float> pairTimes_;                            // per pair: meetMoving's
   std::vector<Fast> fast_;            // the bodies that moved fast, in body order
   std::vector<std::uint8_t> isFast_;  // per body index
-  std::vector<std::uint32_t> candidates_;
   std::vector<std::uint32_t> order_;  // fast_ by the sweep axis
   // Pairs of fast bodies (indices into fast_) whose swept boxes overlap, and each body's
   // neighbours among them (neighbourStart_[i] .. neighbourStart_[i + 1] in neighbours_).

@@ -393,7 +393,7 @@ Status World3::step(float dt, int substeps) {
   w.islands.wakeTouched(w.store, w.contacts);
   if (w.def.enableContinuous) w.continuous.recordStarts(w.store);
   w.solver.step(w.store, w.contacts, w.def, dt, substeps, w.tasks);
-  if (w.def.enableContinuous) w.continuous.solve(w.store);
+  if (w.def.enableContinuous) w.continuous.solve(w.store, w.tasks);
   if (w.def.enableSleep) w.islands.sleepRested(w.store, w.contacts, dt);
   ++w.stepCount;
   dispatchCallbacks();

@@ -309,7 +309,8 @@ TEST(World3Continuous, FastPairsPastTheCapAreCountedAndSaid) {
       body.center = body.center + Vec3{1, 0, 0};
       store.moveProxies(b, {1, 0, 0});
     }
-    const detail::Continuous3Result r = continuous.solve(store, cap);
+    detail::TaskRunner tasks;
+    const detail::Continuous3Result r = continuous.solve(store, tasks, cap);
     EXPECT_EQ(r.fastBodies, 3);
     EXPECT_EQ(r.putBack, 0);
     if (cap == 1) {
