@@ -144,26 +144,36 @@ void ContactSet3::findNew(BodyStore3& store, TaskRunner& tasks) {
            static_cast<std::size_t>(participant));
     });
   });
-  // Sorted by shape indices, so contacts are made in one order whatever the structure found.
-  for (ProxyPair& p : pairs_) {
-    const auto sa = static_cast<std::uint32_t>(store.broadPhase().userData(p.a));
-    const auto sb = static_cast<std::uint32_t>(store.broadPhase().userData(p.b));
-    p.a.index = std::min(sa, sb);
-    p.b.index = std::max(sa, sb);
-  }
+  // Each pair as shape indices, and whether the world wants a contact for it (two bodies,
+  // one dynamic, none there yet: most pairs a moving pile reports exist already), on the
+  // workers (reads only); the wanted ones then sorted by shape indices, so that contacts
+  // are made in one order whatever the structure and the workers found.
+  wanted_.resize(pairs_.size());
+  tasks.parallelFor(static_cast<int>(pairs_.size()), 256, [&](int first, int last, int) {
+    for (auto i = static_cast<std::size_t>(first); i < static_cast<std::size_t>(last); ++i) {
+      ProxyPair& p = pairs_[i];
+      const auto sa = static_cast<std::uint32_t>(store.broadPhase().userData(p.a));
+      const auto sb = static_cast<std::uint32_t>(store.broadPhase().userData(p.b));
+      p.a.index = std::min(sa, sb);
+      p.b.index = std::max(sa, sb);
+      const Shape3& shapeA = store.shapes[sa];
+      const Shape3& shapeB = store.shapes[sb];
+      wanted_[i] = shapeA.body != shapeB.body &&
+                   (store.bodies[shapeA.body].type == BodyType::dynamicBody ||
+                    store.bodies[shapeB.body].type == BodyType::dynamicBody) &&
+                   index_.count(key(sa, sb)) == 0;
+    }
+  });
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < pairs_.size(); ++i)
+    if (wanted_[i] != 0) pairs_[kept++] = pairs_[i];
+  pairs_.resize(kept);
   std::sort(pairs_.begin(), pairs_.end(), [](const ProxyPair& x, const ProxyPair& y) {
     return x.a.index != y.a.index ? x.a.index < y.a.index : x.b.index < y.b.index;
   });
   for (const ProxyPair& p : pairs_) {
     std::uint32_t a = p.a.index, b = p.b.index;
-    const Shape3& shapeA = store.shapes[a];
-    const Shape3& shapeB = store.shapes[b];
-    if (shapeA.body == shapeB.body) continue;
-    const Body3& bodyA = store.bodies[shapeA.body];
-    const Body3& bodyB = store.bodies[shapeB.body];
-    if (bodyA.type != BodyType::dynamicBody && bodyB.type != BodyType::dynamicBody) continue;
-    if (index_.count(key(a, b)) != 0) continue;
-    if (shapeB.mesh) std::swap(a, b);
+    if (store.shapes[b].mesh) std::swap(a, b);
     Contact3 c;
     c.shapeA = a;
     c.shapeB = b;

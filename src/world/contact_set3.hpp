@@ -100,6 +100,7 @@ class ContactSet3 {
   std::unordered_map<std::uint64_t, std::uint32_t> index_;
   std::vector<ProxyPair> pairs_;
   std::vector<std::vector<ProxyPair>> pairParts_;  // per worker
+  std::vector<std::uint8_t> wanted_;               // per pair: a contact is to be made
   std::uint32_t worldId_;
 };
 
