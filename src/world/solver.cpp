@@ -259,14 +259,10 @@ template <class F>
   }
 }
 
-// Colours (Box2D v3's constraint graph, read for understanding): no two constraints of a
-// colour share a dynamic body, so a colour's constraints can be solved side by side in
-// lanes (and, later, on several threads) with the result of solving them one by one.
-// Static and kinematic bodies do not count: the solver never writes them. 24 colours hold
-// any pile of boxes (a box touches at most eight others); constraints of a body with more
-// contacts than that go to the overflow set, solved one constraint per block, in order.
-constexpr int kColors = 24;
-constexpr int kOverflow = kColors;
+// Colours (solver.hpp, takeColor); the overflow set is solved one constraint per block, in
+// order.
+constexpr int kColors = kSolverColors;
+constexpr int kOverflow = kSolverOverflow;
 // Smallest shares of work handed to a worker: below these a task costs more than it saves.
 constexpr int kMinBlocks = 16;
 constexpr int kMinSlots = 256;
@@ -346,28 +342,13 @@ struct StepParams {
 
 // Colours the joints first, with the colours their bodies take (as a contact's, below),
 // and lays them out: the overflow set, then each colour's in joint order.
-void layoutJoints(SolverScratch& s, std::uint32_t* used, std::uint32_t allColors) {
+void layoutJoints(SolverScratch& s, std::uint32_t* used) {
   const std::size_t n = s.jointsFound.size();
   s.jointColor.resize(n);
   std::size_t perColor[kColors + 1] = {};
   for (std::size_t k = 0; k < n; ++k) {
     const JointSim& j = s.jointsFound[k];
-    int color = kOverflow;
-    if (j.writeA && j.writeB) {
-      const std::uint32_t free = ~(used[j.slotA] | used[j.slotB]) & allColors;
-      if (free != 0) {
-        color = __builtin_ctz(free);
-        used[j.slotA] |= std::uint32_t{1} << color;
-        used[j.slotB] |= std::uint32_t{1} << color;
-      }
-    } else {
-      const std::int32_t d = j.writeA ? j.slotA : j.slotB;
-      const std::uint32_t free = ~used[d] & allColors & ~std::uint32_t{1};
-      if (free != 0) {
-        color = __builtin_ctz(free);
-        used[d] |= std::uint32_t{1} << color;
-      }
-    }
+    const int color = takeColor(used, j.slotA, j.slotB, j.writeA, j.writeB);
     s.jointColor[k] = static_cast<std::uint8_t>(color);
     ++perColor[color];
   }
@@ -391,38 +372,19 @@ template <class F>
                                            std::size_t* colorStart, std::size_t* colorCount,
                                            Solver::Stats& stats) {
   constexpr int W = F::width;
-  // Per slot, the colours its body is already in (bit c); a constraint takes the lowest
-  // colour free in both of its dynamic bodies, colour 0 only when both are dynamic.
-  static_assert(kColors <= 32, "a slot's colours are a 32-bit mask");
-  constexpr std::uint32_t kAllColors =
-      kColors == 32 ? ~std::uint32_t{0} : (std::uint32_t{1} << kColors) - 1u;
+  // Per slot, the colours its body is already in (bit c; takeColor).
   s.slotColors.assign(s.states.size(), 0);
   std::uint32_t* used = s.slotColors.data();
-  layoutJoints(s, used, kAllColors);
+  layoutJoints(s, used);
   std::size_t perColor[kColors + 1] = {};
   s.color.resize(s.touching.size());
   for (std::size_t k = 0; k < s.touching.size(); ++k) {
     const SolverScratch::Pair& pair = s.pairs[k];
     const bool dynA = pair.dynamicA, dynB = pair.dynamicB;
     const std::int32_t sa = pair.slotA, sb = pair.slotB;
-    int color = kOverflow;
-    if (!dynA && !dynB) {
-      color = 0;  // not made by the world (a dynamic body is in every contact); harmless
-    } else if (dynA && dynB) {
-      const std::uint32_t free = ~(used[sa] | used[sb]) & kAllColors;
-      if (free != 0) {
-        color = __builtin_ctz(free);
-        used[sa] |= std::uint32_t{1} << color;
-        used[sb] |= std::uint32_t{1} << color;
-      }
-    } else {
-      const std::int32_t d = dynA ? sa : sb;
-      const std::uint32_t free = ~used[d] & kAllColors & ~std::uint32_t{1};
-      if (free != 0) {
-        color = __builtin_ctz(free);
-        used[d] |= std::uint32_t{1} << color;
-      }
-    }
+    // A contact of two bodies the solver does not write is not made by the world (a
+    // dynamic body is in every contact); colour 0 is harmless for it.
+    const int color = !dynA && !dynB ? 0 : takeColor(used, sa, sb, dynA, dynB);
     s.color[k] = static_cast<std::uint8_t>(color);
     ++perColor[color];
   }

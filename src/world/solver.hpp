@@ -45,6 +45,38 @@ inline Softness makeSoftness(float hertz, float zeta, float h) {
   return {omega / a1, a2 * a3, a3};
 }
 
+// Colours (Box2D v3's constraint graph, read for understanding), for the 2D and 3D
+// solvers: no two constraints of a colour share a body the solver writes (a dynamic one),
+// so a colour's constraints can be solved side by side in lanes and on several workers
+// with the result of solving them one by one. Static and kinematic bodies do not count.
+// 24 colours hold any pile of boxes (a box touches at most eight others); constraints of
+// a body with more than that go to the overflow set, solved one at a time.
+inline constexpr int kSolverColors = 24;
+inline constexpr int kSolverOverflow = kSolverColors;
+static_assert(kSolverColors < 32, "a slot's colours are a 32-bit mask");
+inline constexpr std::uint32_t kAllSolverColors = (std::uint32_t{1} << kSolverColors) - 1u;
+
+// The colour a constraint between slots sa and sb takes: the lowest that neither of its
+// written bodies is in yet (`used`: a bit per colour per slot, marked here), colour 0 only
+// when both are written (the most constrained pairs first), or kSolverOverflow.
+inline int takeColor(std::uint32_t* used, std::int32_t sa, std::int32_t sb, bool writeA,
+                     bool writeB) noexcept {
+  if (writeA && writeB) {
+    const std::uint32_t free = ~(used[sa] | used[sb]) & kAllSolverColors;
+    if (free == 0) return kSolverOverflow;
+    const int color = __builtin_ctz(free);
+    used[sa] |= std::uint32_t{1} << color;
+    used[sb] |= std::uint32_t{1} << color;
+    return color;
+  }
+  const std::int32_t d = writeA ? sa : sb;
+  const std::uint32_t free = ~used[d] & kAllSolverColors & ~std::uint32_t{1};
+  if (free == 0) return kSolverOverflow;
+  const int color = __builtin_ctz(free);
+  used[d] |= std::uint32_t{1} << color;
+  return color;
+}
+
 struct SolverScratch;  // solver.cpp: the per-step arrays
 
 class Solver {

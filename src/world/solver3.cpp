@@ -339,12 +339,10 @@ template <class F>
 
 // ---- colours and the per-step arrays -----------------------------------------------------
 
-// Colours (Box2D v3's constraint graph, read for understanding; as the 2D solver's): no two
-// manifolds of a colour share a dynamic body. Static and kinematic bodies do not count: the
-// solver never writes them. A body with more manifolds than the colours (a box on a mesh
-// floor has one per triangle it touches) sends the rest to the overflow set.
-constexpr int kColors = 24;
-constexpr int kOverflow = kColors;
+// Colours (solver.hpp, takeColor). A body with more manifolds than the colours hold (a box
+// on a mesh floor has one per triangle it touches) sends the rest to the overflow set.
+constexpr int kColors = kSolverColors;
+constexpr int kOverflow = kSolverOverflow;
 // Smallest shares of work handed to a worker: below these a task costs more than it saves.
 constexpr int kMinBlocks = 4;
 constexpr int kMinSlots = 64;
@@ -377,7 +375,6 @@ struct SolverScratch3 {
   std::vector<Item> items;
   std::vector<std::uint8_t> color;
   std::vector<std::uint32_t> slotColors;  // per slot: the colours its body is in
-  std::vector<std::uint32_t> lane;        // per item: block * width + lane
   std::vector<const Item*> laneItems;     // per lane: its item, or none
   std::vector<ContactBlock3<FloatS>> narrow;
   std::vector<ContactBlock3<FloatW>> wide;
@@ -395,35 +392,14 @@ struct StepParams3 {
 
 // Colours the items and lays them out in blocks: the overflow set first (one manifold per
 // block), then each colour's in contact order, `W` to a block. Returns the block count.
-std::size_t layoutBlocks(SolverScratch3& s, int W, std::size_t* colorStart, std::size_t* colorCount,
-                         Solver3::Stats& stats) {
-  static_assert(kColors <= 32, "a slot's colours are a 32-bit mask");
-  constexpr std::uint32_t kAllColors =
-      kColors == 32 ? ~std::uint32_t{0} : (std::uint32_t{1} << kColors) - 1u;
+std::size_t layoutBlocks(SolverScratch3& s, int W, std::size_t* colorStart, Solver3::Stats& stats) {
   s.slotColors.assign(s.states.size(), 0);
   std::uint32_t* used = s.slotColors.data();
   std::size_t perColor[kColors + 1] = {};
   s.color.resize(s.items.size());
   for (std::size_t k = 0; k < s.items.size(); ++k) {
     const SolverScratch3::Item& item = s.items[k];
-    const std::int32_t sa = item.slotA, sb = item.slotB;
-    int color = kOverflow;
-    if (item.dynamicA && item.dynamicB) {
-      const std::uint32_t free = ~(used[sa] | used[sb]) & kAllColors;
-      if (free != 0) {
-        color = __builtin_ctz(free);
-        used[sa] |= std::uint32_t{1} << color;
-        used[sb] |= std::uint32_t{1} << color;
-      }
-    } else {
-      // Colour 0 is kept for pairs of dynamic bodies (the most constrained), as in 2D.
-      const std::int32_t d = item.dynamicA ? sa : sb;
-      const std::uint32_t free = ~used[d] & kAllColors & ~std::uint32_t{1};
-      if (free != 0) {
-        color = __builtin_ctz(free);
-        used[d] |= std::uint32_t{1} << color;
-      }
-    }
+    const int color = takeColor(used, item.slotA, item.slotB, item.dynamicA, item.dynamicB);
     s.color[k] = static_cast<std::uint8_t>(color);
     ++perColor[color];
   }
@@ -437,15 +413,11 @@ std::size_t layoutBlocks(SolverScratch3& s, int W, std::size_t* colorStart, std:
     if (perColor[c] > 0) stats.colors = c + 1;
   }
   colorStart[kColors] = next;
-  for (int c = 0; c <= kColors; ++c)
-    colorCount[c] = perColor[c];
   std::size_t fill[kColors + 1] = {};
-  s.lane.resize(s.items.size());
   s.laneItems.assign(next * width, nullptr);
   for (std::size_t k = 0; k < s.items.size(); ++k) {
     const int c = s.color[k];
     const std::size_t at = c == kOverflow ? fill[c]++ * width : colorStart[c] * width + fill[c]++;
-    s.lane[k] = static_cast<std::uint32_t>(at);
     s.laneItems[at] = &s.items[k];
   }
   return next;
@@ -664,8 +636,8 @@ template <class F>
 void runStep(SolverScratch3& s, std::vector<ContactBlock3<F>>& blocks, const StepParams3& params,
              int substeps, Solver3::Stats& stats, TaskRunner& tasks) {
   constexpr int W = F::width;
-  std::size_t colorStart[kColors + 1], colorCount[kColors + 1];
-  const std::size_t blockCount = layoutBlocks(s, W, colorStart, colorCount, stats);
+  std::size_t colorStart[kColors + 1];
+  const std::size_t blockCount = layoutBlocks(s, W, colorStart, stats);
   blocks.resize(blockCount);
   ContactBlock3<F>* all = blocks.data();
   BodyState3* states = s.states.data();
