@@ -557,6 +557,13 @@ auto buildTimed(RunContext& run, std::size_t bodies, double& buildMs, Build&& bu
 
 // ---- the 2D run ---------------------------------------------------------------------------
 
+// --threads as a worker count: 0 is the machine's cores, then within 1..kMaxWorkers.
+int workersFor(const RunOptions& options) {
+  int threads = options.threads;
+  if (threads == 0) threads = static_cast<int>(std::thread::hardware_concurrency());
+  return std::clamp(threads, 1, kMaxWorkers);
+}
+
 int runScene2(RunContext& run, Scene& scene, double loadMs,
               const std::function<bool(std::size_t, std::size_t)>& bodiesProgress) {
   const RunOptions& options = run.options;
@@ -566,9 +573,7 @@ int runScene2(RunContext& run, Scene& scene, double loadMs,
   const bool snapshotWanted = !options.snapshotFile.empty();
 
   // Threads: whatever the file says, the command line decides (the bits do not depend on it).
-  int threads = options.threads;
-  if (threads == 0) threads = static_cast<int>(std::thread::hardware_concurrency());
-  threads = std::clamp(threads, 1, kMaxWorkers);
+  const int threads = workersFor(options);
   scene.world.workerCount = threads;
 
   double buildMs = 0.0;
@@ -748,9 +753,7 @@ int runScene3(RunContext& run, Scene3& scene, double loadMs,
   Progress& progress = run.progress;
   if (!checkOptions3(options, err)) return kRunFailed;
   // Threads: whatever the file says, the command line decides (the bits do not depend on it).
-  int threads = options.threads;
-  if (threads == 0) threads = static_cast<int>(std::thread::hardware_concurrency());
-  threads = std::clamp(threads, 1, kMaxWorkers);
+  const int threads = workersFor(options);
   scene.world.workerCount = threads;
 
   double buildMs = 0.0;
