@@ -21,10 +21,7 @@ std::uint32_t nextWorldId();  // world.cpp: one sequence for the 2D and 3D world
 struct WorldState3 {
   WorldState3(const WorldDef3& d, BroadPhase3 bp, std::uint32_t worldId)
       : def(d), id(worldId), store(std::move(bp)), contacts(worldId) {
-    configureTasks();
-  }
-  // The workers from def (or the test suites' override, as the 2D world's).
-  void configureTasks() {
+    // The workers from def (or the test suites' override, as the 2D world's).
     tasks.configure(effectiveWorkerCount(def.workerCount, def.enqueueTask != nullptr),
                     def.enqueueTask, def.finishTask, def.userTaskContext);
   }
