@@ -1,8 +1,11 @@
 #include "body_store3.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <type_traits>
 
 #include "quack/collision/proxy3.hpp"
 #include "quack/geometry/mass3.hpp"
@@ -58,7 +61,7 @@ Aabb3 BodyStore3::shapeBox(std::uint32_t shape, Transform3 xf) const {
     }
     return box;
   }
-  return proxyBox(makeProxy(s.geometry), xf);
+  return proxyBox(makeProxy(*s.geometry), xf);
 }
 
 Aabb3 proxyBox(const ShapeProxy3& proxy, Transform3 xf) noexcept {
@@ -82,7 +85,7 @@ Result<std::uint32_t> BodyStore3::addShape(std::uint32_t body, const ShapeDef3& 
   s = Shape3{};
   s.body = body;
   s.def = def;
-  s.geometry = geometry;
+  s.geometry = intern(geometry);
   s.mesh = std::move(mesh);
   const ProxyKind kind =
       bodies[body].type == BodyType::staticBody ? ProxyKind::staticProxy : ProxyKind::dynamicProxy;
@@ -96,6 +99,81 @@ Result<std::uint32_t> BodyStore3::addShape(std::uint32_t body, const ShapeDef3& 
   bodies[body].shapes.push_back(index);
   updateMass(body);
   return index;
+}
+
+namespace {
+
+// Every field a hull's users read, field by field (HullFace3 has padding, and the arrays'
+// unused tails may hold anything), into one buffer sized once.
+class KeyWriter {
+ public:
+  explicit KeyWriter(std::size_t size) : key_(size, '\0'), at_(key_.data()) {}
+  template <class T>
+  void put(const T& value) noexcept {
+    static_assert(std::is_trivially_copyable_v<T>);
+    std::memcpy(at_, &value, sizeof(T));
+    at_ += sizeof(T);
+  }
+  void put(Vec3 v) noexcept {
+    put(v.x);
+    put(v.y);
+    put(v.z);
+  }
+  std::string take() noexcept { return std::move(key_); }
+
+ private:
+  std::string key_;
+  char* at_;
+};
+
+std::string hullKey(const Hull3& h) {
+  const std::size_t v = std::size_t(h.vertexCount), f = std::size_t(h.faceCount),
+                    e = std::size_t(h.edgeCount);
+  constexpr std::size_t kFace = 4 * sizeof(float) + sizeof(std::uint16_t) + sizeof(std::uint8_t);
+  static_assert(sizeof(HullEdge3) == 4 && std::has_unique_object_representations_v<HullEdge3>);
+  KeyWriter w(3 * sizeof(int) + 4 * sizeof(float) + 12 * v + kFace * f + 4 * e + 2 * e);
+  w.put(h.vertexCount);
+  w.put(h.faceCount);
+  w.put(h.edgeCount);
+  w.put(h.radius);
+  w.put(h.centroid);
+  for (std::size_t i = 0; i < v; ++i)
+    w.put(h.vertices[i]);
+  for (std::size_t i = 0; i < f; ++i) {
+    w.put(h.faces[i].normal);
+    w.put(h.faces[i].offset);
+    w.put(h.faces[i].first);
+    w.put(h.faces[i].count);
+  }
+  for (std::size_t i = 0; i < e; ++i)
+    w.put(h.edges[i]);
+  for (std::size_t i = 0; i < 2 * e; ++i)
+    w.put(h.faceVertices[i]);
+  return w.take();
+}
+
+}  // namespace
+
+std::shared_ptr<const ShapeGeometry3> BodyStore3::findShared(const ShapeGeometry3& geometry) const {
+  const Hull3* hull = std::get_if<Hull3>(&geometry);
+  if (hull == nullptr) return nullptr;
+  const auto found = hulls_.find(hullKey(*hull));
+  return found == hulls_.end() ? nullptr : found->second.lock();
+}
+
+std::shared_ptr<const ShapeGeometry3> BodyStore3::intern(const ShapeGeometry3& geometry) {
+  const Hull3* hull = std::get_if<Hull3>(&geometry);
+  if (hull == nullptr) return std::make_shared<const ShapeGeometry3>(geometry);
+  std::string key = hullKey(*hull);
+  std::weak_ptr<const ShapeGeometry3>& entry = hulls_[key];
+  if (std::shared_ptr<const ShapeGeometry3> held = entry.lock()) return held;
+  auto made = std::make_shared<const ShapeGeometry3>(geometry);
+  entry = made;
+  if (hulls_.size() > 2 * hullsSwept_ + 64) {
+    std::erase_if(hulls_, [](const auto& kv) { return kv.second.expired(); });
+    hullsSwept_ = hulls_.size();
+  }
+  return made;
 }
 
 void BodyStore3::removeShape(std::uint32_t shape) {
@@ -157,7 +235,13 @@ void BodyStore3::updateMass(std::uint32_t index) {
   std::vector<MassProperties3> parts;
   for (std::uint32_t shape : b.shapes) {
     const Shape3& s = shapes[shape];
-    parts.push_back(computeMass(s.geometry, s.def.density));
+    // The last shape's mass again when this one has the same stored geometry and density
+    // (a pile of one hull): the memo holds the geometry, so its address is not reused.
+    if (s.geometry != massMemo_.geometry || std::bit_cast<std::uint32_t>(s.def.density) !=
+                                                std::bit_cast<std::uint32_t>(massMemo_.density)) {
+      massMemo_ = {s.geometry, s.def.density, computeMass(*s.geometry, s.def.density)};
+    }
+    parts.push_back(massMemo_.mass);
     const MassProperties3& m = parts.back();
     mass += double(m.mass);
     cx += double(m.mass) * double(m.centroid.x);
@@ -196,12 +280,12 @@ void BodyStore3::updateMass(std::uint32_t index) {
   }
   bool first = true;
   for (std::uint32_t shape : b.shapes) {
-    const ShapeProxy3 proxy = makeProxy(shapes[shape].geometry);
+    const ShapeProxy3 proxy = makeProxy(*shapes[shape].geometry);
     for (int i = 0; i < proxy.count(); ++i) {
       b.maxExtent =
           std::max(b.maxExtent, length(proxy.points()[i] - b.localCenter) + proxy.radius());
     }
-    const float thin = thickness(shapes[shape].geometry);
+    const float thin = thickness(*shapes[shape].geometry);
     b.minExtent = first ? thin : std::min(b.minExtent, thin);
     first = false;
   }

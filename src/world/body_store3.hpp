@@ -8,10 +8,13 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "quack/broadphase/broad_phase3.hpp"
 #include "quack/core/id_pool.hpp"
+#include "quack/geometry/mass3.hpp"
 #include "quack/world/world3.hpp"
 
 namespace quack::detail {
@@ -74,7 +77,11 @@ Aabb3 proxyBox(const ShapeProxy3& proxy, Transform3 xf) noexcept;
 struct Shape3 {
   std::uint32_t body = 0;
   ShapeDef3 def;
-  ShapeGeometry3 geometry;      // unused when mesh is set
+  // Shared, read-only, by every shape of this store whose geometry is the same to the bit
+  // (BodyStore3::intern): a pile of one hull reads one copy that stays in cache, where a
+  // 3.6 KB copy per shape made each hull pair a trip to memory. Null for a free slot; a
+  // sphere's placeholder when mesh is set.
+  std::shared_ptr<const ShapeGeometry3> geometry;
   std::shared_ptr<Mesh3> mesh;  // a static body's triangle mesh
   ProxyId proxy;
 };
@@ -104,6 +111,14 @@ class BodyStore3 {
   Aabb3 shapeBox(std::uint32_t shape) const;
   Aabb3 shapeBox(std::uint32_t shape, Transform3 worldFromBody) const;
 
+  // The stored copy of `geometry`: the one another shape of this store already holds when
+  // their bytes are equal (every used field, bit for bit), else a new one. Sharing changes
+  // no result: the geometry is never written after this.
+  std::shared_ptr<const ShapeGeometry3> intern(const ShapeGeometry3& geometry);
+  // The copy intern would share, or null when this store holds none: one that was
+  // validated when it came in, so a pile of one hull is validated once.
+  std::shared_ptr<const ShapeGeometry3> findShared(const ShapeGeometry3& geometry) const;
+
   IdPool bodyIds, shapeIds;
   std::vector<Body3> bodies;
   std::vector<Shape3> shapes;
@@ -113,6 +128,15 @@ class BodyStore3 {
  private:
   void updateMass(std::uint32_t body);
   BroadPhase3 broadPhase_;
+  // Hulls by their bytes (the other kinds are small: each shape gets its own). Entries of
+  // hulls no shape holds any more expire and are swept when the map has doubled.
+  std::unordered_map<std::string, std::weak_ptr<const ShapeGeometry3>> hulls_;
+  std::size_t hullsSwept_ = 0;
+  struct MassMemo {
+    std::shared_ptr<const ShapeGeometry3> geometry;
+    float density = 0.0f;
+    MassProperties3 mass;
+  } massMemo_;
 };
 
 }  // namespace quack::detail

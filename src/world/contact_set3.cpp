@@ -16,8 +16,8 @@ bool isAwakeMover(const Body3& b) noexcept {
 // The radius a shape rolls on (spheres and capsules), or 0.
 float rollingRadius(const Shape3& s) noexcept {
   if (s.mesh) return 0.0f;
-  if (const Sphere* sphere = std::get_if<Sphere>(&s.geometry)) return sphere->radius;
-  if (const Capsule3* capsule = std::get_if<Capsule3>(&s.geometry)) return capsule->radius;
+  if (const Sphere* sphere = std::get_if<Sphere>(s.geometry.get())) return sphere->radius;
+  if (const Capsule3* capsule = std::get_if<Capsule3>(s.geometry.get())) return capsule->radius;
   return 0.0f;
 }
 
@@ -74,7 +74,7 @@ void carryImpulses(const ContactManifold3& old, ContactManifold3& now) noexcept 
 // point held fixed on a rolling ball would rise off the floor.
 bool isFlat(const Shape3& s) noexcept {
   if (s.mesh) return true;
-  const Hull3* hull = std::get_if<Hull3>(&s.geometry);
+  const Hull3* hull = std::get_if<Hull3>(s.geometry.get());
   return hull != nullptr && hull->radius == 0.0f;
 }
 
@@ -233,7 +233,7 @@ ContactSet3::Outcome ContactSet3::updateOne(Contact3& c, const BodyStore3& store
   const float reach = std::min(def.speculativeDistance + dt * closing, kMaxSpeculativeReach3);
   if (sa.mesh) {
     scratch.mesh.clear();
-    collideMesh(*sa.mesh, ba.transform(), sb.geometry, bb.transform(), scratch.mesh, reach);
+    collideMesh(*sa.mesh, ba.transform(), *sb.geometry, bb.transform(), scratch.mesh, reach);
     for (const MeshContact3& m : scratch.mesh) {
       ContactManifold3 cm;
       cm.triangle = m.triangle;
@@ -242,11 +242,11 @@ ContactSet3::Outcome ContactSet3::updateOne(Contact3& c, const BodyStore3& store
     }
   } else {
     ContactManifold3 cm;
-    const Hull3* ha = std::get_if<Hull3>(&sa.geometry);
-    const Hull3* hb = std::get_if<Hull3>(&sb.geometry);
+    const Hull3* ha = std::get_if<Hull3>(sa.geometry.get());
+    const Hull3* hb = std::get_if<Hull3>(sb.geometry.get());
     cm.manifold = ha != nullptr && hb != nullptr
                       ? collideHulls(*ha, ba.transform(), *hb, bb.transform(), reach, c.hullCache)
-                      : collide(sa.geometry, ba.transform(), sb.geometry, bb.transform(), reach);
+                      : collide(*sa.geometry, ba.transform(), *sb.geometry, bb.transform(), reach);
     if (cm.manifold.pointCount > 0) fresh.push_back(cm);
   }
   // Both lists are in triangle order, so one merge pass matches them.

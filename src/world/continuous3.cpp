@@ -36,7 +36,7 @@ float impact(const Shape3& s, Transform3 worldFromStatic, const ShapeProxy3& pro
     out = computeToiMesh(*s.mesh, worldFromStatic, proxy, sweep, tMax);
   } else {
     const Sweep3 still{Vec3{}, worldFromStatic.p, worldFromStatic.p, worldFromStatic.q, Vec3{}};
-    out = computeToi(makeProxy(s.geometry), still, proxy, sweep, tMax);
+    out = computeToi(makeProxy(*s.geometry), still, proxy, sweep, tMax);
   }
   touchingAtStart =
       (out.status == ToiStatus::hit || out.status == ToiStatus::overlapped) && out.t == 0.0f;
@@ -141,8 +141,8 @@ float Continuous3::meetStill(const BodyStore3& store, const Fast& f,
   float first = 1.0f;
   for (std::uint32_t shape : body.shapes) {
     const Shape3& moving = store.shapes[shape];
-    const ShapeProxy3 proxy = makeProxy(moving.geometry);
-    const ShapeProxy3 coreProxy = makeProxy(coreBall(moving.geometry, body.minExtent));
+    const ShapeProxy3 proxy = makeProxy(*moving.geometry);
+    const ShapeProxy3 coreProxy = makeProxy(coreBall(*moving.geometry, body.minExtent));
     const Aabb3 swept = body.shapes.size() == 1
                             ? f.box
                             : merge(store.shapeBox(shape, f.start), store.shapeBox(shape, end));
@@ -187,19 +187,19 @@ float Continuous3::meetMoving(const BodyStore3& store, const Fast& a, const Fast
     const Shape3& shapeA = store.shapes[sa];
     const Aabb3 boxA =
         oneShapeEach ? a.box : merge(store.shapeBox(sa, a.start), store.shapeBox(sa, endA));
-    const ShapeProxy3 proxyA = makeProxy(shapeA.geometry);
+    const ShapeProxy3 proxyA = makeProxy(*shapeA.geometry);
     for (std::uint32_t sb : bodyB.shapes) {
       const Shape3& shapeB = store.shapes[sb];
       if (!shouldCollide(shapeA.def.filter, shapeB.def.filter)) continue;
       if (!oneShapeEach &&
           !overlaps(boxA, merge(store.shapeBox(sb, b.start), store.shapeBox(sb, endB))))
         continue;
-      const ShapeProxy3 proxyB = makeProxy(shapeB.geometry);
+      const ShapeProxy3 proxyB = makeProxy(*shapeB.geometry);
       bool touching = false;
       float t = impactMoving(proxyA, a.sweep, proxyB, b.sweep, first, touching);
       if (touching) {
-        const ShapeProxy3 coreA = makeProxy(coreBall(shapeA.geometry, bodyA.minExtent));
-        const ShapeProxy3 coreB = makeProxy(coreBall(shapeB.geometry, bodyB.minExtent));
+        const ShapeProxy3 coreA = makeProxy(coreBall(*shapeA.geometry, bodyA.minExtent));
+        const ShapeProxy3 coreB = makeProxy(coreBall(*shapeB.geometry, bodyB.minExtent));
         t = std::min(impactMoving(coreA, a.sweep, proxyB, b.sweep, first, touching),
                      impactMoving(proxyA, a.sweep, coreB, b.sweep, first, touching));
       }
@@ -226,7 +226,7 @@ float Continuous3::meetStopped(const BodyStore3& store, const Fast& moving, cons
     const Aabb3 boxM = oneShapeEach ? Aabb3{}
                                     : merge(store.shapeBox(sm, transformAt(rest, 0.0f)),
                                             store.shapeBox(sm, bodyM.transform()));
-    const ShapeProxy3 proxy = makeProxy(shapeM.geometry);
+    const ShapeProxy3 proxy = makeProxy(*shapeM.geometry);
     for (std::uint32_t ss : bodyS.shapes) {
       const Shape3& shapeS = store.shapes[ss];
       if (!shouldCollide(shapeS.def.filter, shapeM.def.filter)) continue;
@@ -234,7 +234,7 @@ float Continuous3::meetStopped(const BodyStore3& store, const Fast& moving, cons
       bool touching = false;
       float t = impact(shapeS, worldFromStopped, proxy, rest, first, touching);
       if (touching) {
-        const ShapeProxy3 core = makeProxy(coreBall(shapeM.geometry, bodyM.minExtent));
+        const ShapeProxy3 core = makeProxy(coreBall(*shapeM.geometry, bodyM.minExtent));
         t = impact(shapeS, worldFromStopped, core, rest, first, touching);
       }
       first = std::min(first, t);

@@ -178,7 +178,7 @@ std::vector<std::uint8_t> encode(const WorldState3& s) {
         for (std::int32_t v : t.v)
           w.var(static_cast<std::uint32_t>(v));
     } else {
-      writeGeometry(w, sh.geometry);
+      writeGeometry(w, *sh.geometry);
     }
   }
 
@@ -472,11 +472,13 @@ Result<std::unique_ptr<WorldState3>> decode(std::span<const std::uint8_t> bytes,
         return fail(std::string(where) + "shape " + std::to_string(i) + ": " +
                     mesh.error().message);
       sh.mesh = std::make_shared<Mesh3>(std::move(mesh).value());
+      sh.geometry = std::make_shared<const ShapeGeometry3>(Sphere{});  // as createMeshShape's
     } else {
-      sh.geometry = readGeometry(r);
+      ShapeGeometry3 geometry = readGeometry(r);
       if (!r.ok()) break;
-      if (Status s = validateShape(sh.geometry); !s)
+      if (Status s = validateShape(geometry); !s)
         return fail(std::string(where) + "shape " + std::to_string(i) + ": " + s.message());
+      sh.geometry = std::make_shared<const ShapeGeometry3>(std::move(geometry));
     }
   }
   if (!r.ok()) return fail(std::string(where) + r.error());
@@ -565,6 +567,8 @@ Result<std::unique_ptr<WorldState3>> decode(std::span<const std::uint8_t> bytes,
   state->store.shapeIds = std::move(shapeIds).value();
   state->store.bodies = std::move(bodies);
   state->store.shapes = std::move(shapes);
+  for (Shape3& sh : state->store.shapes)  // shared again, as when they were made
+    if (sh.geometry && !sh.mesh) sh.geometry = state->store.intern(*sh.geometry);
   state->contacts.restore(std::move(contacts));
   state->events.begin = readEvents(r, "begin events", worldId, state->store.shapes.size());
   state->events.end = readEvents(r, "end events", worldId, state->store.shapes.size());

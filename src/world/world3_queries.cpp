@@ -53,7 +53,7 @@ RayHitResult3 castRay(const detail::WorldState3& w, std::uint32_t shape, Vec3 or
     return r;
   }
   const RayCastInput3 in{invTransformPoint(xf, origin), invRotate(xf.q, translation), maxFraction};
-  const RayHit3 h = rayCast(s.geometry, in);
+  const RayHit3 h = rayCast(*s.geometry, in);
   hit = h.hit;
   r.point = transformPoint(xf, h.point);
   r.normal = rotate(xf.q, h.normal);
@@ -132,7 +132,7 @@ Result<std::vector<ShapeOverlap3>> World3::overlapShape(const ShapeGeometry3& ge
     if (shape.mesh) {
       p = computePenetrationMesh(*shape.mesh, sx, query, xf);
     } else {
-      p = computePenetration(makeProxy(shape.geometry), sx, query, xf);
+      p = computePenetration(makeProxy(*shape.geometry), sx, query, xf);
     }
     if (p.overlap) out.push_back({w.shapeId(s), w.bodyId(shape.body), p.depth, p.depth * p.normal});
   }
@@ -160,7 +160,7 @@ Result<std::optional<ShapeCastResult3>> World3::castShape(const ShapeGeometry3& 
     const ShapeCastOutput3 out =
         shape.mesh
             ? castShapeMesh(*shape.mesh, sx, cast, xf, translation, maxFraction)
-            : quack::castShape(makeProxy(shape.geometry), sx, cast, xf, translation, maxFraction);
+            : quack::castShape(makeProxy(*shape.geometry), sx, cast, xf, translation, maxFraction);
     // In index order, so a later shape at an equal fraction does not replace the first.
     if (!out.hit || (best && out.fraction >= best->fraction)) continue;
     best =

@@ -107,6 +107,37 @@ TEST(World3Api, BadBodyAndShapeInputIsRefusedAndChangesNothing) {
   EXPECT_EQ(world.stepCount(), 0u);
 }
 
+// Shapes of one hull share a stored copy, validated once (docs/world3.md): a copy that
+// differs in one bit is still validated and refused, one body's density is not another's,
+// and a destroyed shape's hull can come back.
+TEST(World3Api, SharedHullsAreStillValidatedAndWeighedPerShape) {
+  World3 world = World3::create().value();
+  const Hull3 box = makeBox3({0.5f, 0.5f, 0.5f}).value();
+  const BodyId3 a = world.createBody({}).value();
+  const ShapeId3 first = world.createShape(a, {.density = 1.0f}, box).value();
+  Hull3 bent = box;
+  bent.faces[0].normal.x = -bent.faces[0].normal.x + 0.5f;  // no longer a unit normal
+  const BodyId3 b = world.createBody({.position = {3, 0, 0}}).value();
+  Result<ShapeId3> refused = world.createShape(b, {}, bent);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_TRUE(mentions(refused.error().message, "geometry")) << refused.error().message;
+  EXPECT_EQ(world.shapeCount(), 1u);
+  // The same hull at density 3 weighs 3 kg; the 1 kg body keeps its mass.
+  ASSERT_TRUE(world.createShape(b, {.density = 3.0f}, box).ok());
+  EXPECT_NEAR(world.mass(a), 1.0f, 1e-5f);
+  EXPECT_NEAR(world.mass(b), 3.0f, 1e-5f);
+  const BodyId3 c = world.createBody({.position = {6, 0, 0}}).value();
+  ASSERT_TRUE(world.createShape(c, {.density = 1.0f}, box).ok());
+  EXPECT_NEAR(world.mass(c), 1.0f, 1e-5f);
+  // Every shape of that hull gone, then the hull again: made, and the world still steps.
+  ASSERT_TRUE(world.destroyShape(first).ok());
+  ASSERT_TRUE(world.destroyBody(b).ok());
+  ASSERT_TRUE(world.destroyBody(c).ok());
+  ASSERT_TRUE(world.createShape(a, {.density = 2.0f}, box).ok());
+  EXPECT_NEAR(world.mass(a), 2.0f, 1e-5f);
+  ASSERT_TRUE(world.step(1.0f / 60.0f, 4).ok());
+}
+
 TEST(World3Api, StaleAndForeignHandlesAreCaught) {
   World3 world = World3::create().value();
   World3 other = World3::create().value();
