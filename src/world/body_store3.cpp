@@ -77,7 +77,7 @@ Aabb3 proxyBox(const ShapeProxy3& proxy, Transform3 xf) noexcept {
 }
 
 Result<std::uint32_t> BodyStore3::addShape(std::uint32_t body, const ShapeDef3& def,
-                                           const ShapeGeometry3& geometry,
+                                           std::shared_ptr<const ShapeGeometry3> geometry,
                                            std::shared_ptr<Mesh3> mesh) {
   const std::uint32_t index = shapeIds.allocate();
   if (index >= shapes.size()) shapes.resize(index + 1);
@@ -85,7 +85,7 @@ Result<std::uint32_t> BodyStore3::addShape(std::uint32_t body, const ShapeDef3& 
   s = Shape3{};
   s.body = body;
   s.def = def;
-  s.geometry = intern(geometry);
+  s.geometry = std::move(geometry);
   s.mesh = std::move(mesh);
   const ProxyKind kind =
       bodies[body].type == BodyType::staticBody ? ProxyKind::staticProxy : ProxyKind::dynamicProxy;
@@ -119,6 +119,12 @@ class KeyWriter {
     put(v.y);
     put(v.z);
   }
+  template <class T>
+  void put(const T* values, std::size_t count) noexcept {
+    static_assert(std::is_trivially_copyable_v<T>);
+    std::memcpy(at_, values, count * sizeof(T));
+    at_ += count * sizeof(T);
+  }
   std::string take() noexcept { return std::move(key_); }
 
  private:
@@ -137,41 +143,38 @@ std::string hullKey(const Hull3& h) {
   w.put(h.edgeCount);
   w.put(h.radius);
   w.put(h.centroid);
-  for (std::size_t i = 0; i < v; ++i)
-    w.put(h.vertices[i]);
+  static_assert(sizeof(Vec3) == 3 * sizeof(float), "vertices copy as their floats");
+  w.put(h.vertices, v);
   for (std::size_t i = 0; i < f; ++i) {
     w.put(h.faces[i].normal);
     w.put(h.faces[i].offset);
     w.put(h.faces[i].first);
     w.put(h.faces[i].count);
   }
-  for (std::size_t i = 0; i < e; ++i)
-    w.put(h.edges[i]);
-  for (std::size_t i = 0; i < 2 * e; ++i)
-    w.put(h.faceVertices[i]);
+  w.put(h.edges, e);
+  w.put(h.faceVertices, 2 * e);
   return w.take();
 }
 
 }  // namespace
 
-std::shared_ptr<const ShapeGeometry3> BodyStore3::findShared(const ShapeGeometry3& geometry) const {
+Result<std::shared_ptr<const ShapeGeometry3>> SharedGeometries3::intern(
+    const ShapeGeometry3& geometry, Status (*validate)(const ShapeGeometry3&)) {
   const Hull3* hull = std::get_if<Hull3>(&geometry);
-  if (hull == nullptr) return nullptr;
-  const auto found = hulls_.find(hullKey(*hull));
-  return found == hulls_.end() ? nullptr : found->second.lock();
-}
-
-std::shared_ptr<const ShapeGeometry3> BodyStore3::intern(const ShapeGeometry3& geometry) {
-  const Hull3* hull = std::get_if<Hull3>(&geometry);
-  if (hull == nullptr) return std::make_shared<const ShapeGeometry3>(geometry);
+  if (hull == nullptr) {
+    if (Status s = validate(geometry); !s) return Error{s.message()};
+    return std::make_shared<const ShapeGeometry3>(geometry);
+  }
   std::string key = hullKey(*hull);
-  std::weak_ptr<const ShapeGeometry3>& entry = hulls_[key];
-  if (std::shared_ptr<const ShapeGeometry3> held = entry.lock()) return held;
+  if (const auto found = hulls_.find(key); found != hulls_.end()) {
+    if (std::shared_ptr<const ShapeGeometry3> held = found->second.lock()) return held;
+  }
+  if (Status s = validate(geometry); !s) return Error{s.message()};
   auto made = std::make_shared<const ShapeGeometry3>(geometry);
-  entry = made;
-  if (hulls_.size() > 2 * hullsSwept_ + 64) {
+  hulls_.insert_or_assign(std::move(key), made);
+  if (hulls_.size() > 2 * swept_ + 64) {
     std::erase_if(hulls_, [](const auto& kv) { return kv.second.expired(); });
-    hullsSwept_ = hulls_.size();
+    swept_ = hulls_.size();
   }
   return made;
 }

@@ -78,12 +78,29 @@ struct Shape3 {
   std::uint32_t body = 0;
   ShapeDef3 def;
   // Shared, read-only, by every shape of this store whose geometry is the same to the bit
-  // (BodyStore3::intern): a pile of one hull reads one copy that stays in cache, where a
+  // (SharedGeometries3): a pile of one hull reads one copy that stays in cache, where a
   // 3.6 KB copy per shape made each hull pair a trip to memory. Null for a free slot; a
   // sphere's placeholder when mesh is set.
   std::shared_ptr<const ShapeGeometry3> geometry;
   std::shared_ptr<Mesh3> mesh;  // a static body's triangle mesh
   ProxyId proxy;
+};
+
+// Shapes' geometries, stored once for all the shapes whose bytes are equal (every used
+// field, bit for bit): a pile of one hull reads one copy, and validates it once.
+class SharedGeometries3 {
+ public:
+  // The stored copy of `geometry`: the one already held when one is equal, else a new one,
+  // made only if `validate` passes it (its error returned as it is). Sharing changes no
+  // result: a stored geometry is never written.
+  Result<std::shared_ptr<const ShapeGeometry3>> intern(const ShapeGeometry3& geometry,
+                                                       Status (*validate)(const ShapeGeometry3&));
+
+ private:
+  // Hulls by their bytes (the other kinds are small: each shape gets its own). Entries of
+  // hulls no shape holds any more expire and are swept when the map has doubled.
+  std::unordered_map<std::string, std::weak_ptr<const ShapeGeometry3>> hulls_;
+  std::size_t swept_ = 0;
 };
 
 class BodyStore3 {
@@ -96,7 +113,8 @@ class BodyStore3 {
   // Adds a shape (validated by the caller) and recomputes the body's mass. Fails only when
   // the broad phase refuses its box (beyond kMaxCoordinate).
   Result<std::uint32_t> addShape(std::uint32_t body, const ShapeDef3& def,
-                                 const ShapeGeometry3& geometry, std::shared_ptr<Mesh3> mesh);
+                                 std::shared_ptr<const ShapeGeometry3> geometry,
+                                 std::shared_ptr<Mesh3> mesh);
   void removeShape(std::uint32_t shape);
 
   // The body's origin from its centre of mass and rotation, after the solver moved it.
@@ -111,13 +129,7 @@ class BodyStore3 {
   Aabb3 shapeBox(std::uint32_t shape) const;
   Aabb3 shapeBox(std::uint32_t shape, Transform3 worldFromBody) const;
 
-  // The stored copy of `geometry`: the one another shape of this store already holds when
-  // their bytes are equal (every used field, bit for bit), else a new one. Sharing changes
-  // no result: the geometry is never written after this.
-  std::shared_ptr<const ShapeGeometry3> intern(const ShapeGeometry3& geometry);
-  // The copy intern would share, or null when this store holds none: one that was
-  // validated when it came in, so a pile of one hull is validated once.
-  std::shared_ptr<const ShapeGeometry3> findShared(const ShapeGeometry3& geometry) const;
+  SharedGeometries3 geometries;
 
   IdPool bodyIds, shapeIds;
   std::vector<Body3> bodies;
@@ -128,10 +140,6 @@ class BodyStore3 {
  private:
   void updateMass(std::uint32_t body);
   BroadPhase3 broadPhase_;
-  // Hulls by their bytes (the other kinds are small: each shape gets its own). Entries of
-  // hulls no shape holds any more expire and are swept when the map has doubled.
-  std::unordered_map<std::string, std::weak_ptr<const ShapeGeometry3>> hulls_;
-  std::size_t hullsSwept_ = 0;
   struct MassMemo {
     std::shared_ptr<const ShapeGeometry3> geometry;
     float density = 0.0f;

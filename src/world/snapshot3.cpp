@@ -444,6 +444,7 @@ Result<std::unique_ptr<WorldState3>> decode(std::span<const std::uint8_t> bytes,
   Result<IdPool> shapeIds = pool(r, "shape slots");
   if (!shapeIds) return fail(std::string(where) + shapeIds.error().message);
   std::vector<Shape3> shapes(shapeIds.value().capacity());
+  SharedGeometries3 geometries;
   for (std::uint32_t i = 0; i < shapes.size() && r.ok(); ++i) {
     if (!shapeIds.value().isAlive(i)) continue;
     Shape3& sh = shapes[i];
@@ -476,9 +477,13 @@ Result<std::unique_ptr<WorldState3>> decode(std::span<const std::uint8_t> bytes,
     } else {
       ShapeGeometry3 geometry = readGeometry(r);
       if (!r.ok()) break;
-      if (Status s = validateShape(geometry); !s)
-        return fail(std::string(where) + "shape " + std::to_string(i) + ": " + s.message());
-      sh.geometry = std::make_shared<const ShapeGeometry3>(std::move(geometry));
+      // Validated, and shared as when the shapes were made.
+      Result<std::shared_ptr<const ShapeGeometry3>> stored =
+          geometries.intern(geometry, validateShape);
+      if (!stored)
+        return fail(std::string(where) + "shape " + std::to_string(i) + ": " +
+                    stored.error().message);
+      sh.geometry = std::move(stored).value();
     }
   }
   if (!r.ok()) return fail(std::string(where) + r.error());
@@ -567,8 +572,7 @@ Result<std::unique_ptr<WorldState3>> decode(std::span<const std::uint8_t> bytes,
   state->store.shapeIds = std::move(shapeIds).value();
   state->store.bodies = std::move(bodies);
   state->store.shapes = std::move(shapes);
-  for (Shape3& sh : state->store.shapes)  // shared again, as when they were made
-    if (sh.geometry && !sh.mesh) sh.geometry = state->store.intern(*sh.geometry);
+  state->store.geometries = std::move(geometries);
   state->contacts.restore(std::move(contacts));
   state->events.begin = readEvents(r, "begin events", worldId, state->store.shapes.size());
   state->events.end = readEvents(r, "end events", worldId, state->store.shapes.size());

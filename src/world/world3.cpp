@@ -169,13 +169,10 @@ Result<ShapeId3> World3::createShape(BodyId3 body, const ShapeDef3& def,
   if (!isValid(body)) return fail("createShape: body: null, stale or another world's handle");
   if (Status s = checkShapeDef(def); !s) return Error{s.message()};
   detail::BodyStore3& store = state_->store;
-  // A hull this world already holds, equal to the bit, was validated when it came in:
-  // a pile of one hull pays for that once (validation was 30% of building Box3D's pile).
-  if (store.findShared(geometry) == nullptr) {
-    if (Status s = validateShape(geometry); !s)
-      return fail("createShape: geometry: " + s.message());
-  }
-  Result<std::uint32_t> shape = store.addShape(body.index, def, geometry, nullptr);
+  Result<std::shared_ptr<const ShapeGeometry3>> stored =
+      store.geometries.intern(geometry, validateShape);
+  if (!stored) return fail("createShape: geometry: " + stored.error().message);
+  Result<std::uint32_t> shape = store.addShape(body.index, def, std::move(stored).value(), nullptr);
   if (!shape) return Error{shape.error()};
   detail::Body3& b = store.bodies[body.index];
   b.awake = true;
@@ -191,7 +188,9 @@ Result<ShapeId3> World3::createShape(BodyId3 body, const ShapeDef3& def, Mesh3 m
     return fail("createShape: mesh: a triangle mesh may only be put on a static body");
   }
   auto shared = std::make_shared<Mesh3>(std::move(mesh));
-  Result<std::uint32_t> shape = store.addShape(body.index, def, Sphere{}, std::move(shared));
+  // A mesh shape's geometry is a placeholder nothing reads (the mesh is the shape).
+  Result<std::uint32_t> shape = store.addShape(
+      body.index, def, std::make_shared<const ShapeGeometry3>(Sphere{}), std::move(shared));
   if (!shape) return Error{shape.error()};
   return ShapeId3{shape.value(), store.shapeIds.generation(shape.value()), state_->id};
 }
