@@ -15,6 +15,7 @@
 #include <iostream>
 #include <optional>
 #include <ostream>
+#include <span>
 #include <string_view>
 #include <thread>
 #include <utility>
@@ -345,7 +346,11 @@ std::string writeRunSnapshot(const EventTotals& totals, const std::vector<std::u
 // Reads a run snapshot file into the world and the totals; the message names the file.
 // The header is read and checked before the rest, so that a file that is not a snapshot
 // (or an endless one, /dev/zero) is refused without reading it whole.
-Status readRunSnapshot(const std::string& path, World& world, EventTotals& totals) {
+// `restore` puts the world's part of the file into the world (World::restore or
+// World3::restore); the run snapshot's header is the same for 2D and 3D.
+Status readRunSnapshot(const std::string& path,
+                       const std::function<Status(std::span<const std::uint8_t>)>& restore,
+                       EventTotals& totals) {
   std::error_code ec;
   if (fs::is_directory(path, ec)) return fail(path + ": is a directory");
   std::FILE* f = std::fopen(path.c_str(), "rb");
@@ -379,7 +384,7 @@ Status readRunSnapshot(const std::string& path, World& world, EventTotals& total
   if (std::ferror(f) != 0) return closed(fail(path + ": read error"));
   std::fclose(f);
   EventTotals t{get(12, 8), get(20, 8), get(28, 8), get(36, 8)};
-  Status s = world.restore(std::span<const std::uint8_t>(bytes).subspan(kRunHeader));
+  Status s = restore(std::span<const std::uint8_t>(bytes).subspan(kRunHeader));
   if (!s) return fail(path + ": " + s.message());
   totals = t;
   return {};
@@ -588,7 +593,10 @@ int runScene2(RunContext& run, Scene& scene, double loadMs,
 
   EventTotals totals;
   if (!options.resume.empty()) {
-    if (Status s = readRunSnapshot(options.resume, sw.world, totals); !s) {
+    if (Status s = readRunSnapshot(
+            options.resume, [&](std::span<const std::uint8_t> b) { return sw.world.restore(b); },
+            totals);
+        !s) {
       err << "quack run: --resume " << s.message() << '\n';
       return kRunFailed;
     }
@@ -734,9 +742,6 @@ bool checkOptions3(const RunOptions& options, std::ostream& err) {
     err << "quack run: " << option << ": " << why << " (" << options.scene << " is a 3D scene)\n";
     return false;
   };
-  if (!options.snapshotFile.empty())
-    return refuse("--snapshot-at", "the 3D world has no snapshots yet");
-  if (!options.resume.empty()) return refuse("--resume", "the 3D world has no snapshots yet");
   if (!options.svg.empty())
     return refuse("--svg",
                   "a 3D scene has no SVG picture; its picture is the WebGL replay (--html)");
@@ -761,35 +766,78 @@ int runScene3(RunContext& run, Scene3& scene, double loadMs,
                                          [&] { return buildWorld3(scene, bodiesProgress); });
   if (!built) return built.error().message.empty() ? interruptedStatus() : kRunFailed;
   SceneWorld3& sw = built.value();
+  const bool snapshotWanted = !options.snapshotFile.empty();
+
+  EventTotals totals;
+  if (!options.resume.empty()) {
+    // A 3D snapshot holds the whole world, so it would put any world in place of this
+    // scene's: one of another scene (other bodies or shapes) is refused, or the state file
+    // would give this scene's names to another's bodies.
+    const std::size_t bodies = sw.world.bodyCount(), shapes = sw.world.shapeCount();
+    if (Status s = readRunSnapshot(
+            options.resume, [&](std::span<const std::uint8_t> b) { return sw.world.restore(b); },
+            totals);
+        !s) {
+      err << "quack run: --resume " << s.message() << '\n';
+      return kRunFailed;
+    }
+    const bool same = sw.world.bodyCount() == bodies && sw.world.shapeCount() == shapes &&
+                      std::all_of(sw.bodies.begin(), sw.bodies.end(),
+                                  [&](BodyId3 b) { return sw.world.isValid(b); });
+    if (!same) {
+      err << "quack run: --resume " << options.resume << ": the snapshot is of another scene ("
+          << sw.world.bodyCount() << " bodies, " << sw.world.shapeCount() << " shapes; "
+          << options.scene << " has " << bodies << " and " << shapes << ")\n";
+      return kRunFailed;
+    }
+    if (sw.world.stepCount() > options.steps) {
+      err << "quack run: --resume " << options.resume << ": the snapshot is at step "
+          << sw.world.stepCount() << ", after --steps " << options.steps << '\n';
+      return kRunFailed;
+    }
+    if (snapshotWanted && options.snapshotAt < sw.world.stepCount()) {
+      err << "quack run: --snapshot-at: step " << options.snapshotAt
+          << " is before the resumed run's first (" << sw.world.stepCount() << ")\n";
+      return kRunFailed;
+    }
+  }
+  const std::uint64_t firstStep = sw.world.stepCount();
+  const std::uint64_t stepsToRun = options.steps - firstStep;
+  // The snapshot, taken when the world reaches its step (before the loop when that is now).
+  auto takeSnapshot = [&] {
+    if (snapshotWanted && sw.world.stepCount() == options.snapshotAt)
+      run.text("--snapshot-at") = writeRunSnapshot(totals, sw.world.snapshot());
+  };
+  takeSnapshot();
 
   // The replay draws the scene's shapes (World3 does not hand them back), so the parsed
   // scene is kept.
   std::optional<ReplayRecorder3> replay;
   if (!options.html.empty()) {
-    replay.emplace(scene, sw, options.steps + 1);
+    replay.emplace(scene, sw, stepsToRun + 1);
     replay->record(sw);
   }
 
   run.phase("simulate");
-  EventTotals totals;
   std::string eventLines;
   auto t0 = Clock::now();
-  const int simulated = simulate(run, options.steps, [&](std::uint64_t i) {
+  const int simulated = simulate(run, stepsToRun, [&](std::uint64_t i) {
     if (Status s = sw.world.step(); !s) {
-      err << "quack run: step " << i + 1 << ": " << s.message() << '\n';
+      err << "quack run: step " << firstStep + i + 1 << ": " << s.message() << '\n';
       return kRunFailed;
     }
     const StepEvents3& e = sw.world.events();
     totals.begin += e.begin.size();
     totals.end += e.end.size();
-    if (!options.events.empty()) appendEventLines3(eventLines, i + 1, e);
+    if (!options.events.empty()) appendEventLines3(eventLines, firstStep + i + 1, e);
     if (replay) replay->record(sw);
+    takeSnapshot();
     return kRunOk;
   });
   if (simulated != kRunOk) return simulated;
   const double simulateMs = msSince(t0);
   progress.end([&] {
-    return std::to_string(options.steps) + " steps in " + formatSeconds(simulateMs / 1000.0);
+    return std::to_string(stepsToRun) + " steps in " + formatSeconds(simulateMs / 1000.0);
   });
   if (gSignal != 0) return interruptedStatus();
 
@@ -811,7 +859,7 @@ int runScene3(RunContext& run, Scene3& scene, double loadMs,
   if (int s = commitOutputs(
           run,
           [&](double ms) {
-            return timingJson(options.steps, threads, loadMs, buildMs, simulateMs, renderMs, ms);
+            return timingJson(stepsToRun, threads, loadMs, buildMs, simulateMs, renderMs, ms);
           },
           writeMs);
       s != kRunOk) {
@@ -824,8 +872,7 @@ int runScene3(RunContext& run, Scene3& scene, double loadMs,
     if (sw.world.bodyType(b) == BodyType::dynamicBody) ++dynamicBodies;
     if (sw.world.bodyType(b) != BodyType::staticBody) ++movingBodies;
   }
-  const double msPerStep =
-      options.steps > 0 ? simulateMs / static_cast<double>(options.steps) : 0.0;
+  const double msPerStep = stepsToRun > 0 ? simulateMs / static_cast<double>(stepsToRun) : 0.0;
   char line[256];
   out << "scene     " << options.scene << " (3D)\n";
   std::snprintf(line, sizeof line, "bodies    %zu (%zu dynamic), %zu shapes\n",

@@ -500,8 +500,60 @@ TEST_F(Run, A3DSceneWritesItsStateEventsAndReplay) {
   EXPECT_EQ(read(at("again.json")), text);
 }
 
-// What the 3D world cannot do yet is refused before anything is built, naming the option,
-// and writes nothing; --threads is noted and the run goes on with one thread.
+// A 3D run stopped at a snapshot and resumed from it ends in the straight run's state file,
+// and its event lines are the straight run's from the snapshot on (step numbers counted
+// from the scene's start). A snapshot of another 3D scene, or of a step past --steps, is
+// refused naming why, and writes nothing.
+TEST_F(Run, A3DRunResumedFromItsSnapshotEndsAsTheStraightRun) {
+  RunOptions straight = options("hulls-3d.json", 90);
+  straight.out = at("straight.json");
+  straight.events = at("straight.jsonl");
+  ASSERT_EQ(run(straight), kRunOk) << err_.str();
+  RunOptions first = options("hulls-3d.json", 40);
+  first.out = at("first.json");
+  first.snapshotAt = 40;
+  first.snapshotFile = at("40.snap");
+  ASSERT_EQ(run(first), kRunOk) << err_.str();
+  RunOptions resumed = options("hulls-3d.json", 90);
+  resumed.out = at("resumed.json");
+  resumed.resume = at("40.snap");
+  resumed.events = at("resumed.jsonl");
+  ASSERT_EQ(run(resumed), kRunOk) << err_.str();
+  EXPECT_EQ(read(at("resumed.json")), read(at("straight.json")));
+  const std::string all = read(at("straight.jsonl"));
+  const std::string tail = read(at("resumed.jsonl"));
+  ASSERT_FALSE(tail.empty());
+  // The straight run's lines after step 40: from the first whose step number is above 40.
+  const std::string head = "{\"step\": ";
+  std::size_t from = std::string::npos;
+  for (std::size_t line = 0; line < all.size(); line = all.find('\n', line) + 1) {
+    if (all.compare(line, head.size(), head) == 0 &&
+        std::stoul(all.substr(line + head.size())) > 40) {
+      from = line;
+      break;
+    }
+    if (all.find('\n', line) == std::string::npos) break;
+  }
+  ASSERT_NE(from, std::string::npos) << "the straight run has no events after step 40";
+  EXPECT_EQ(tail, all.substr(from));
+
+  RunOptions other = options("cards-3d.json", 90);
+  other.out = at("other.json");
+  other.resume = at("40.snap");
+  EXPECT_EQ(run(other), kRunFailed);
+  EXPECT_NE(err_.str().find("the snapshot is of another scene"), std::string::npos) << err_.str();
+  EXPECT_FALSE(fs::exists(at("other.json")));
+  RunOptions early = options("hulls-3d.json", 30);
+  early.out = at("early.json");
+  early.resume = at("40.snap");
+  EXPECT_EQ(run(early), kRunFailed);
+  EXPECT_NE(err_.str().find("the snapshot is at step 40, after --steps 30"), std::string::npos)
+      << err_.str();
+  EXPECT_FALSE(fs::exists(at("early.json")));
+}
+
+// What the 3D world cannot do is refused before anything is built, naming the option, and
+// writes nothing; --threads N runs it on N workers.
 TEST_F(Run, A3DSceneRefusesWhatTheWorldLacksAndRunsOnAnyThreads) {
   struct Case {
     std::function<void(RunOptions&)> set;
@@ -509,13 +561,6 @@ TEST_F(Run, A3DSceneRefusesWhatTheWorldLacksAndRunsOnAnyThreads) {
   };
   const Case cases[] = {
       {[this](RunOptions& o) { o.svg = at("last.svg"); }, "--svg: a 3D scene has no SVG picture"},
-      {[this](RunOptions& o) {
-         o.snapshotAt = 2;
-         o.snapshotFile = at("snap.bin");
-       },
-       "--snapshot-at: the 3D world has no snapshots yet"},
-      {[this](RunOptions& o) { o.resume = at("state.json"); },
-       "--resume: the 3D world has no snapshots yet"},
       {[this](RunOptions& o) {
          o.html = at("r.html");
          o.htmlBoxes = true;
