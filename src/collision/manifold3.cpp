@@ -256,8 +256,8 @@ namespace {
 // separation is `faceSeparation`: the incident face clipped to the reference face's sides.
 // False, and `result` untouched, when the clipped points lost the deepest vertex.
 bool faceContact(const Hull3& a, Transform3 worldFromA, const Hull3& b, Transform3 worldFromB,
-                 bool refOnB, int faceIndex, float faceSeparation, float speculativeDistance,
-                 Manifold3& result) noexcept {
+                 const HullSatData3& dataA, const HullSatData3& dataB, bool refOnB, int faceIndex,
+                 float faceSeparation, float speculativeDistance, Manifold3& result) noexcept {
   const Hull3& ref = refOnB ? b : a;
   const Hull3& inc = refOnB ? a : b;
   const Transform3 worldFromRef = refOnB ? worldFromB : worldFromA;
@@ -340,11 +340,8 @@ bool faceContact(const Hull3& a, Transform3 worldFromA, const Hull3& b, Transfor
   float minSep = std::numeric_limits<float>::infinity();
   for (int i = 0; i < n2; ++i)
     minSep = minf(minSep, pts[i].separation);
-  // The root of the largest square is the largest root (sqrt is monotonic), one root.
-  float size2 = 0.0f;
-  for (int i = 0; i < ref.vertexCount; ++i)
-    size2 = maxf(size2, lengthSquared(ref.vertices[i] - ref.centroid));
-  const float size = std::sqrt(size2);
+  // The reference hull's largest vertex distance from its centroid.
+  const float size = std::sqrt((refOnB ? dataB : dataA).size2);
   if (n2 == 0 || minSep > faceSeparation + kClipLostSupportRelative * size) return false;
   n2 = reduceToFour(pts, n2, normalWorld);
   Manifold3& m = result;
@@ -359,10 +356,11 @@ bool faceContact(const Hull3& a, Transform3 worldFromA, const Hull3& b, Transfor
 // `speculativeDistance`; collideHulls adds the radii (their sum: `radii`).
 // With `cache`, a pair found apart leaves its separating axis there.
 Manifold3 collideHullCores(const Hull3& a, Transform3 worldFromA, const Hull3& b,
-                           Transform3 worldFromB, float speculativeDistance, float radii,
+                           Transform3 worldFromB, const HullSatData3& dataA,
+                           const HullSatData3& dataB, float speculativeDistance, float radii,
                            HullPairCache3* cache) noexcept {
   Manifold3 m;
-  SatOutput3 sat = computeSat(a, worldFromA, b, worldFromB, speculativeDistance);
+  SatOutput3 sat = computeSat(a, dataA, worldFromA, b, dataB, worldFromB, speculativeDistance);
   if (sat.separation > speculativeDistance) {
     if (cache != nullptr) {
       cache->axis = invRotate(worldFromA.q, sat.normal);
@@ -384,8 +382,9 @@ Manifold3 collideHullCores(const Hull3& a, Transform3 worldFromA, const Hull3& b
     // up to kLinearSlop more than the true one; hulls that are apart get no face points
     // that overlap (the face's own separation must not be below the radii).
     Manifold3 face;
-    if (faceContact(a, worldFromA, b, worldFromB, sat.faceFeature == SatFeature3::faceB,
-                    sat.faceIndex, sat.faceSeparation, speculativeDistance, face)) {
+    if (faceContact(a, worldFromA, b, worldFromB, dataA, dataB,
+                    sat.faceFeature == SatFeature3::faceB, sat.faceIndex, sat.faceSeparation,
+                    speculativeDistance, face)) {
       float minSep = std::numeric_limits<float>::infinity();
       for (int i = 0; i < face.pointCount; ++i)
         minSep = minf(minSep, face.points[i].separation);
@@ -419,8 +418,8 @@ Manifold3 collideHullCores(const Hull3& a, Transform3 worldFromA, const Hull3& b
     return m;
   }
 
-  if (!faceContact(a, worldFromA, b, worldFromB, sat.feature == SatFeature3::faceB, sat.faceIndex,
-                   sat.separation, speculativeDistance, m))
+  if (!faceContact(a, worldFromA, b, worldFromB, dataA, dataB, sat.feature == SatFeature3::faceB,
+                   sat.faceIndex, sat.separation, speculativeDistance, m))
     return collideGeneral(coreProxy(a), worldFromA, coreProxy(b), worldFromB, speculativeDistance);
   return m;
 }
@@ -430,7 +429,8 @@ Manifold3 collideHullCores(const Hull3& a, Transform3 worldFromA, const Hull3& b
 namespace {
 
 Manifold3 collideHullsWith(const Hull3& a, Transform3 worldFromA, const Hull3& b,
-                           Transform3 worldFromB, float speculativeDistance,
+                           Transform3 worldFromB, const HullSatData3& dataA,
+                           const HullSatData3& dataB, float speculativeDistance,
                            HullPairCache3* cache) noexcept {
   const float radii = a.radius + b.radius;
   if (cache != nullptr && cache->valid) {
@@ -449,13 +449,14 @@ Manifold3 collideHullsWith(const Hull3& a, Transform3 worldFromA, const Hull3& b
     if (gap > speculativeDistance + radii + 1e-5f * (size + length(aFromB.p))) return {};
   }
   if (radii == 0.0f)
-    return collideHullCores(a, worldFromA, b, worldFromB, speculativeDistance, 0.0f, cache);
+    return collideHullCores(a, worldFromA, b, worldFromB, dataA, dataB, speculativeDistance, 0.0f,
+                            cache);
   // Rounded hulls: the cores' manifold with the radii added to the speculative distance,
   // each point's separation less the radii and the point moved from midway between the
   // cores to midway between the rounded surfaces (A's surface is ra further along the
   // normal, B's rb back), as the capsules' points are; as Box2D's rounded polygons do.
-  const Manifold3 core =
-      collideHullCores(a, worldFromA, b, worldFromB, speculativeDistance + radii, radii, cache);
+  const Manifold3 core = collideHullCores(a, worldFromA, b, worldFromB, dataA, dataB,
+                                          speculativeDistance + radii, radii, cache);
   Manifold3 m;
   m.normal = core.normal;
   const Vec3 shift = (0.5f * (a.radius - b.radius)) * core.normal;
@@ -472,12 +473,20 @@ Manifold3 collideHullsWith(const Hull3& a, Transform3 worldFromA, const Hull3& b
 
 Manifold3 collideHulls(const Hull3& a, Transform3 worldFromA, const Hull3& b, Transform3 worldFromB,
                        float speculativeDistance) noexcept {
-  return collideHullsWith(a, worldFromA, b, worldFromB, speculativeDistance, nullptr);
+  return collideHullsWith(a, worldFromA, b, worldFromB, makeHullSatData3(a), makeHullSatData3(b),
+                          speculativeDistance, nullptr);
 }
 
 Manifold3 collideHulls(const Hull3& a, Transform3 worldFromA, const Hull3& b, Transform3 worldFromB,
                        float speculativeDistance, HullPairCache3& cache) noexcept {
-  return collideHullsWith(a, worldFromA, b, worldFromB, speculativeDistance, &cache);
+  return collideHullsWith(a, worldFromA, b, worldFromB, makeHullSatData3(a), makeHullSatData3(b),
+                          speculativeDistance, &cache);
+}
+
+Manifold3 collideHulls(const Hull3& a, const HullSatData3& dataA, Transform3 worldFromA,
+                       const Hull3& b, const HullSatData3& dataB, Transform3 worldFromB,
+                       float speculativeDistance, HullPairCache3& cache) noexcept {
+  return collideHullsWith(a, worldFromA, b, worldFromB, dataA, dataB, speculativeDistance, &cache);
 }
 
 namespace {

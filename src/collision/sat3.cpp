@@ -34,35 +34,15 @@ constexpr float kBoundSlackRelative = 1e-4f;
 constexpr int kLanes = 4;
 static_assert(kMaxHullVertices3 % kLanes == 0, "vertex columns pad within the array");
 
-// A hull's vertices as columns, padded to a multiple of kLanes with copies of vertex 0 (a
-// repeated vertex leaves a least projection alone).
-struct VertexColumns {
-  alignas(16) float x[kMaxHullVertices3];
-  alignas(16) float y[kMaxHullVertices3];
-  alignas(16) float z[kMaxHullVertices3];
-  int count;
-};
-
-void loadColumns(const Hull3& h, VertexColumns& c) noexcept {
-  const int n = (h.vertexCount + kLanes - 1) / kLanes * kLanes;
-  for (int i = 0; i < n; ++i) {
-    const Vec3 v = h.vertices[i < h.vertexCount ? i : 0];
-    c.x[i] = v.x;
-    c.y[i] = v.y;
-    c.z[i] = v.z;
-  }
-  c.count = n;
-}
-
 // Least projection of the vertices on `direction` (the hull's frame), each product formed
 // as dot() forms it, so the value is the one a loop over dot() gives.
-float minProjection(const VertexColumns& c, Vec3 direction) noexcept {
+float minProjection(const HullSatData3& c, Vec3 direction) noexcept {
 #if defined(__SSE2__)
   const __m128 dx = _mm_set1_ps(direction.x);
   const __m128 dy = _mm_set1_ps(direction.y);
   const __m128 dz = _mm_set1_ps(direction.z);
   __m128 best = _mm_set1_ps(std::numeric_limits<float>::infinity());
-  for (int i = 0; i < c.count; i += kLanes) {
+  for (int i = 0; i < c.columnCount; i += kLanes) {
     const __m128 p = _mm_add_ps(
         _mm_add_ps(_mm_mul_ps(_mm_load_ps(c.x + i), dx), _mm_mul_ps(_mm_load_ps(c.y + i), dy)),
         _mm_mul_ps(_mm_load_ps(c.z + i), dz));
@@ -73,7 +53,7 @@ float minProjection(const VertexColumns& c, Vec3 direction) noexcept {
   return _mm_cvtss_f32(best);
 #else
   float best = std::numeric_limits<float>::infinity();
-  for (int i = 0; i < c.count; ++i)
+  for (int i = 0; i < c.columnCount; ++i)
     best = minf(best, c.x[i] * direction.x + c.y[i] * direction.y + c.z[i] * direction.z);
   return best;
 #endif
@@ -172,31 +152,46 @@ unsigned crossingLanes(const ArcColumns& arcs, int first, const EdgeArcA& e) noe
 
 }  // namespace
 
+HullSatData3 makeHullSatData3(const Hull3& h) noexcept {
+  HullSatData3 d;
+  // The largest squared distance of a vertex from the centroid (computeSat takes the root
+  // of the larger of two hulls': sqrt is monotonic, the root of the largest square is the
+  // largest root).
+  for (int i = 0; i < h.vertexCount; ++i)
+    d.size2 = maxf(d.size2, lengthSquared(h.vertices[i] - h.centroid));
+  d.inradius = inradius(h);
+  const int n = (h.vertexCount + kLanes - 1) / kLanes * kLanes;
+  for (int i = 0; i < n; ++i) {
+    const Vec3 v = h.vertices[i < h.vertexCount ? i : 0];
+    d.x[i] = v.x;
+    d.y[i] = v.y;
+    d.z[i] = v.z;
+  }
+  d.columnCount = n;
+  return d;
+}
+
 SatOutput3 computeSat(const Hull3& a, Transform3 worldFromA, const Hull3& b, Transform3 worldFromB,
+                      float stopAbove) noexcept {
+  return computeSat(a, makeHullSatData3(a), worldFromA, b, makeHullSatData3(b), worldFromB,
+                    stopAbove);
+}
+
+SatOutput3 computeSat(const Hull3& a, const HullSatData3& columnsA, Transform3 worldFromA,
+                      const Hull3& b, const HullSatData3& columnsB, Transform3 worldFromB,
                       float stopAbove) noexcept {
   const Transform3 aFromB = invMul(worldFromA, worldFromB);
   const Transform3 bFromA = inverse(aFromB);
   SatOutput3 out;
-  // The largest distance of a vertex from its centroid (sqrt is monotonic: the root of the
-  // largest square is the largest root).
-  float size2 = 0.0f;
-  for (int i = 0; i < a.vertexCount; ++i)
-    size2 = maxf(size2, lengthSquared(a.vertices[i] - a.centroid));
-  for (int i = 0; i < b.vertexCount; ++i)
-    size2 = maxf(size2, lengthSquared(b.vertices[i] - b.centroid));
-  const float size = std::sqrt(size2);
+  const float size = std::sqrt(maxf(columnsA.size2, columnsB.size2));
   // Each centroid in the other's frame, and the ball about it inside its hull (its radius
   // the least distance to a face plane), for the bounds: a hull's least projection on a
   // unit direction is at most its centroid's less that radius.
   const Vec3 centroidBInA = transformPoint(aFromB, b.centroid);
   const Vec3 centroidAInB = transformPoint(bFromA, a.centroid);
-  const float inradiusA = inradius(a), inradiusB = inradius(b);
+  const float inradiusA = columnsA.inradius, inradiusB = columnsB.inradius;
   const float slack = kBoundSlackRelative *
                       (2.0f * size + length(a.centroid) + length(b.centroid) + length(aFromB.p));
-
-  VertexColumns columnsA, columnsB;
-  loadColumns(a, columnsA);
-  loadColumns(b, columnsB);
 
   // Faces of A: B's least projection on the normal minus the face's offset, at most the
   // bound dot(normal, B's centroid) - offset. Faces of B likewise, in B's frame.

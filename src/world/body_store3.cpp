@@ -77,15 +77,15 @@ Aabb3 proxyBox(const ShapeProxy3& proxy, Transform3 xf) noexcept {
 }
 
 Result<std::uint32_t> BodyStore3::addShape(std::uint32_t body, const ShapeDef3& def,
-                                           std::shared_ptr<const ShapeGeometry3> geometry,
-                                           std::shared_ptr<Mesh3> mesh) {
+                                           StoredGeometry3 geometry, std::shared_ptr<Mesh3> mesh) {
   const std::uint32_t index = shapeIds.allocate();
   if (index >= shapes.size()) shapes.resize(index + 1);
   Shape3& s = shapes[index];
   s = Shape3{};
   s.body = body;
   s.def = def;
-  s.geometry = std::move(geometry);
+  s.geometry = std::move(geometry.geometry);
+  s.hullSat = geometry.hullSat;
   s.mesh = std::move(mesh);
   const ProxyKind kind =
       bodies[body].type == BodyType::staticBody ? ProxyKind::staticProxy : ProxyKind::dynamicProxy;
@@ -158,25 +158,29 @@ std::string hullKey(const Hull3& h) {
 
 }  // namespace
 
-Result<std::shared_ptr<const ShapeGeometry3>> SharedGeometries3::intern(
-    const ShapeGeometry3& geometry, Status (*validate)(const ShapeGeometry3&)) {
+Result<StoredGeometry3> SharedGeometries3::intern(const ShapeGeometry3& geometry,
+                                                  Status (*validate)(const ShapeGeometry3&)) {
   const Hull3* hull = std::get_if<Hull3>(&geometry);
   if (hull == nullptr) {
     if (Status s = validate(geometry); !s) return Error{s.message()};
-    return std::make_shared<const ShapeGeometry3>(geometry);
+    return StoredGeometry3{std::make_shared<const ShapeGeometry3>(geometry), nullptr};
   }
+  // The geometry and its SAT data in one block; the shapes' pointers alias into it.
+  auto share = [](const std::shared_ptr<const Hull>& h) {
+    return StoredGeometry3{std::shared_ptr<const ShapeGeometry3>(h, &h->geometry), &h->sat};
+  };
   std::string key = hullKey(*hull);
   if (const auto found = hulls_.find(key); found != hulls_.end()) {
-    if (std::shared_ptr<const ShapeGeometry3> held = found->second.lock()) return held;
+    if (std::shared_ptr<const Hull> held = found->second.lock()) return share(held);
   }
   if (Status s = validate(geometry); !s) return Error{s.message()};
-  auto made = std::make_shared<const ShapeGeometry3>(geometry);
+  auto made = std::make_shared<const Hull>(Hull{geometry, makeHullSatData3(*hull)});
   hulls_.insert_or_assign(std::move(key), made);
   if (hulls_.size() > 2 * swept_ + 64) {
     std::erase_if(hulls_, [](const auto& kv) { return kv.second.expired(); });
     swept_ = hulls_.size();
   }
-  return made;
+  return share(made);
 }
 
 void BodyStore3::removeShape(std::uint32_t shape) {

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "quack/broadphase/broad_phase3.hpp"
+#include "quack/collision/sat3.hpp"
 #include "quack/core/id_pool.hpp"
 #include "quack/geometry/mass3.hpp"
 #include "quack/world/world3.hpp"
@@ -82,24 +83,36 @@ struct Shape3 {
   // 3.6 KB copy per shape made each hull pair a trip to memory. Null for a free slot; a
   // sphere's placeholder when mesh is set.
   std::shared_ptr<const ShapeGeometry3> geometry;
+  // A hull's SAT data (its size, inradius and vertex columns), made once with the stored
+  // copy and kept as long as `geometry` is; null for the other kinds.
+  const HullSatData3* hullSat = nullptr;
   std::shared_ptr<Mesh3> mesh;  // a static body's triangle mesh
   ProxyId proxy;
 };
 
 // Shapes' geometries, stored once for all the shapes whose bytes are equal (every used
 // field, bit for bit): a pile of one hull reads one copy, and validates it once.
+struct StoredGeometry3 {
+  std::shared_ptr<const ShapeGeometry3> geometry;
+  const HullSatData3* hullSat = nullptr;  // lives as long as geometry; null but for hulls
+};
+
 class SharedGeometries3 {
  public:
   // The stored copy of `geometry`: the one already held when one is equal, else a new one,
   // made only if `validate` passes it (its error returned as it is). Sharing changes no
   // result: a stored geometry is never written.
-  Result<std::shared_ptr<const ShapeGeometry3>> intern(const ShapeGeometry3& geometry,
-                                                       Status (*validate)(const ShapeGeometry3&));
+  Result<StoredGeometry3> intern(const ShapeGeometry3& geometry,
+                                 Status (*validate)(const ShapeGeometry3&));
 
  private:
+  struct Hull {
+    ShapeGeometry3 geometry;
+    HullSatData3 sat;
+  };
   // Hulls by their bytes (the other kinds are small: each shape gets its own). Entries of
   // hulls no shape holds any more expire and are swept when the map has doubled.
-  std::unordered_map<std::string, std::weak_ptr<const ShapeGeometry3>> hulls_;
+  std::unordered_map<std::string, std::weak_ptr<const Hull>> hulls_;
   std::size_t swept_ = 0;
 };
 
@@ -112,8 +125,7 @@ class BodyStore3 {
   void removeBody(std::uint32_t body);
   // Adds a shape (validated by the caller) and recomputes the body's mass. Fails only when
   // the broad phase refuses its box (beyond kMaxCoordinate).
-  Result<std::uint32_t> addShape(std::uint32_t body, const ShapeDef3& def,
-                                 std::shared_ptr<const ShapeGeometry3> geometry,
+  Result<std::uint32_t> addShape(std::uint32_t body, const ShapeDef3& def, StoredGeometry3 geometry,
                                  std::shared_ptr<Mesh3> mesh);
   void removeShape(std::uint32_t shape);
 

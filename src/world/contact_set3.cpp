@@ -245,7 +245,8 @@ ContactSet3::Outcome ContactSet3::updateOne(Contact3& c, const BodyStore3& store
     const Hull3* ha = std::get_if<Hull3>(sa.geometry.get());
     const Hull3* hb = std::get_if<Hull3>(sb.geometry.get());
     cm.manifold = ha != nullptr && hb != nullptr
-                      ? collideHulls(*ha, ba.transform(), *hb, bb.transform(), reach, c.hullCache)
+                      ? collideHulls(*ha, *sa.hullSat, ba.transform(), *hb, *sb.hullSat,
+                                     bb.transform(), reach, c.hullCache)
                       : collide(*sa.geometry, ba.transform(), *sb.geometry, bb.transform(), reach);
     if (cm.manifold.pointCount > 0) fresh.push_back(cm);
   }

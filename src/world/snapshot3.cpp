@@ -478,12 +478,12 @@ Result<std::unique_ptr<WorldState3>> decode(std::span<const std::uint8_t> bytes,
       ShapeGeometry3 geometry = readGeometry(r);
       if (!r.ok()) break;
       // Validated, and shared as when the shapes were made.
-      Result<std::shared_ptr<const ShapeGeometry3>> stored =
-          geometries.intern(geometry, validateShape);
+      Result<StoredGeometry3> stored = geometries.intern(geometry, validateShape);
       if (!stored)
         return fail(std::string(where) + "shape " + std::to_string(i) + ": " +
                     stored.error().message);
-      sh.geometry = std::move(stored).value();
+      sh.geometry = stored.value().geometry;
+      sh.hullSat = stored.value().hullSat;
     }
   }
   if (!r.ok()) return fail(std::string(where) + r.error());

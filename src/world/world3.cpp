@@ -169,8 +169,7 @@ Result<ShapeId3> World3::createShape(BodyId3 body, const ShapeDef3& def,
   if (!isValid(body)) return fail("createShape: body: null, stale or another world's handle");
   if (Status s = checkShapeDef(def); !s) return Error{s.message()};
   detail::BodyStore3& store = state_->store;
-  Result<std::shared_ptr<const ShapeGeometry3>> stored =
-      store.geometries.intern(geometry, validateShape);
+  Result<detail::StoredGeometry3> stored = store.geometries.intern(geometry, validateShape);
   if (!stored) return fail("createShape: geometry: " + stored.error().message);
   Result<std::uint32_t> shape = store.addShape(body.index, def, std::move(stored).value(), nullptr);
   if (!shape) return Error{shape.error()};
@@ -189,8 +188,9 @@ Result<ShapeId3> World3::createShape(BodyId3 body, const ShapeDef3& def, Mesh3 m
   }
   auto shared = std::make_shared<Mesh3>(std::move(mesh));
   // A mesh shape's geometry is a placeholder nothing reads (the mesh is the shape).
-  Result<std::uint32_t> shape = store.addShape(
-      body.index, def, std::make_shared<const ShapeGeometry3>(Sphere{}), std::move(shared));
+  Result<std::uint32_t> shape =
+      store.addShape(body.index, def, {std::make_shared<const ShapeGeometry3>(Sphere{}), nullptr},
+                     std::move(shared));
   if (!shape) return Error{shape.error()};
   return ShapeId3{shape.value(), store.shapeIds.generation(shape.value()), state_->id};
 }

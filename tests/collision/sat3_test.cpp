@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <cstdio>
 #include <limits>
 #include <random>
@@ -285,6 +287,17 @@ TEST(Sat3, BoundsSkipOnlyWhatCannotWin) {
       tb.p = tb.p + Vec3{1e4f, 1e4f, 1e4f};
     }
     SatOutput3 s = computeSat(a, ta, b, tb);
+    // Given each hull's SAT data made beforehand, the answer is the same to the bit.
+    const SatOutput3 withData =
+        computeSat(a, makeHullSatData3(a), ta, b, makeHullSatData3(b), tb);
+    EXPECT_EQ(std::bit_cast<std::uint32_t>(withData.separation),
+              std::bit_cast<std::uint32_t>(s.separation))
+        << "pair " << i;
+    EXPECT_EQ(withData.feature, s.feature) << "pair " << i;
+    EXPECT_EQ(withData.faceIndex, s.faceIndex) << "pair " << i;
+    EXPECT_EQ(withData.edgeA, s.edgeA) << "pair " << i;
+    EXPECT_EQ(withData.edgeB, s.edgeB) << "pair " << i;
+    EXPECT_EQ(withData.normal, s.normal) << "pair " << i;
     PlainSat plain = plainSat(a, ta, b, tb);
     pairsTested += s.edgePairsTested;
     gaussPairs += plain.gaussPairs;

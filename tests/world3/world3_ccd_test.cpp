@@ -299,9 +299,11 @@ TEST(World3Continuous, FastPairsPastTheCapAreCountedAndSaid) {
     detail::BodyStore3 store(BroadPhase3::create({.margin = 0.1f}).value());
     for (int i = 0; i < 3; ++i) {
       const std::uint32_t b = store.addBody({.position = {0.7f * float(i), 0, 0}});
-      ASSERT_TRUE(
-          store.addShape(b, {}, std::make_shared<const ShapeGeometry3>(Sphere{{}, 0.3f}), nullptr)
-              .ok());
+      ASSERT_TRUE(store
+                      .addShape(b, {},
+                                {std::make_shared<const ShapeGeometry3>(Sphere{{}, 0.3f}), nullptr},
+                                nullptr)
+                      .ok());
     }
     detail::Continuous3 continuous;
     continuous.recordStarts(store);

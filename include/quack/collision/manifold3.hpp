@@ -18,6 +18,7 @@
 
 #include "quack/collision/manifold.hpp"
 #include "quack/collision/proxy3.hpp"
+#include "quack/collision/sat3.hpp"
 
 namespace quack {
 
@@ -96,6 +97,11 @@ struct HullPairCache3 {
 };
 /// collideHulls with a cache for the pair (start with a default one; it fills it).
 Manifold3 collideHulls(const Hull3& a, Transform3 worldFromA, const Hull3& b, Transform3 worldFromB,
+                       float speculativeDistance, HullPairCache3& cache) noexcept;
+/// The same with each hull's HullSatData3 (sat3.hpp), made once by a caller that meets the
+/// hulls again and again: the same answer to the bit, without working those out each call.
+Manifold3 collideHulls(const Hull3& a, const HullSatData3& dataA, Transform3 worldFromA,
+                       const Hull3& b, const HullSatData3& dataB, Transform3 worldFromB,
                        float speculativeDistance, HullPairCache3& cache) noexcept;
 
 /// A lone triangle (two-sided) against any 3D shape. When the general contact's normal is the

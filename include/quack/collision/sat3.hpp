@@ -69,4 +69,24 @@ struct SatOutput3 {
 SatOutput3 computeSat(const Hull3& a, Transform3 worldFromA, const Hull3& b, Transform3 worldFromB,
                       float stopAbove = std::numeric_limits<float>::infinity()) noexcept;
 
+/// What computeSat works out of one hull alone, each call: its largest squared vertex
+/// distance from the centroid, the radius of the ball about the centroid inside it, and its
+/// vertices as columns, padded to a multiple of four with copies of vertex 0. A caller that
+/// meets one hull again and again (the 3D world keeps one per stored hull) makes it once;
+/// computeSat given it answers to the bit as without it.
+struct HullSatData3 {
+  float size2 = 0.0f;
+  float inradius = 0.0f;
+  int columnCount = 0;
+  alignas(16) float x[kMaxHullVertices3];
+  alignas(16) float y[kMaxHullVertices3];
+  alignas(16) float z[kMaxHullVertices3];
+};
+HullSatData3 makeHullSatData3(const Hull3& hull) noexcept;
+
+/// computeSat with each hull's HullSatData3 (made by makeHullSatData3 from that hull).
+SatOutput3 computeSat(const Hull3& a, const HullSatData3& dataA, Transform3 worldFromA,
+                      const Hull3& b, const HullSatData3& dataB, Transform3 worldFromB,
+                      float stopAbove = std::numeric_limits<float>::infinity()) noexcept;
+
 }  // namespace quack
