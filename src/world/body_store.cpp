@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 
+#include "geometry_key.hpp"
 #include "quack/collision/proxy.hpp"
 #include "quack/collision/toi.hpp"
 #include "quack/geometry/bounds.hpp"
@@ -57,20 +58,58 @@ std::uint32_t BodyStore::createBody(const BodyDef& def) {
   return index;
 }
 
+namespace {
+
+// Every field a polygon's users read (the arrays' unused tails left out).
+std::string polygonKey(const Polygon& p) {
+  const std::size_t n = static_cast<std::size_t>(p.count);
+  KeyWriter w(sizeof(int) + 3 * sizeof(float) + 2 * n * sizeof(Vec2));
+  static_assert(sizeof(Vec2) == 2 * sizeof(float), "vertices copy as their floats");
+  w.put(p.count);
+  w.put(p.radius);
+  w.put(p.centroid);
+  w.put(p.vertices, n);
+  w.put(p.normals, n);
+  return w.take();
+}
+
+}  // namespace
+
+Result<std::shared_ptr<const ShapeGeometry>> SharedGeometries::intern(
+    const ShapeGeometry& geometry, Status (*validate)(const ShapeGeometry&)) {
+  const Polygon* polygon = std::get_if<Polygon>(&geometry);
+  if (polygon == nullptr) {
+    if (Status s = validate(geometry); !s) return Error{s.message()};
+    return std::make_shared<const ShapeGeometry>(geometry);
+  }
+  std::string key = polygonKey(*polygon);
+  if (const auto found = polygons_.find(key); found != polygons_.end()) {
+    if (std::shared_ptr<const ShapeGeometry> held = found->second.lock()) return held;
+  }
+  if (Status s = validate(geometry); !s) return Error{s.message()};
+  auto made = std::make_shared<const ShapeGeometry>(geometry);
+  polygons_.insert_or_assign(std::move(key), made);
+  if (polygons_.size() > 2 * swept_ + 64) {
+    std::erase_if(polygons_, [](const auto& kv) { return kv.second.expired(); });
+    swept_ = polygons_.size();
+  }
+  return made;
+}
+
 std::uint32_t BodyStore::createShape(std::uint32_t body, const ShapeDef& def,
-                                     const ShapeGeometry& geometry) {
+                                     std::shared_ptr<const ShapeGeometry> geometry) {
   const std::uint32_t index = shapeIds.allocate();
   if (index == shapes.size()) shapes.emplace_back();
   Shape& s = shapes[index];
   s = Shape{};
   s.body = body;
-  s.geometry = geometry;
+  s.geometry = std::move(geometry);
   s.def = def;
   bodies[body].shapes.push_back(index);
   // A static body has no mass and its centre stays at its origin: only its extents grow, by
   // this shape (a chain of n segments would otherwise cost n^2).
   if (bodies[body].type == BodyType::staticBody)
-    addExtents(bodies[body], geometry);
+    addExtents(bodies[body], *s.geometry);
   else
     updateMass(body);
   return index;
@@ -128,7 +167,7 @@ void BodyStore::updateMass(std::uint32_t index) {
   if (b.type == BodyType::dynamicBody) {
     const BodyMass m = sumMass([&](const auto& f) {
       for (std::uint32_t s : b.shapes)
-        f(shapes[s].geometry, shapes[s].def.density);
+        f(*shapes[s].geometry, shapes[s].def.density);
     });
     if (m.mass > 0.0f) {
       b.mass = m.mass;
@@ -148,7 +187,7 @@ void BodyStore::updateMass(std::uint32_t index) {
   b.maxExtent = 0.0f;
   b.minExtent = 0.0f;
   for (std::uint32_t s : b.shapes)
-    addExtents(b, shapes[s].geometry);
+    addExtents(b, *shapes[s].geometry);
   // Keep the origin where it is; the centre of mass follows the shapes.
   Vec2 oldCenter = b.center;
   b.center = transformPoint(b.xf, b.localCenter);
@@ -158,7 +197,7 @@ void BodyStore::updateMass(std::uint32_t index) {
 
 bool BodyStore::shapesWithinWorld(std::uint32_t body, Transform xf) const {
   for (std::uint32_t s : bodies[body].shapes) {
-    if (!boxWithinWorld(computeAabb(shapes[s].geometry, xf))) return false;
+    if (!boxWithinWorld(computeAabb(*shapes[s].geometry, xf))) return false;
   }
   return true;
 }
@@ -174,7 +213,7 @@ bool BodyStore::moveBody(BroadPhase& broadPhase, std::uint32_t body, Transform x
 bool BodyStore::placeBody(std::uint32_t body, Transform xf, Vec2 center, Aabb& box) {
   Body& b = bodies[body];
   if (b.shapes.size() == 1) {
-    box = computeAabb(shapes[b.shapes[0]].geometry, xf);
+    box = computeAabb(*shapes[b.shapes[0]].geometry, xf);
     if (!boxWithinWorld(box)) return false;
   } else if (!shapesWithinWorld(body, xf)) {
     return false;
@@ -209,7 +248,7 @@ void BodyStore::updateShapeBoxes(BroadPhase& broadPhase, std::uint32_t body,
                                  Vec2 displacement) const {
   const Body& b = bodies[body];
   for (std::uint32_t s : b.shapes) {
-    Aabb box = computeAabb(shapes[s].geometry, b.xf);
+    Aabb box = computeAabb(*shapes[s].geometry, b.xf);
     Result<bool> moved = broadPhase.moveProxy(shapes[s].proxy, box, displacement);
     // Callers keep bodies within the world (shapesWithinWorld), so this cannot fail.
     QUACK_ASSERT(moved.ok());

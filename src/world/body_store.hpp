@@ -4,6 +4,9 @@
 // knows nothing of contacts, the solver or events.
 
 #include <cstdint>
+#include <memory>
+#include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "ghost_edges.hpp"
@@ -57,10 +60,29 @@ struct Body {
   std::vector<std::uint32_t> shapes;  // in creation order
 };
 
+// Shapes' geometries, stored once for all the shapes whose bytes are equal (every used
+// field, bit for bit). A polygon is about 1 KB (room for kMaxPolygonVertices vertices and
+// normals): a copy per shape made the shape records too big to stay in cache, and building a
+// pile validated each copy. The other kinds are small: each shape gets its own.
+class SharedGeometries {
+ public:
+  // The stored copy of `geometry`: the one already held when one is equal, else a new one,
+  // made only if `validate` passes it (its error returned as it is). Sharing changes no
+  // result: a stored geometry is never written.
+  Result<std::shared_ptr<const ShapeGeometry>> intern(const ShapeGeometry& geometry,
+                                                      Status (*validate)(const ShapeGeometry&));
+
+ private:
+  // Entries of polygons no shape holds any more expire and are swept when the map doubled.
+  std::unordered_map<std::string, std::weak_ptr<const ShapeGeometry>> polygons_;
+  std::size_t swept_ = 0;
+};
+
 struct Shape {
   bool pendingDestroy = false;
   std::uint32_t body = 0;
-  ShapeGeometry geometry;
+  // Shared, read-only (SharedGeometries); null for a free slot.
+  std::shared_ptr<const ShapeGeometry> geometry;
   ShapeDef def;
   ProxyId proxy;
   std::vector<std::uint32_t> contacts;  // indices into the contact set
@@ -90,7 +112,9 @@ class BodyStore {
   /// A new body record (checked by the caller), slot reused last-in first-out.
   std::uint32_t createBody(const BodyDef& def);
   /// A new shape record on `body`; its proxy is set by the caller.
-  std::uint32_t createShape(std::uint32_t body, const ShapeDef& def, const ShapeGeometry& g);
+  std::uint32_t createShape(std::uint32_t body, const ShapeDef& def,
+                            std::shared_ptr<const ShapeGeometry> g);
+  SharedGeometries geometries;
   /// Frees the slot (the caller has removed the shape's contacts and proxy).
   void releaseShape(std::uint32_t shape);
   void releaseBody(std::uint32_t body);

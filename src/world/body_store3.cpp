@@ -7,6 +7,7 @@
 #include <limits>
 #include <type_traits>
 
+#include "geometry_key.hpp"
 #include "quack/collision/proxy3.hpp"
 #include "quack/geometry/mass3.hpp"
 
@@ -103,35 +104,7 @@ Result<std::uint32_t> BodyStore3::addShape(std::uint32_t body, const ShapeDef3& 
 
 namespace {
 
-// Every field a hull's users read, field by field (HullFace3 has padding, and the arrays'
-// unused tails may hold anything), into one buffer sized once.
-class KeyWriter {
- public:
-  explicit KeyWriter(std::size_t size) : key_(size, '\0'), at_(key_.data()) {}
-  template <class T>
-  void put(const T& value) noexcept {
-    static_assert(std::is_trivially_copyable_v<T>);
-    std::memcpy(at_, &value, sizeof(T));
-    at_ += sizeof(T);
-  }
-  void put(Vec3 v) noexcept {
-    put(v.x);
-    put(v.y);
-    put(v.z);
-  }
-  template <class T>
-  void put(const T* values, std::size_t count) noexcept {
-    static_assert(std::is_trivially_copyable_v<T>);
-    std::memcpy(at_, values, count * sizeof(T));
-    at_ += count * sizeof(T);
-  }
-  std::string take() noexcept { return std::move(key_); }
-
- private:
-  std::string key_;
-  char* at_;
-};
-
+// Every field a hull's users read (its padding and the arrays' unused tails left out).
 std::string hullKey(const Hull3& h) {
   const std::size_t v = std::size_t(h.vertexCount), f = std::size_t(h.faceCount),
                     e = std::size_t(h.edgeCount);

@@ -139,8 +139,8 @@ void ContactSet::findNew(StepContext& step) {
     c.proxyB = store.shapes[sb].proxy;
     c.sensor = store.shapes[sa].def.sensor;
     heads_[index] = {c.bodyA, c.bodyB, true, false, c.sensor};
-    const ShapeGeometry& ga = store.shapes[sa].geometry;
-    const ShapeGeometry& gb = store.shapes[sb].geometry;
+    const ShapeGeometry& ga = *store.shapes[sa].geometry;
+    const ShapeGeometry& gb = *store.shapes[sb].geometry;
     c.fn = findManifoldFn(shapeType(ga), shapeType(gb));
     c.friction = std::sqrt(store.shapes[sa].def.friction * store.shapes[sb].def.friction);
     c.restitution = maxf(store.shapes[sa].def.restitution, store.shapes[sb].def.restitution);
@@ -292,7 +292,7 @@ ContactSet::Outcome ContactSet::updateOne(Contact& c, ContactSim& sim, std::uint
   if (c.sensor) {
     const Shape& sa = store.shapes[c.shapeA];
     const Shape& sb = store.shapes[c.shapeB];
-    c.touching = testOverlap(sa.geometry, xa, sb.geometry, xb);
+    c.touching = testOverlap(*sa.geometry, xa, *sb.geometry, xb);
     if (c.touching && !wasTouching) return Outcome::sensorBegan;
     if (!c.touching && wasTouching) return Outcome::sensorEnded;
     return Outcome::kept;
@@ -311,7 +311,7 @@ ContactSet::Outcome ContactSet::updateOne(Contact& c, ContactSim& sim, std::uint
   float oldNormal[kMaxManifoldPoints], oldTangent[kMaxManifoldPoints];
   std::copy(c.normalImpulse, c.normalImpulse + kMaxManifoldPoints, oldNormal);
   std::copy(c.tangentImpulse, c.tangentImpulse + kMaxManifoldPoints, oldTangent);
-  c.manifold = c.fn(sa.geometry, xa, sb.geometry, xb, def.speculativeDistance);
+  c.manifold = c.fn(*sa.geometry, xa, *sb.geometry, xb, def.speculativeDistance);
   // Ghost collisions: only contacts with flagged static shapes pay for the check.
   if (edges.activeShapes() != 0 && (sa.edges.active || sb.edges.active))
     edges.removeGhostContacts(store, c);

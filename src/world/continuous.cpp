@@ -50,8 +50,8 @@ Aabb ContinuousPhase::sweptBox(const BodyStore& store, const FastBody& f) const 
     const Transform end{f.sweep.c2 - rotate(q, f.sweep.localCenter), q};
     bool first = true;
     for (std::uint32_t s : b.shapes) {
-      Aabb u = merge(computeAabb(store.shapes[s].geometry, start),
-                     computeAabb(store.shapes[s].geometry, end));
+      Aabb u = merge(computeAabb(*store.shapes[s].geometry, start),
+                     computeAabb(*store.shapes[s].geometry, end));
       box = first ? u : merge(box, u);
       first = false;
     }
@@ -273,7 +273,7 @@ bool ContinuousPhase::findImpactWith(SearchScratch& scratch, const BodyStore& st
     // bodies raining into a pit: thousands of queued impacts a step). Bullets are always
     // swept.
     if (heldBySolver(store, own, s)) return;
-    const ShapeProxy otherProxy = makeProxy(otherShape.geometry);
+    const ShapeProxy otherProxy = makeProxy(*otherShape.geometry);
     ++scratch.toiSearches;
     ToiOutput toi = computeToi(proxy, sweep, otherProxy, otherSweep);
     bool stop = false;
@@ -331,7 +331,7 @@ bool ContinuousPhase::findImpactWith(SearchScratch& scratch, const BodyStore& st
   for (std::uint32_t own : body.shapes) {
     const Shape& shape = store.shapes[own];
     if (shape.def.sensor) continue;
-    const ShapeProxy proxy = makeProxy(shape.geometry);
+    const ShapeProxy proxy = makeProxy(*shape.geometry);
     for (std::uint32_t s : candidates_) {
       const Body& ob = store.bodies[store.shapes[s].body];
       const float angle = ob.xf.q.angle();
@@ -617,7 +617,7 @@ std::span<const std::uint32_t> ContinuousPhase::run(StepContext& step,
                             Rot::fromAngle(angle)};
     const Shape& shapeA = store.shapes[e.shapeA];
     const Shape& shapeB = store.shapes[e.shapeB];
-    const Manifold m = quack::collide(shapeA.geometry, xfAt, shapeB.geometry, otherXf,
+    const Manifold m = quack::collide(*shapeA.geometry, xfAt, *shapeB.geometry, otherXf,
                                       kToiTargetSeparation + 2.0f * kToiTolerance);
     if (m.pointCount > 0) {
       n = m.normal;

@@ -100,7 +100,7 @@ void GhostEdges::update(BodyStore& store, bool removeGhostCollisions) {
     StaticEdges& e = shape.edges;
     if (e.chain) {
       // Ghost vertices: the cone at each joint is that of the two segments meeting there.
-      const Segment& seg = std::get<Segment>(shape.geometry);
+      const Segment& seg = std::get<Segment>(*shape.geometry);
       Vec2 d = normalize(seg.p2 - seg.p1);
       Vec2 n = rightPerp(d);
       e.cones.assign(2, EdgeCone{});
@@ -121,7 +121,7 @@ void GhostEdges::update(BodyStore& store, bool removeGhostCollisions) {
     }
     e = StaticEdges{};
     if (!removeGhostCollisions) continue;
-    const Polygon* p = std::get_if<Polygon>(&shape.geometry);
+    const Polygon* p = std::get_if<Polygon>(shape.geometry.get());
     if (p == nullptr) continue;
     const Transform xf = store.bodies[shape.body].xf;
     for (int i = 0; i < p->count; ++i) {
@@ -229,7 +229,7 @@ void GhostEdges::update(BodyStore& store, bool removeGhostCollisions) {
     if (covered[k].empty()) continue;
     Shape& shape = store.shapes[edges[k].shape];
     StaticEdges& e = shape.edges;
-    const Polygon& p = std::get<Polygon>(shape.geometry);
+    const Polygon& p = std::get<Polygon>(*shape.geometry);
     if (!e.active) {
       e.active = true;
       e.cones.assign(static_cast<std::size_t>(p.count), EdgeCone{});
@@ -359,7 +359,7 @@ bool GhostEdges::isGhostImpact(const BodyStore& store, std::uint32_t staticShape
   const Transform xs = store.bodies[S.body].xf;
   Vec2 target;
   Vec2 localN = invRotate(xs.q, normal);
-  Verdict v = classify(S.edges, S.geometry, invTransformPoint(xs, point), localN, target);
+  Verdict v = classify(S.edges, *S.geometry, invTransformPoint(xs, point), localN, target);
   if (v == Verdict::drop) return true;
   // A turned normal is a ghost when it leaves the cone by more than float noise.
   return v == Verdict::correct && dot(target, localN) < 1.0f - 1e-6f;
@@ -379,8 +379,8 @@ void GhostEdges::removeGhostContacts(const BodyStore& store, Contact& c) const {
 
   if (S.edges.chain) {
     // One-sided: a body whose centre is behind the segment passes through it.
-    const Segment& seg = std::get<Segment>(S.geometry);
-    Vec2 center = invTransformPoint(xs, transformPoint(xd, makeProxy(D.geometry).center()));
+    const Segment& seg = std::get<Segment>(*S.geometry);
+    Vec2 center = invTransformPoint(xs, transformPoint(xd, makeProxy(*D.geometry).center()));
     if (dot(center - seg.p1, rightPerp(seg.p2 - seg.p1)) < 0.0f) {
       m.pointCount = 0;
       return;
@@ -396,7 +396,7 @@ void GhostEdges::removeGhostContacts(const BodyStore& store, Contact& c) const {
     const ManifoldPoint mp = m.points[k];
     Vec2 local = invTransformPoint(xs, mp.point - 0.5f * mp.separation * nOut);
     Vec2 t;
-    Verdict v = classify(S.edges, S.geometry, local, localN, t);
+    Verdict v = classify(S.edges, *S.geometry, local, localN, t);
     if (v == Verdict::drop) continue;
     if (v == Verdict::correct && (!haveTarget || mp.separation < targetSeparation)) {
       haveTarget = true;
@@ -414,7 +414,7 @@ void GhostEdges::removeGhostContacts(const BodyStore& store, Contact& c) const {
   // Measure again along the new normal: the separation of the dynamic shape from the face
   // through the static point, using its deepest point along the normal where that is deeper
   // than the point the routine found (a circle's lowest point, not its diagonal one).
-  const ShapeProxy proxy = makeProxy(D.geometry);
+  const ShapeProxy proxy = makeProxy(*D.geometry);
   const Vec2 dir = invRotate(xd.q, -nNew);
   int deepest = 0;
   for (int i = 1; i < proxy.count(); ++i) {

@@ -388,7 +388,7 @@ void SnapshotCodec::writeStructure(Writer& w, const WorldState& s) {
     const Shape& sh = store.shapes[i];
     w.var(sh.body);
     w.u32(sh.proxy.index);
-    writeGeometry(w, sh.geometry);
+    writeGeometry(w, *sh.geometry);
     w.f32(sh.def.density);
     w.f32(sh.def.friction);
     w.f32(sh.def.restitution);
@@ -685,10 +685,18 @@ Status SnapshotCodec::readStructure(std::span<const std::uint8_t> structure, std
     if (r.ok() && !store.bodyIds.isAlive(sh.body))
       r.fail("shape " + std::to_string(i) + " names dead body " + std::to_string(sh.body));
     proxyOf[i] = r.u32("shape proxy");
-    sh.geometry = readGeometry(r);
+    const ShapeGeometry geometry = readGeometry(r);
+    // A placeholder until the geometry is known good: the checks below read it even when
+    // the bytes have gone bad, before the reader's error is returned.
+    sh.geometry = std::make_shared<const ShapeGeometry>();
     if (r.ok()) {
-      if (Status st = validateShape(sh.geometry); !st)
-        r.fail("shape " + std::to_string(i) + " geometry: " + st.message());
+      // Validated, and shared as when the shapes were made.
+      Result<std::shared_ptr<const ShapeGeometry>> stored =
+          store.geometries.intern(geometry, validateShape);
+      if (stored)
+        sh.geometry = std::move(stored).value();
+      else
+        r.fail("shape " + std::to_string(i) + " geometry: " + stored.error().message);
     }
     sh.def.density = r.f32("shape density");
     sh.def.friction = r.f32("shape friction");
@@ -710,7 +718,7 @@ Status SnapshotCodec::readStructure(std::span<const std::uint8_t> structure, std
     }
     if (r.ok() && e.chain &&
         (store.bodies[sh.body].type != BodyType::staticBody ||
-         !std::holds_alternative<Segment>(sh.geometry)))
+         !std::holds_alternative<Segment>(*sh.geometry)))
       r.fail("shape " + std::to_string(i) + " is a chain link but not a static segment");
   }
 
@@ -817,7 +825,7 @@ Status SnapshotCodec::readMotion(std::span<const std::uint8_t> motion, std::uint
     if (e.active && (flags & 2) == 0)
       m.fail("shape " + std::to_string(i) + " is flagged for ghost edges but has no cones");
     if ((flags & 2) == 0) continue;
-    const int edgeCount = ghostEdges(sh.geometry);
+    const int edgeCount = ghostEdges(*sh.geometry);
     e.covered.resize(m.count("covered spans", 12));
     for (CoveredSpan& c : e.covered) {
       c.edge = m.i32("covered span edge");
@@ -826,9 +834,9 @@ Status SnapshotCodec::readMotion(std::span<const std::uint8_t> motion, std::uint
       c.t1 = m.f32("covered span end");
     }
     e.cones.resize(m.count("vertex cones", 17));
-    if (!e.cones.empty() && e.cones.size() != static_cast<std::size_t>(ghostVertices(sh.geometry)))
+    if (!e.cones.empty() && e.cones.size() != static_cast<std::size_t>(ghostVertices(*sh.geometry)))
       m.fail("shape " + std::to_string(i) + " has " + std::to_string(e.cones.size()) +
-             " vertex cones for " + std::to_string(ghostVertices(sh.geometry)) + " vertices");
+             " vertex cones for " + std::to_string(ghostVertices(*sh.geometry)) + " vertices");
     for (EdgeCone& c : e.cones) {
       const std::uint8_t k = m.u8("vertex cone kind");
       if (k > static_cast<std::uint8_t>(EdgeCone::Kind::inside))
@@ -840,12 +848,12 @@ Status SnapshotCodec::readMotion(std::span<const std::uint8_t> motion, std::uint
     // Covered edges are polygons' (ghost_edges.cpp reads the shape as one); chain links are
     // segments.
     if (m.ok() && e.active &&
-        !(e.chain ? std::holds_alternative<Segment>(sh.geometry)
-                  : std::holds_alternative<Polygon>(sh.geometry)))
+        !(e.chain ? std::holds_alternative<Segment>(*sh.geometry)
+                  : std::holds_alternative<Polygon>(*sh.geometry)))
       m.fail("shape " + std::to_string(i) + " has ghost-edge data but is not a polygon " +
              "(or a chain's segment)");
     if (m.ok() && e.active &&
-        e.cones.size() != static_cast<std::size_t>(ghostVertices(sh.geometry)))
+        e.cones.size() != static_cast<std::size_t>(ghostVertices(*sh.geometry)))
       m.fail("shape " + std::to_string(i) + " is flagged for ghost edges but lacks its cones");
     if (m.ok() && !e.active && (!e.covered.empty() || !e.cones.empty()))
       m.fail("shape " + std::to_string(i) + " has ghost-edge data but is not flagged");
@@ -917,7 +925,7 @@ Status SnapshotCodec::readMotion(std::span<const std::uint8_t> motion, std::uint
     c.bodyB = sb.body;
     c.proxyA = sa.proxy;
     c.proxyB = sb.proxy;
-    c.fn = findManifoldFn(shapeType(sa.geometry), shapeType(sb.geometry));
+    c.fn = findManifoldFn(shapeType(*sa.geometry), shapeType(*sb.geometry));
     c.friction = std::sqrt(sa.def.friction * sb.def.friction);
     c.restitution = maxf(sa.def.restitution, sb.def.restitution);
     cs.byPair_.set((static_cast<std::uint64_t>(std::min(c.shapeA, c.shapeB)) << 32) |

@@ -317,15 +317,17 @@ Result<ShapeId> World::createShape(BodyId bodyId, const ShapeDef& def,
   if (def.restitution > kMaxRestitution)
     return fail("createShape: ShapeDef.restitution " + std::to_string(def.restitution) +
                 " is above kMaxRestitution (10)");
-  if (Status s = validateShape(geometry); !s) return fail("createShape: geometry: " + s.message());
   detail::BodyStore& store = state().store;
+  Result<std::shared_ptr<const ShapeGeometry>> stored =
+      store.geometries.intern(geometry, validateShape);
+  if (!stored) return fail("createShape: geometry: " + stored.error().message);
   const Body& body = store.bodies[bodyId.index];
   if (body.type == BodyType::dynamicBody) {
     // The body's mass with the new shape must stay a usable float (kMaxBodyMass), and so
     // must its inverse: refuse here rather than let a mass of infinity into the solver.
     const detail::BodyMass m = detail::sumMass([&](const auto& f) {
       for (std::uint32_t s : body.shapes)
-        f(store.shapes[s].geometry, store.shapes[s].def.density);
+        f(*store.shapes[s].geometry, store.shapes[s].def.density);
       f(geometry, def.density);
     });
     if (!isFinite(m.mass) || m.mass > kMaxBodyMass || !isFinite(m.inertia))
@@ -343,7 +345,7 @@ Result<ShapeId> World::createShape(BodyId bodyId, const ShapeDef& def,
       body.type == BodyType::staticBody ? ProxyKind::staticProxy : ProxyKind::dynamicProxy;
   Result<ProxyId> proxy = state().broadPhase.createProxy(box, index, def.filter, kind);
   if (!proxy) return fail("createShape: " + proxy.error().message);
-  const std::uint32_t created = store.createShape(bodyId.index, def, geometry);
+  const std::uint32_t created = store.createShape(bodyId.index, def, std::move(stored).value());
   QUACK_ASSERT(created == index);
   store.shapes[created].proxy = proxy.value();
   if (body.type == BodyType::staticBody) state().edges.markDirty();
@@ -581,7 +583,7 @@ BodyId World::body(ShapeId id) const {
   return isValid(id) ? state().store.bodyId(state().store.shapes[id.index].body) : BodyId{};
 }
 const ShapeGeometry& World::geometry(ShapeId id) const {
-  return isValid(id) ? state().store.shapes[id.index].geometry : kNoGeometry;
+  return isValid(id) ? *state().store.shapes[id.index].geometry : kNoGeometry;
 }
 const ShapeDef& World::shapeDef(ShapeId id) const {
   return isValid(id) ? state().store.shapes[id.index].def : kNoShapeDef;
@@ -764,7 +766,7 @@ Status World::setBodyType(BodyId id, BodyType type) {
     // Its shapes' mass must be usable, as createShape demands.
     const detail::BodyMass m = detail::sumMass([&](const auto& f) {
       for (std::uint32_t s : b.shapes)
-        f(store.shapes[s].geometry, store.shapes[s].def.density);
+        f(*store.shapes[s].geometry, store.shapes[s].def.density);
     });
     if (!isFinite(m.mass) || m.mass > kMaxBodyMass || !isFinite(m.inertia))
       return fail("setBodyType: the body's shapes weigh " + std::to_string(m.mass) +
@@ -796,7 +798,7 @@ Status World::setBodyType(BodyId id, BodyType type) {
     Status st = state().broadPhase.destroyProxy(shape.proxy);
     QUACK_ASSERT(st.ok());
     (void)st;
-    Result<ProxyId> proxy = state().broadPhase.createProxy(computeAabb(shape.geometry, b.xf), s,
+    Result<ProxyId> proxy = state().broadPhase.createProxy(computeAabb(*shape.geometry, b.xf), s,
                                                            shape.def.filter, kind);
     // The box was accepted a moment ago under the old kind.
     QUACK_ASSERT(proxy.ok());
@@ -886,7 +888,7 @@ Status World::validate() const {
     if (!state().broadPhase.isValid(s.proxy)) return fail(name + ": its proxy is not live");
     if (state().broadPhase.userData(s.proxy) != i)
       return fail(name + ": its proxy carries another shape's index");
-    const Aabb box = computeAabb(s.geometry, store.bodies[s.body].xf);
+    const Aabb box = computeAabb(*s.geometry, store.bodies[s.body].xf);
     if (!contains(state().broadPhase.fatBox(s.proxy), box))
       return fail(name + ": its broad-phase box does not hold it");
     for (std::uint32_t c : s.contacts) {

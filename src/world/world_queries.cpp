@@ -41,7 +41,7 @@ std::optional<RayHitResult> World::rayCastClosest(Vec2 origin, Vec2 translation,
     auto s = static_cast<std::uint32_t>(user);
     if (!acceptsQuery(s, filter)) return -1.0f;
     const Transform xf = state().store.bodies[state().store.shapes[s].body].xf;
-    RayHit h = castRay(state().store.shapes[s].geometry, xf, origin, translation, bestFraction);
+    RayHit h = castRay(*state().store.shapes[s].geometry, xf, origin, translation, bestFraction);
     if (!h.hit) return -1.0f;
     // Equal fractions: the lower shape index wins, whatever order the structure visits.
     if (best && h.fraction == bestFraction && s > best->shape.index) return -1.0f;
@@ -62,7 +62,7 @@ std::vector<RayHitResult> World::rayCastAll(Vec2 origin, Vec2 translation,
     auto s = static_cast<std::uint32_t>(user);
     if (!acceptsQuery(s, filter)) return -1.0f;
     const Transform xf = state().store.bodies[state().store.shapes[s].body].xf;
-    RayHit h = castRay(state().store.shapes[s].geometry, xf, origin, translation, 1.0f);
+    RayHit h = castRay(*state().store.shapes[s].geometry, xf, origin, translation, 1.0f);
     if (h.hit) {
       hits.push_back({state().store.shapeId(s), state().store.bodyId(state().store.shapes[s].body),
                       transformPoint(xf, h.point), rotate(xf.q, h.normal), h.fraction});
@@ -99,7 +99,7 @@ Result<std::vector<ShapeOverlap>> World::overlapShape(const ShapeGeometry& geome
     if (!acceptsQuery(s, filter)) return true;
     const Transform sx = state().store.bodies[state().store.shapes[s].body].xf;
     PenetrationOutput p =
-        computePenetration(query, xf, makeProxy(state().store.shapes[s].geometry), sx);
+        computePenetration(query, xf, makeProxy(*state().store.shapes[s].geometry), sx);
     if (p.overlap) {
       out.push_back({state().store.shapeId(s), state().store.bodyId(state().store.shapes[s].body),
                      p.depth, -p.depth * p.normal});
@@ -132,7 +132,7 @@ Result<std::optional<ShapeCastResult>> World::castShape(const ShapeGeometry& geo
     const Transform sx = state().store.bodies[shape.body].xf;
     // The shape met is A, the cast shape is B moving along the translation.
     const ShapeCastOutput out =
-        quack::castShape(makeProxy(shape.geometry), sx, cast, xf, translation);
+        quack::castShape(makeProxy(*shape.geometry), sx, cast, xf, translation);
     if (!out.hit) return true;
     if (best && (out.fraction > best->fraction ||
                  (out.fraction == best->fraction && s > best->shape.index)))

@@ -27,6 +27,33 @@ TEST(WorldApi, BodyTypeNamesAreTheSceneFileNames) {
   EXPECT_STREQ(toString(BodyType::dynamicBody), "dynamic");
 }
 
+// Shapes of one polygon share a stored copy, validated once (docs/world.md, "Shapes' geometry,
+// stored once"): a copy
+// that differs in one normal is still validated and refused, one body's density is not
+// another's (a closed form: a 1 x 2 box weighs 2 kg per unit density), and a polygon whose
+// shapes were all destroyed can come back.
+TEST(WorldApi, SharedPolygonsAreStillValidatedAndWeighedPerShape) {
+  World world = World::create({}).value();
+  const Polygon box = makeBox(0.5f, 1.0f).value();
+  const BodyId a = world.createBody({.type = BodyType::dynamicBody}).value();
+  const ShapeId first = world.createShape(a, {.density = 1.0f}, box).value();
+  Polygon bent = box;
+  bent.normals[0].x = -bent.normals[0].x + 0.5f;  // no longer a unit normal
+  const BodyId b = world.createBody({.type = BodyType::dynamicBody, .position = {3, 0}}).value();
+  Result<ShapeId> refused = world.createShape(b, {}, bent);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.error().message.find("geometry"), std::string::npos) << refused.error().message;
+  ASSERT_TRUE(world.createShape(b, {.density = 3.0f}, box).ok());
+  EXPECT_NEAR(world.mass(a), 2.0f, 1e-5f);
+  EXPECT_NEAR(world.mass(b), 6.0f, 1e-5f);
+  ASSERT_TRUE(world.destroyShape(first).ok());
+  ASSERT_TRUE(world.destroyBody(b).ok());
+  ASSERT_TRUE(world.step().ok());
+  ASSERT_TRUE(world.createShape(a, {.density = 2.0f}, box).ok());
+  EXPECT_NEAR(world.mass(a), 4.0f, 1e-5f);
+  ASSERT_TRUE(world.step().ok());
+}
+
 TEST(WorldApi, HandleFromAnotherWorldIsRefused) {
   World a = World::create({}).value();
   World b = World::create({}).value();
