@@ -18,6 +18,9 @@
 # reference build's program on 4 workers (`--threads 4`; every other run uses one). Each
 # configuration's build and run times are printed.
 set -euo pipefail
+# build() runs in a command substitution, where bash drops -e: without this a failed build
+# went on with the program left from the last good one, and compared stale bits.
+shopt -s inherit_errexit
 cd "$(dirname "$0")/.."
 steps=${QUACK_DETERMINISM_STEPS:-600}
 configs=${QUACK_DETERMINISM_CONFIGS:-"threads avx2 scalar clang-release gcc-o2 clang-o2 debug aarch64 wasm"}

@@ -1,7 +1,6 @@
 #include "body_store3.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -217,8 +216,10 @@ void BodyStore3::updateMass(std::uint32_t index) {
     const Shape3& s = shapes[shape];
     // The last shape's mass again when this one has the same stored geometry and density
     // (a pile of one hull): the memo holds the geometry, so its address is not reused.
-    if (s.geometry != massMemo_.geometry || std::bit_cast<std::uint32_t>(s.def.density) !=
-                                                std::bit_cast<std::uint32_t>(massMemo_.density)) {
+    // The densities compared by their bits (std::memcmp: emscripten 3.1.6's libc++, the web
+    // build's, has no std::bit_cast).
+    if (s.geometry != massMemo_.geometry ||
+        std::memcmp(&s.def.density, &massMemo_.density, sizeof(float)) != 0) {
       massMemo_ = {s.geometry, s.def.density, computeMass(*s.geometry, s.def.density)};
     }
     parts.push_back(massMemo_.mass);
