@@ -32,8 +32,9 @@ namespace {
 // float ulps, above the cancellation of the segment projection, below any real rise.
 constexpr float kGjkStallRelativeTolerance = 8.0f * std::numeric_limits<float>::epsilon();
 
-bool loadCache(const GjkCache* cache, const ShapeProxy& a, const ShapeProxy& b, Transform aFromB,
-               GjkVertex* v) noexcept {
+[[gnu::always_inline]] inline bool loadCache(const GjkCache* cache, const ShapeProxy& a,
+                                             const ShapeProxy& b, Transform aFromB,
+                                             GjkVertex* v) noexcept {
   if (cache == nullptr || cache->count < 1 || cache->count > 3) return false;
   for (int i = 0; i < cache->count; ++i) {
     if (cache->indexA[i] >= a.count() || cache->indexB[i] >= b.count()) return false;
@@ -121,9 +122,11 @@ template <class Observer, bool earlyOut>
   const int countA = a.count();
   const int countB = b.count();
   const Transform xf = aFromB;
+  const PointSearch searchA(pointsA, countA);
+  const PointSearch searchB(pointsB, countB);
   auto support = [&](Vec2 direction) {
-    const int indexA = findFirstMaxDot(pointsA, countA, -direction);
-    const int indexB = findFirstMaxDot(pointsB, countB, invRotate(xf.q, direction));
+    const int indexA = searchA.findFirstMaxDot(-direction);
+    const int indexB = searchB.findFirstMaxDot(invRotate(xf.q, direction));
     GjkVertex s;
     s.w = transformPoint(xf, pointsB[indexB]) - pointsA[indexA];
     s.key = packGjkIndices(indexA, indexB);

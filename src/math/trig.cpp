@@ -4,6 +4,10 @@
 #include <cstdint>
 #include <cstring>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 // Method. Sine and cosine: the argument is reduced to r in [-pi/4, pi/4] and a quadrant
 // (Payne and Hanek, "Radian reduction for trigonometric functions", SIGNUM Newsletter 18(1),
 // 1983: multiply the float's integer mantissa by the bits of 2/pi that matter, in integer
@@ -183,12 +187,19 @@ constexpr double kTwoOverPiDouble = 0x1.45f306dc9c883p-1;
 
 }  // namespace
 
+// portableCosSin past the fast path's range. Out of line, so that the fast path saves no
+// registers for its calls.
+namespace {
+[[gnu::noinline]] CosSin accurateCosSin(float radians) noexcept {
+  return {portableCos(radians), portableSin(radians)};
+}
+}  // namespace
+
 CosSin portableCosSin(float radians) noexcept {
   if (radians == 0.0f) return {1.0f, radians};  // sin(-0) is -0, which -0 + -0 * ... is not
   const double x = static_cast<double>(radians);
   // NaN fails the comparison and goes the accurate way too.
-  if (!(std::fabs(x) <= static_cast<double>(kFastTrigLimit)))
-    return {portableCos(radians), portableSin(radians)};
+  if (!(std::fabs(x) <= static_cast<double>(kFastTrigLimit))) return accurateCosSin(radians);
   // The nearest multiple of pi/2: truncation after adding a half of the right sign is exact
   // integer arithmetic on every platform (no rounding-mode dependence, no C library).
   const double t = x * kTwoOverPiDouble;
@@ -200,6 +211,39 @@ CosSin portableCosSin(float radians) noexcept {
   // |r| <= pi/4 (plus rounding): Taylor to r^11 for sine and r^12 for cosine truncate below
   // 2^-37 and 2^-45 relative ((pi/4)^13 / 13!, (pi/4)^14 / 14!), far below a float ulp.
   const double z = r * r;
+  const auto quadrant = static_cast<std::uint32_t>(k) & 3u;
+#if defined(__SSE2__)
+  // Both polynomials at once, cosine in the low lane and sine in the high one: the same
+  // Horner steps as the scalar form below, so the same bits (each lane is one IEEE double
+  // operation). The sine has one coefficient fewer; its lane starts from 0, and the first
+  // step, c + z * 0, gives c exactly.
+  const __m128d zz = _mm_set1_pd(z);
+  __m128d p = _mm_set_pd(0.0, 1.0 / 479001600.0);  // _mm_set_pd(high, low)
+  p = _mm_add_pd(_mm_set_pd(-1.0 / 39916800.0, -1.0 / 3628800.0), _mm_mul_pd(zz, p));
+  p = _mm_add_pd(_mm_set_pd(1.0 / 362880.0, 1.0 / 40320.0), _mm_mul_pd(zz, p));
+  p = _mm_add_pd(_mm_set_pd(-1.0 / 5040.0, -1.0 / 720.0), _mm_mul_pd(zz, p));
+  p = _mm_add_pd(_mm_set_pd(1.0 / 120.0, 1.0 / 24.0), _mm_mul_pd(zz, p));
+  p = _mm_add_pd(_mm_set_pd(-1.0 / 6.0, -0.5), _mm_mul_pd(zz, p));
+  // cos = 1 + z p, sin = r + (r z) p.
+  const __m128d both = _mm_add_pd(_mm_set_pd(r, 1.0), _mm_mul_pd(_mm_set_pd(r * z, z), p));
+  const __m128 cs = _mm_cvtpd_ps(both);  // (c, s, 0, 0), each rounded as static_cast
+  // By quadrant: (c, s), (-s, c), (-c, -s), (s, -c): a swap chosen by a mask and two sign
+  // flips from a table (negation is exact), no branch.
+  const __m128 sc = _mm_shuffle_ps(cs, cs, _MM_SHUFFLE(3, 2, 0, 1));
+  const __m128 swap = _mm_castsi128_ps(_mm_set1_epi32(-static_cast<int>(quadrant & 1u)));
+  const __m128 swapped = _mm_or_ps(_mm_and_ps(swap, sc), _mm_andnot_ps(swap, cs));
+  alignas(16) static constexpr std::uint32_t kSigns[4][4] = {{0u, 0u, 0u, 0u},
+                                                             {0x80000000u, 0u, 0u, 0u},
+                                                             {0x80000000u, 0x80000000u, 0u, 0u},
+                                                             {0u, 0x80000000u, 0u, 0u}};
+  const __m128 signs = _mm_load_ps(reinterpret_cast<const float*>(kSigns[quadrant]));
+  const __m128 result = _mm_xor_ps(swapped, signs);
+  // The two low lanes are the answer (cosine, sine) as CosSin lays them out.
+  static_assert(sizeof(CosSin) == 2 * sizeof(float));
+  CosSin out;
+  _mm_storel_pi(reinterpret_cast<__m64*>(&out), result);
+  return out;
+#else
   const double sinR =
       r +
       r * z *
@@ -215,7 +259,6 @@ CosSin portableCosSin(float radians) noexcept {
   // By quadrant: (c, s), (-s, c), (-c, -s), (s, -c). Formed with a swap and two sign flips
   // on the bits (negation is exact, so the same floats) rather than a switch, whose
   // branch random angles mispredict three times in four.
-  const auto quadrant = static_cast<std::uint32_t>(k) & 3u;
   const std::uint32_t swap = 0u - (quadrant & 1u);
   std::uint32_t cBits = 0;
   std::uint32_t sBits = 0;
@@ -231,6 +274,7 @@ CosSin portableCosSin(float radians) noexcept {
   std::memcpy(&out.cosine, &cosBits, sizeof cosBits);
   std::memcpy(&out.sine, &sinBits, sizeof sinBits);
   return out;
+#endif
 }
 
 float portableSin(float radians) noexcept {
