@@ -4,6 +4,10 @@
 #include <limits>
 #include <type_traits>
 
+#if defined(__SSE2__)
+#include <xmmintrin.h>
+#endif
+
 #include "gjk_internal.hpp"
 #include "simplex2_internal.hpp"
 
@@ -73,6 +77,49 @@ Vec2 normalizeWithLength(Vec2 v, float len) noexcept {
   return both ? 2 : 1;
 }
 
+// The points of a proxy of up to kPlacedMax points placed by a transform once, up front,
+// with transformPoint's arithmetic (two points per register: c (x, y) + (-s, s) (y, x) + p,
+// the same products and sums), so that GJK's support point is a load rather than a
+// transform on the chain search -> support -> solve -> direction, which sets the query's
+// time. Larger proxies are transformed point by point when asked.
+class PlacedPoints {
+ public:
+  static constexpr int kPlacedMax = 8;
+
+  PlacedPoints(Transform xf, const Vec2* points, int count) noexcept
+      : xf_(xf), points_(points), placed_(count <= kPlacedMax) {
+    if (!placed_) return;
+    int i = 0;
+#if defined(__SSE2__)
+    const __m128 c = _mm_set1_ps(xf.q.c);
+    const __m128 s = _mm_setr_ps(-xf.q.s, xf.q.s, -xf.q.s, xf.q.s);
+    const __m128 t = _mm_setr_ps(xf.p.x, xf.p.y, xf.p.x, xf.p.y);
+    for (; i + 2 <= count; i += 2) {
+      const __m128 v = _mm_loadu_ps(&points[i].x);
+      const __m128 swapped = _mm_shuffle_ps(v, v, _MM_SHUFFLE(2, 3, 0, 1));
+      _mm_store_ps(&placed_xy_[2 * i],
+                   _mm_add_ps(_mm_add_ps(_mm_mul_ps(c, v), _mm_mul_ps(s, swapped)), t));
+    }
+#endif
+    for (; i < count; ++i) {
+      const Vec2 q = transformPoint(xf, points[i]);
+      placed_xy_[2 * i] = q.x;
+      placed_xy_[2 * i + 1] = q.y;
+    }
+  }
+
+  Vec2 at(int i) const noexcept {
+    if (placed_) return {placed_xy_[2 * i], placed_xy_[2 * i + 1]};
+    return transformPoint(xf_, points_[i]);
+  }
+
+ private:
+  Transform xf_;
+  const Vec2* points_;
+  bool placed_;
+  alignas(16) float placed_xy_[2 * kPlacedMax];  // not zero-filled: written before read
+};
+
 }  // namespace
 
 Vec2 closestDirection(const GjkRun& run) noexcept {
@@ -124,11 +171,14 @@ template <class Observer, bool earlyOut>
   const Transform xf = aFromB;
   const PointSearch searchA(pointsA, countA);
   const PointSearch searchB(pointsB, countB);
-  auto support = [&](Vec2 direction) {
+  const PlacedPoints placedB(xf, pointsB, countB);
+  // Always inlined: left to itself the compiler calls it for the first search and saves and
+  // restores a dozen registers around the call.
+  auto support = [&](Vec2 direction) __attribute__((always_inline)) {
     const int indexA = searchA.findFirstMaxDot(-direction);
     const int indexB = searchB.findFirstMaxDot(invRotate(xf.q, direction));
     GjkVertex s;
-    s.w = transformPoint(xf, pointsB[indexB]) - pointsA[indexA];
+    s.w = placedB.at(indexB) - pointsA[indexA];
     s.key = packGjkIndices(indexA, indexB);
     return s;
   };
@@ -412,8 +462,9 @@ void GjkRecorder::onPass(const GjkRun& run, Transform aFromB,
 namespace {
 
 template <class Observer>
-DistanceOutput distanceWith(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
-                            Transform worldFromB, GjkCache* cache, Observer& observer) noexcept {
+DistanceOutput distanceWith(const ShapeProxy& a, const Transform& worldFromA, const ShapeProxy& b,
+                            const Transform& worldFromB, GjkCache* cache,
+                            Observer& observer) noexcept {
   Transform aFromB = invMul(worldFromA, worldFromB);
   detail::GjkRun run = detail::runGjk(a, b, aFromB, cache, -1.0f, observer);
   DistanceOutput out = detail::makeDistanceOutput(a, b, worldFromA, aFromB, run);
@@ -424,9 +475,10 @@ DistanceOutput distanceWith(const ShapeProxy& a, Transform worldFromA, const Sha
 
 }  // namespace
 
-DistanceOutput computeDistance(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
-                               Transform worldFromB, GjkCache* cache) noexcept {
-  detail::NoGjkObserver none;
+DistanceOutput detail::computeDistanceOf(const ShapeProxy& a, const Transform& worldFromA,
+                                         const ShapeProxy& b, const Transform& worldFromB,
+                                         GjkCache* cache) noexcept {
+  NoGjkObserver none;
   return distanceWith(a, worldFromA, b, worldFromB, cache, none);
 }
 

@@ -161,7 +161,7 @@ class PointSearch {
 #endif
   }
 
-  int findFirstMaxDot(Vec2 direction) const noexcept {
+  [[gnu::always_inline]] int findFirstMaxDot(Vec2 direction) const noexcept {
 #if defined(__SSE2__)
     if (columns_) {
       const __m128 dx = _mm_set1_ps(direction.x);
