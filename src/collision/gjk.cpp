@@ -172,6 +172,7 @@ template <class Observer, bool earlyOut>
   const PointSearch searchA(pointsA, countA);
   const PointSearch searchB(pointsB, countB);
   const PlacedPoints placedB(xf, pointsB, countB);
+  const bool edgeColumns = searchA.hasColumns() & searchB.hasColumns();
   // Always inlined: left to itself the compiler calls it for the first search and saves and
   // restores a dozen registers around the call.
   auto support = [&](Vec2 direction) __attribute__((always_inline)) {
@@ -330,21 +331,39 @@ template <class Observer, bool earlyOut>
     // support point, stopping GJK on a diagonal instead of an edge.
     const float vLength = std::sqrt(vv);
     bool onEdge = false;
+    bool flipped = false;
     Vec2 dir;
     if (count == 2) {
       const Vec2 n = normal;
       const float side = dot(n, v[0].w);
       onEdge = (side < 0.0f) | (side > 0.0f);
+      flipped = side < 0.0f;
       // -n when side < 0 (exactly: a product with -1), by a table, not a branch.
       constexpr float kSign[2] = {1.0f, -1.0f};
-      const float sign = kSign[static_cast<int>(side < 0.0f)];
+      const float sign = kSign[static_cast<int>(flipped)];
       dir = {sign * n.x, sign * n.y};
     }
     if (!onEdge) dir = normalizeWithLength(vPoint, vLength);
     run.direction = dir;
     previousDirection = dir;
     run.hasDirection = true;
-    const GjkVertex w = support(-dir);
+    GjkVertex w;
+    if (onEdge & edgeColumns) {
+      // dir is n or -n, and every product along -n is the one along n negated (exactly),
+      // so both searches run along n and take the first largest or least product once the
+      // side is known: the searches need not wait for the side test and the sign. A is
+      // searched along dir, B along -dir.
+      int mostA = 0, leastA = 0, mostB = 0, leastB = 0;
+      searchA.findFirstMaxAndMinDot(normal, mostA, leastA);
+      searchB.findFirstMaxAndMinDot(invRotate(xf.q, normal), mostB, leastB);
+      const int mask = -static_cast<int>(flipped);  // all ones when dir = -n
+      const int indexA = mostA ^ ((mostA ^ leastA) & mask);
+      const int indexB = leastB ^ ((leastB ^ mostB) & mask);
+      w.w = placedB.at(indexB) - pointsA[indexA];
+      w.key = packGjkIndices(indexA, indexB);
+    } else {
+      w = support(-dir);
+    }
     ++run.iterations;
     // Seen before the stopping tests: whichever ends the loop, this pass's answer is the
     // final one (closest, direction and simplex are not touched again).

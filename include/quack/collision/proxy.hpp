@@ -180,6 +180,47 @@ class PointSearch {
     return detail::findFirstMaxDot(points_, count_, direction);
   }
 
+  /// True when the points are held as columns (4 to 8 points, SSE2): then
+  /// findFirstMaxAndMinDot may be called.
+  bool hasColumns() const noexcept {
+#if defined(__SSE2__)
+    return columns_;
+#else
+    return false;
+#endif
+  }
+
+  /// findFirstMaxDot(direction) and findFirstMaxDot(-direction) from one set of products:
+  /// the products along -direction are those along direction negated (exactly; a zero may
+  /// change sign, which no comparison sees), so the first of the least is the second answer.
+  /// Only with hasColumns().
+  [[gnu::always_inline]] void findFirstMaxAndMinDot(Vec2 direction, int& maxIndex,
+                                                    int& minIndex) const noexcept {
+#if defined(__SSE2__)
+    const __m128 dx = _mm_set1_ps(direction.x);
+    const __m128 dy = _mm_set1_ps(direction.y);
+    const __m128 first = _mm_add_ps(_mm_mul_ps(xs0_, dx), _mm_mul_ps(ys0_, dy));
+    const __m128 second = _mm_add_ps(_mm_mul_ps(xs1_, dx), _mm_mul_ps(ys1_, dy));
+    __m128 most = _mm_max_ps(second, first);
+    __m128 least = _mm_min_ps(second, first);
+    most = _mm_max_ps(most, _mm_shuffle_ps(most, most, _MM_SHUFFLE(2, 3, 0, 1)));
+    least = _mm_min_ps(least, _mm_shuffle_ps(least, least, _MM_SHUFFLE(2, 3, 0, 1)));
+    most = _mm_max_ps(most, _mm_shuffle_ps(most, most, _MM_SHUFFLE(1, 0, 3, 2)));
+    least = _mm_min_ps(least, _mm_shuffle_ps(least, least, _MM_SHUFFLE(1, 0, 3, 2)));
+    const unsigned mostHits =
+        (static_cast<unsigned>(_mm_movemask_ps(_mm_cmpeq_ps(second, most))) << last_) |
+        static_cast<unsigned>(_mm_movemask_ps(_mm_cmpeq_ps(first, most)));
+    const unsigned leastHits =
+        (static_cast<unsigned>(_mm_movemask_ps(_mm_cmpeq_ps(second, least))) << last_) |
+        static_cast<unsigned>(_mm_movemask_ps(_mm_cmpeq_ps(first, least)));
+    maxIndex = mostHits == 0 ? 0 : std::countr_zero(mostHits);
+    minIndex = leastHits == 0 ? 0 : std::countr_zero(leastHits);
+#else
+    maxIndex = detail::findFirstMaxDot(points_, count_, direction);
+    minIndex = detail::findFirstMaxDot(points_, count_, -direction);
+#endif
+  }
+
  private:
 #if defined(__SSE2__)
   void loadColumns(int i, __m128& xs, __m128& ys) const noexcept {
