@@ -218,13 +218,16 @@ CosSin portableCosSin(float radians) noexcept {
   // operation). The sine has one coefficient fewer; its lane starts from 0, and the first
   // step, c + z * 0, gives c exactly.
   const __m128d zz = _mm_set1_pd(z);
-  __m128d p = _mm_set_pd(0.0, 1.0 / 479001600.0);  // _mm_set_pd(high, low)
-  p = _mm_add_pd(_mm_set_pd(-1.0 / 39916800.0, -1.0 / 3628800.0), _mm_mul_pd(zz, p));
-  p = _mm_add_pd(_mm_set_pd(1.0 / 362880.0, 1.0 / 40320.0), _mm_mul_pd(zz, p));
-  p = _mm_add_pd(_mm_set_pd(-1.0 / 5040.0, -1.0 / 720.0), _mm_mul_pd(zz, p));
-  p = _mm_add_pd(_mm_set_pd(1.0 / 120.0, 1.0 / 24.0), _mm_mul_pd(zz, p));
-  p = _mm_add_pd(_mm_set_pd(-1.0 / 6.0, -0.5), _mm_mul_pd(zz, p));
-  // cos = 1 + z p, sin = r + (r z) p.
+  const __m128d z2 = _mm_mul_pd(zz, zz);
+  const __m128d z4 = _mm_mul_pd(z2, z2);
+  // Estrin: (c2 + c4 z) + z^2 (c6 + c8 z) + z^4 (c10 + c12 z); sine lane (c3 .. c11, 0).
+  const __m128d p01 =
+      _mm_add_pd(_mm_set_pd(-1.0 / 6.0, -0.5), _mm_mul_pd(zz, _mm_set_pd(1.0 / 120.0, 1.0 / 24.0)));
+  const __m128d p23 = _mm_add_pd(_mm_set_pd(-1.0 / 5040.0, -1.0 / 720.0),
+                                 _mm_mul_pd(zz, _mm_set_pd(1.0 / 362880.0, 1.0 / 40320.0)));
+  const __m128d p45 = _mm_add_pd(_mm_set_pd(-1.0 / 39916800.0, -1.0 / 3628800.0),
+                                 _mm_mul_pd(zz, _mm_set_pd(0.0, 1.0 / 479001600.0)));
+  const __m128d p = _mm_add_pd(_mm_add_pd(p01, _mm_mul_pd(z2, p23)), _mm_mul_pd(z4, p45));
   const __m128d both = _mm_add_pd(_mm_set_pd(r, 1.0), _mm_mul_pd(_mm_set_pd(r * z, z), p));
   const __m128 cs = _mm_cvtpd_ps(both);  // (c, s, 0, 0), each rounded as static_cast
   // By quadrant: (c, s), (-s, c), (-c, -s), (s, -c): a swap chosen by a mask and two sign
