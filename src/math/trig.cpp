@@ -205,8 +205,14 @@ CosSin portableCosSin(float radians) noexcept {
   const double t = x * kTwoOverPiDouble;
   // copysign, not t >= 0 ? 0.5 : -0.5: the same half (t is never zero here), without a
   // branch that random angles take at random.
-  const auto k = static_cast<std::int64_t>(t + std::copysign(0.5, t));
-  const double kd = static_cast<double>(k);
+  // The nearest integer by adding and subtracting 1.5 * 2^52 (ties to even, where the
+  // truncation above rounds them away from zero: on no float of the fast path do the two
+  // differ, checked on all of them).
+  const double shifted = t + 0x1.8p52;
+  const double kd = shifted - 0x1.8p52;
+  std::uint64_t shiftedBits = 0;
+  std::memcpy(&shiftedBits, &shifted, sizeof shiftedBits);
+  const auto k = static_cast<std::int64_t>(shiftedBits);  // its low bits are k's
   const double r = ((x - kd * kPiOver2Part1) - kd * kPiOver2Part2) - kd * kPiOver2Part3;
   // |r| <= pi/4 (plus rounding): Taylor to r^11 for sine and r^12 for cosine truncate below
   // 2^-37 and 2^-45 relative ((pi/4)^13 / 13!, (pi/4)^14 / 14!), far below a float ulp.
