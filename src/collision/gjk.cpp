@@ -172,7 +172,7 @@ template <class Observer, bool earlyOut>
   const PointSearch searchA(pointsA, countA);
   const PointSearch searchB(pointsB, countB);
   const PlacedPoints placedB(xf, pointsB, countB);
-  const bool edgeColumns = searchA.hasColumns() & searchB.hasColumns();
+  const bool edgeColumns = searchA.hasColumns() && searchB.hasColumns();
   // Always inlined: left to itself the compiler calls it for the first search and saves and
   // restores a dozen registers around the call.
   auto support = [&](Vec2 direction) __attribute__((always_inline)) {
