@@ -4,6 +4,10 @@
 #include <limits>
 #include <type_traits>
 
+#if defined(__SSE2__)
+#include <xmmintrin.h>
+#endif
+
 #include "gjk_internal.hpp"
 #include "simplex2_internal.hpp"
 
@@ -32,8 +36,9 @@ namespace {
 // float ulps, above the cancellation of the segment projection, below any real rise.
 constexpr float kGjkStallRelativeTolerance = 8.0f * std::numeric_limits<float>::epsilon();
 
-bool loadCache(const GjkCache* cache, const ShapeProxy& a, const ShapeProxy& b, Transform aFromB,
-               GjkVertex* v) noexcept {
+[[gnu::always_inline]] inline bool loadCache(const GjkCache* cache, const ShapeProxy& a,
+                                             const ShapeProxy& b, Transform aFromB,
+                                             GjkVertex* v) noexcept {
   if (cache == nullptr || cache->count < 1 || cache->count > 3) return false;
   for (int i = 0; i < cache->count; ++i) {
     if (cache->indexA[i] >= a.count() || cache->indexB[i] >= b.count()) return false;
@@ -71,6 +76,49 @@ Vec2 normalizeWithLength(Vec2 v, float len) noexcept {
   v[1].weight = weights.b;
   return both ? 2 : 1;
 }
+
+// The points of a proxy of up to kPlacedMax points placed by a transform once, up front,
+// with transformPoint's arithmetic (two points per register: c (x, y) + (-s, s) (y, x) + p,
+// the same products and sums), so that GJK's support point is a load rather than a
+// transform on the chain search -> support -> solve -> direction, which sets the query's
+// time. Larger proxies are transformed point by point when asked.
+class PlacedPoints {
+ public:
+  static constexpr int kPlacedMax = 8;
+
+  PlacedPoints(Transform xf, const Vec2* points, int count) noexcept
+      : xf_(xf), points_(points), placed_(count <= kPlacedMax) {
+    if (!placed_) return;
+    int i = 0;
+#if defined(__SSE2__)
+    const __m128 c = _mm_set1_ps(xf.q.c);
+    const __m128 s = _mm_setr_ps(-xf.q.s, xf.q.s, -xf.q.s, xf.q.s);
+    const __m128 t = _mm_setr_ps(xf.p.x, xf.p.y, xf.p.x, xf.p.y);
+    for (; i + 2 <= count; i += 2) {
+      const __m128 v = _mm_loadu_ps(&points[i].x);
+      const __m128 swapped = _mm_shuffle_ps(v, v, _MM_SHUFFLE(2, 3, 0, 1));
+      _mm_store_ps(&placed_xy_[2 * i],
+                   _mm_add_ps(_mm_add_ps(_mm_mul_ps(c, v), _mm_mul_ps(s, swapped)), t));
+    }
+#endif
+    for (; i < count; ++i) {
+      const Vec2 q = transformPoint(xf, points[i]);
+      placed_xy_[2 * i] = q.x;
+      placed_xy_[2 * i + 1] = q.y;
+    }
+  }
+
+  Vec2 at(int i) const noexcept {
+    if (placed_) return {placed_xy_[2 * i], placed_xy_[2 * i + 1]};
+    return transformPoint(xf_, points_[i]);
+  }
+
+ private:
+  Transform xf_;
+  const Vec2* points_;
+  bool placed_;
+  alignas(16) float placed_xy_[2 * kPlacedMax];  // not zero-filled: written before read
+};
 
 }  // namespace
 
@@ -121,11 +169,17 @@ template <class Observer, bool earlyOut>
   const int countA = a.count();
   const int countB = b.count();
   const Transform xf = aFromB;
-  auto support = [&](Vec2 direction) {
-    const int indexA = findFirstMaxDot(pointsA, countA, -direction);
-    const int indexB = findFirstMaxDot(pointsB, countB, invRotate(xf.q, direction));
+  const PointSearch searchA(pointsA, countA);
+  const PointSearch searchB(pointsB, countB);
+  const PlacedPoints placedB(xf, pointsB, countB);
+  const bool edgeColumns = searchA.hasColumns() && searchB.hasColumns();
+  // Always inlined: left to itself the compiler calls it for the first search and saves and
+  // restores a dozen registers around the call.
+  auto support = [&](Vec2 direction) __attribute__((always_inline)) {
+    const int indexA = searchA.findFirstMaxDot(-direction);
+    const int indexB = searchB.findFirstMaxDot(invRotate(xf.q, direction));
     GjkVertex s;
-    s.w = transformPoint(xf, pointsB[indexB]) - pointsA[indexA];
+    s.w = placedB.at(indexB) - pointsA[indexA];
     s.key = packGjkIndices(indexA, indexB);
     return s;
   };
@@ -277,21 +331,39 @@ template <class Observer, bool earlyOut>
     // support point, stopping GJK on a diagonal instead of an edge.
     const float vLength = std::sqrt(vv);
     bool onEdge = false;
+    bool flipped = false;
     Vec2 dir;
     if (count == 2) {
       const Vec2 n = normal;
       const float side = dot(n, v[0].w);
       onEdge = (side < 0.0f) | (side > 0.0f);
+      flipped = side < 0.0f;
       // -n when side < 0 (exactly: a product with -1), by a table, not a branch.
       constexpr float kSign[2] = {1.0f, -1.0f};
-      const float sign = kSign[static_cast<int>(side < 0.0f)];
+      const float sign = kSign[static_cast<int>(flipped)];
       dir = {sign * n.x, sign * n.y};
     }
     if (!onEdge) dir = normalizeWithLength(vPoint, vLength);
     run.direction = dir;
     previousDirection = dir;
     run.hasDirection = true;
-    const GjkVertex w = support(-dir);
+    GjkVertex w;
+    if (onEdge & edgeColumns) {
+      // dir is n or -n, and every product along -n is the one along n negated (exactly),
+      // so both searches run along n and take the first largest or least product once the
+      // side is known: the searches need not wait for the side test and the sign. A is
+      // searched along dir, B along -dir.
+      int mostA = 0, leastA = 0, mostB = 0, leastB = 0;
+      searchA.findFirstMaxAndMinDot(normal, mostA, leastA);
+      searchB.findFirstMaxAndMinDot(invRotate(xf.q, normal), mostB, leastB);
+      const int mask = -static_cast<int>(flipped);  // all ones when dir = -n
+      const int indexA = mostA ^ ((mostA ^ leastA) & mask);
+      const int indexB = leastB ^ ((leastB ^ mostB) & mask);
+      w.w = placedB.at(indexB) - pointsA[indexA];
+      w.key = packGjkIndices(indexA, indexB);
+    } else {
+      w = support(-dir);
+    }
     ++run.iterations;
     // Seen before the stopping tests: whichever ends the loop, this pass's answer is the
     // final one (closest, direction and simplex are not touched again).
@@ -409,8 +481,9 @@ void GjkRecorder::onPass(const GjkRun& run, Transform aFromB,
 namespace {
 
 template <class Observer>
-DistanceOutput distanceWith(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
-                            Transform worldFromB, GjkCache* cache, Observer& observer) noexcept {
+DistanceOutput distanceWith(const ShapeProxy& a, const Transform& worldFromA, const ShapeProxy& b,
+                            const Transform& worldFromB, GjkCache* cache,
+                            Observer& observer) noexcept {
   Transform aFromB = invMul(worldFromA, worldFromB);
   detail::GjkRun run = detail::runGjk(a, b, aFromB, cache, -1.0f, observer);
   DistanceOutput out = detail::makeDistanceOutput(a, b, worldFromA, aFromB, run);
@@ -421,9 +494,10 @@ DistanceOutput distanceWith(const ShapeProxy& a, Transform worldFromA, const Sha
 
 }  // namespace
 
-DistanceOutput computeDistance(const ShapeProxy& a, Transform worldFromA, const ShapeProxy& b,
-                               Transform worldFromB, GjkCache* cache) noexcept {
-  detail::NoGjkObserver none;
+DistanceOutput detail::computeDistanceOf(const ShapeProxy& a, const Transform& worldFromA,
+                                         const ShapeProxy& b, const Transform& worldFromB,
+                                         GjkCache* cache) noexcept {
+  NoGjkObserver none;
   return distanceWith(a, worldFromA, b, worldFromB, cache, none);
 }
 

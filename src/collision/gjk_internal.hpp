@@ -60,15 +60,21 @@ Simplex2 toSimplex2(const GjkRun& run, const ShapeProxy& a, const ShapeProxy& b,
 // forming the Simplex2.
 inline WitnessPoints witnessPoints(const GjkRun& run, const ShapeProxy& a, const ShapeProxy& b,
                                    Transform aFromB) noexcept {
-  WitnessPoints out;
   const Vec2* pointsA = a.points();
   const Vec2* pointsB = b.points();
+  // Component by component (the operations of Vec2's += and *): written as Vec2 sums, the
+  // compiler formed the sums twice, once in packed registers and once in scalar ones.
+  float ax = 0.0f, ay = 0.0f, bx = 0.0f, by = 0.0f;
   for (int i = 0; i < run.count; ++i) {
     const GjkVertex& v = run.vertices[i];
-    out.pointA += v.weight * pointsA[v.indexA()];
-    out.pointB += v.weight * transformPoint(aFromB, pointsB[v.indexB()]);
+    const Vec2 pa = pointsA[v.indexA()];
+    const Vec2 pb = transformPoint(aFromB, pointsB[v.indexB()]);
+    ax += v.weight * pa.x;
+    ay += v.weight * pa.y;
+    bx += v.weight * pb.x;
+    by += v.weight * pb.y;
   }
-  return out;
+  return {{ax, ay}, {bx, by}};
 }
 
 // The direction from the origin to the closest point v of a run's solved simplex: along v

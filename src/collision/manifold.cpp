@@ -44,7 +44,7 @@ constexpr std::uint32_t makeId(bool flip, bool vertex, int reference, int incide
 }
 
 // Adds a point given in A's frame; the normal is set by the caller.
-void addPoint(Manifold& m, Transform worldFromA, Transform worldFromB, Vec2 pointInA,
+void addPoint(Manifold& m, const Transform& worldFromA, const Transform& worldFromB, Vec2 pointInA,
               float separation, std::uint32_t id) {
   ManifoldPoint& p = m.points[m.pointCount++];
   p.point = transformPoint(worldFromA, pointInA);
@@ -57,8 +57,12 @@ void addPoint(Manifold& m, Transform worldFromA, Transform worldFromB, Vec2 poin
 struct EdgeSeparation {
   float separation;  // least signed distance of q's core from the edge's line
   int edge;          // edge of p
-  int support;       // vertex of q that attains it
+  int support;       // vertex of q that attains it, or kSupportLater
 };
+
+// EdgeSeparation::support not found yet: the first vertex of q with the least product with
+// the edge's normal, detail::findFirstMaxDot(q, -n), is.
+constexpr int kSupportLater = -1;
 
 // The edge of p whose outward normal separates q most, by walking q. q is in p's frame.
 //
@@ -143,14 +147,36 @@ void separationsOfGroups(const PolyView& p, const int* starts, const PolyView& q
 }
 
 // findMaxSeparation for 4 <= p.count <= kAllPairsMaxVertices: the same edge (the first
-// attaining the largest separation) and, for it, the first vertex of q attaining the least
-// product (the walk takes the last of a run of equal ones, which is the other end of an
-// edge of q square to the normal: the incident edge chosen from either is that edge).
+// attaining the largest separation); its support is kSupportLater, for which the caller takes
+// the first vertex of q attaining the least product (the walk takes the last of a run of
+// equal ones, which is the other end of an edge of q square to the normal: the incident
+// edge chosen from either is that edge).
+// allPairsMaxSeparation with the number of groups known at compile time, so that the
+// groups stay in registers and the loops over them unroll.
+template <int kGroups>
+EdgeSeparation maxSeparationOfGroups(const PolyView& p, const int* starts, const PolyView& q) {
+  __m128 groups[kGroups];
+  separationsOfGroups<kGroups>(p, starts, q, groups);
+  __m128 best = groups[0];
+  for (int g = 1; g < kGroups; ++g)
+    best = _mm_max_ps(best, groups[g]);
+  best = _mm_max_ps(best, _mm_shuffle_ps(best, best, _MM_SHUFFLE(2, 3, 0, 1)));
+  best = _mm_max_ps(best, _mm_shuffle_ps(best, best, _MM_SHUFFLE(1, 0, 3, 2)));
+  std::uint32_t hits = 0;
+  for (int g = 0; g < kGroups; ++g) {
+    hits |= static_cast<std::uint32_t>(_mm_movemask_ps(_mm_cmpeq_ps(groups[g], best))) << starts[g];
+  }
+  // No hit only with NaN input (outside the preconditions): the walk answers then.
+  if (hits == 0) return walkMaxSeparation(p, q);
+  // The support vertex is left to the caller (kSupportLater), which needs it for the
+  // reference face only: one search a query instead of two.
+  return {_mm_cvtss_f32(best), std::countr_zero(hits), kSupportLater};
+}
+
 EdgeSeparation allPairsMaxSeparation(const PolyView& p, const PolyView& q) {
   // Groups of four normals; a count that is not a multiple of four ends with a group that
   // overlaps the one before, which changes neither the largest value nor its first index.
   const int last = p.count - 4;
-  __m128 groups[kAllPairsMaxVertices / 4];
   int starts[kAllPairsMaxVertices / 4];
   int groupCount = 0;
   for (int i = 0; i < last; i += 4)
@@ -158,34 +184,14 @@ EdgeSeparation allPairsMaxSeparation(const PolyView& p, const PolyView& q) {
   starts[groupCount++] = last;
   switch (groupCount) {
     case 1:
-      separationsOfGroups<1>(p, starts, q, groups);
-      break;
+      return maxSeparationOfGroups<1>(p, starts, q);
     case 2:
-      separationsOfGroups<2>(p, starts, q, groups);
-      break;
+      return maxSeparationOfGroups<2>(p, starts, q);
     case 3:
-      separationsOfGroups<3>(p, starts, q, groups);
-      break;
+      return maxSeparationOfGroups<3>(p, starts, q);
     default:
-      separationsOfGroups<4>(p, starts, q, groups);
-      break;
+      return maxSeparationOfGroups<4>(p, starts, q);
   }
-  __m128 best = groups[0];
-  for (int g = 1; g < groupCount; ++g)
-    best = _mm_max_ps(best, groups[g]);
-  best = _mm_max_ps(best, _mm_shuffle_ps(best, best, _MM_SHUFFLE(2, 3, 0, 1)));
-  best = _mm_max_ps(best, _mm_shuffle_ps(best, best, _MM_SHUFFLE(1, 0, 3, 2)));
-  std::uint32_t hits = 0;
-  for (int g = 0; g < groupCount; ++g) {
-    hits |= static_cast<std::uint32_t>(_mm_movemask_ps(_mm_cmpeq_ps(groups[g], best))) << starts[g];
-  }
-  // No hit only with NaN input (outside the preconditions): the walk answers then.
-  if (hits == 0) return walkMaxSeparation(p, q);
-  const int edge = std::countr_zero(hits);
-  const Vec2 n = p.normals[edge];
-  // The least dot(n, q_j) is the largest dot(-n, q_j), negated exactly.
-  const int support = detail::findFirstMaxDot(q.vertices, q.count, -n);
-  return {_mm_cvtss_f32(best), edge, support};
 }
 #endif
 
@@ -210,7 +216,8 @@ struct Vec2Buffer {
 
 // out[i] = transformPoint(xf, in[i]) (translate = true) or rotate(xf.q, in[i]), with
 // the same arithmetic, two points per SSE register.
-void transformArray(Transform xf, const Vec2* in, int count, Vec2* out, bool translate) {
+[[gnu::always_inline]] inline void transformArray(Transform xf, const Vec2* in, int count,
+                                                  Vec2* out, bool translate) {
   int i = 0;
 #if defined(__SSE2__)
   // rotate(q, v) = (c x - s y, s x + c y) = c (x, y) + (-s, s) (y, x): the same products and
@@ -287,8 +294,10 @@ SegmentClosest closestOnSegments(Vec2 a1, Vec2 a2, Vec2 b1, Vec2 b2) {
 
 // The polygon-style routine for any two cores with two or more points (polygons, capsules
 // and segments). `a` is in A's frame, `bLocal` in B's frame.
-Manifold collidePolygonal(const PolyView& a, Transform worldFromA, const PolyView& bLocal,
-                          Transform worldFromB, float speculativeDistance) {
+// The transforms by reference: by value each comes in two vector registers that are taken
+// apart again (about 30 moves a call).
+Manifold collidePolygonal(const PolyView& a, const Transform& worldFromA, const PolyView& bLocal,
+                          const Transform& worldFromB, float speculativeDistance) {
   // Work in A's frame: B's core is moved once, its normals only when A's faces did not
   // already separate the cores.
   Transform aFromB = invMul(worldFromA, worldFromB);
@@ -321,7 +330,10 @@ Manifold collidePolygonal(const PolyView& a, Transform worldFromA, const PolyVie
   const int i2 = nextIndex(i1, ref.count);
   const Vec2 n = ref.normals[i1];
   // The incident edge is one of the two at the support vertex: the one facing n most.
-  int s = axis.support;
+  // The least dot(n, q_j) is the largest dot(-n, q_j), negated exactly.
+  const int s = axis.support != kSupportLater
+                    ? axis.support
+                    : detail::findFirstMaxDot(inc.vertices, inc.count, -n);
   int j1 = dot(n, inc.normals[prevIndex(s, inc.count)]) < dot(n, inc.normals[s])
                ? prevIndex(s, inc.count)
                : s;

@@ -142,6 +142,104 @@ inline int findFirstMaxDot(const Vec2* points, int count, Vec2 direction) noexce
   return best;
 }
 
+// findFirstMaxDot over one point set searched many times (GJK's loop searches each proxy
+// two to four times a query): a polygon of 4 to 8 points has its one or two groups of four
+// split into x and y columns once, here, rather than at every search. The products, the
+// maximum and the index are formed as findFirstMaxDot forms them, so the same answer.
+class PointSearch {
+ public:
+  PointSearch(const Vec2* points, int count) noexcept : points_(points), count_(count) {
+#if defined(__SSE2__)
+    columns_ = count >= 4 && count <= 8;
+    last_ = columns_ ? count - 4 : 0;
+    if (columns_) {
+      loadColumns(0, xs0_, ys0_);
+      loadColumns(last_, xs1_, ys1_);
+    } else {
+      xs0_ = ys0_ = xs1_ = ys1_ = _mm_setzero_ps();  // unused
+    }
+#endif
+  }
+
+  [[gnu::always_inline]] int findFirstMaxDot(Vec2 direction) const noexcept {
+#if defined(__SSE2__)
+    if (columns_) {
+      const __m128 dx = _mm_set1_ps(direction.x);
+      const __m128 dy = _mm_set1_ps(direction.y);
+      const __m128 first = _mm_add_ps(_mm_mul_ps(xs0_, dx), _mm_mul_ps(ys0_, dy));
+      const __m128 second = _mm_add_ps(_mm_mul_ps(xs1_, dx), _mm_mul_ps(ys1_, dy));
+      __m128 best = _mm_max_ps(second, first);
+      best = _mm_max_ps(best, _mm_shuffle_ps(best, best, _MM_SHUFFLE(2, 3, 0, 1)));
+      best = _mm_max_ps(best, _mm_shuffle_ps(best, best, _MM_SHUFFLE(1, 0, 3, 2)));
+      const unsigned hits =
+          (static_cast<unsigned>(_mm_movemask_ps(_mm_cmpeq_ps(second, best))) << last_) |
+          static_cast<unsigned>(_mm_movemask_ps(_mm_cmpeq_ps(first, best)));
+      return hits == 0 ? 0 : std::countr_zero(hits);
+    }
+#endif
+    return detail::findFirstMaxDot(points_, count_, direction);
+  }
+
+  /// True when the points are held as columns (4 to 8 points, SSE2): then
+  /// findFirstMaxAndMinDot may be called.
+  bool hasColumns() const noexcept {
+#if defined(__SSE2__)
+    return columns_;
+#else
+    return false;
+#endif
+  }
+
+  /// findFirstMaxDot(direction) and findFirstMaxDot(-direction) from one set of products:
+  /// the products along -direction are those along direction negated (exactly; a zero may
+  /// change sign, which no comparison sees), so the first of the least is the second answer.
+  /// Only with hasColumns().
+  [[gnu::always_inline]] void findFirstMaxAndMinDot(Vec2 direction, int& maxIndex,
+                                                    int& minIndex) const noexcept {
+#if defined(__SSE2__)
+    const __m128 dx = _mm_set1_ps(direction.x);
+    const __m128 dy = _mm_set1_ps(direction.y);
+    const __m128 first = _mm_add_ps(_mm_mul_ps(xs0_, dx), _mm_mul_ps(ys0_, dy));
+    const __m128 second = _mm_add_ps(_mm_mul_ps(xs1_, dx), _mm_mul_ps(ys1_, dy));
+    __m128 most = _mm_max_ps(second, first);
+    __m128 least = _mm_min_ps(second, first);
+    most = _mm_max_ps(most, _mm_shuffle_ps(most, most, _MM_SHUFFLE(2, 3, 0, 1)));
+    least = _mm_min_ps(least, _mm_shuffle_ps(least, least, _MM_SHUFFLE(2, 3, 0, 1)));
+    most = _mm_max_ps(most, _mm_shuffle_ps(most, most, _MM_SHUFFLE(1, 0, 3, 2)));
+    least = _mm_min_ps(least, _mm_shuffle_ps(least, least, _MM_SHUFFLE(1, 0, 3, 2)));
+    const unsigned mostHits =
+        (static_cast<unsigned>(_mm_movemask_ps(_mm_cmpeq_ps(second, most))) << last_) |
+        static_cast<unsigned>(_mm_movemask_ps(_mm_cmpeq_ps(first, most)));
+    const unsigned leastHits =
+        (static_cast<unsigned>(_mm_movemask_ps(_mm_cmpeq_ps(second, least))) << last_) |
+        static_cast<unsigned>(_mm_movemask_ps(_mm_cmpeq_ps(first, least)));
+    maxIndex = mostHits == 0 ? 0 : std::countr_zero(mostHits);
+    minIndex = leastHits == 0 ? 0 : std::countr_zero(leastHits);
+#else
+    maxIndex = detail::findFirstMaxDot(points_, count_, direction);
+    minIndex = detail::findFirstMaxDot(points_, count_, -direction);
+#endif
+  }
+
+ private:
+#if defined(__SSE2__)
+  void loadColumns(int i, __m128& xs, __m128& ys) const noexcept {
+    const __m128 lo = _mm_loadu_ps(&points_[i].x);      // x0 y0 x1 y1
+    const __m128 hi = _mm_loadu_ps(&points_[i + 2].x);  // x2 y2 x3 y3
+    xs = _mm_shuffle_ps(lo, hi, _MM_SHUFFLE(2, 0, 2, 0));
+    ys = _mm_shuffle_ps(lo, hi, _MM_SHUFFLE(3, 1, 3, 1));
+  }
+
+  // Set by the constructor (zeros unless columns_), not by initialisers, so that the
+  // usual polygon stores each column once.
+  __m128 xs0_, ys0_, xs1_, ys1_;
+  int last_ = 0;
+  bool columns_ = false;
+#endif
+  const Vec2* points_;
+  int count_;
+};
+
 }  // namespace detail
 
 /// Index of the proxy point furthest along `direction` (shape frame, any length); the

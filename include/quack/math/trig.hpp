@@ -38,6 +38,12 @@ struct CosSin {
 /// platform, as the functions below (IEEE double operations only, -ffp-contract=off).
 CosSin portableCosSin(float radians) noexcept;
 
+namespace detail {
+// portableCosSin as the targets without SSE2 compute it (Horner's rule in scalar doubles),
+// on every target: the tests check that the SSE2 form gives the same bits.
+CosSin portableCosSinScalar(float radians) noexcept;
+}  // namespace detail
+
 /// Where portableCosSin leaves its fast path: 1e5 rad, ten times the angle a scene file may
 /// give (1e4 rad); there the three-part reduction is still exact to 2^-70 of a turn.
 inline constexpr float kFastTrigLimit = 1.0e5f;
