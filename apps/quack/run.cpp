@@ -562,6 +562,33 @@ auto buildTimed(RunContext& run, std::size_t bodies, double& buildMs, Build&& bu
 
 // ---- the 2D run ---------------------------------------------------------------------------
 
+// Puts --resume's run snapshot into the world (World or World3) and the totals; false, with
+// the message on err, when it cannot.
+template <class AnyWorld>
+bool restoreRun(const RunOptions& options, AnyWorld& world, EventTotals& totals,
+                std::ostream& err) {
+  const Status s = readRunSnapshot(
+      options.resume, [&](std::span<const std::uint8_t> b) { return world.restore(b); }, totals);
+  if (!s) err << "quack run: --resume " << s.message() << '\n';
+  return s.ok();
+}
+
+// A resumed world's step against --steps and --snapshot-at (2D and 3D alike); false, with
+// the message on err, when the run cannot go on from there.
+bool resumedStepFits(const RunOptions& options, std::uint64_t step, std::ostream& err) {
+  if (step > options.steps) {
+    err << "quack run: --resume " << options.resume << ": the snapshot is at step " << step
+        << ", after --steps " << options.steps << '\n';
+    return false;
+  }
+  if (!options.snapshotFile.empty() && options.snapshotAt < step) {
+    err << "quack run: --snapshot-at: step " << options.snapshotAt
+        << " is before the resumed run's first (" << step << ")\n";
+    return false;
+  }
+  return true;
+}
+
 // --threads as a worker count: 0 is the machine's cores, then within 1..kMaxWorkers.
 int workersFor(const RunOptions& options) {
   int threads = options.threads;
@@ -593,23 +620,8 @@ int runScene2(RunContext& run, Scene& scene, double loadMs,
 
   EventTotals totals;
   if (!options.resume.empty()) {
-    if (Status s = readRunSnapshot(
-            options.resume, [&](std::span<const std::uint8_t> b) { return sw.world.restore(b); },
-            totals);
-        !s) {
-      err << "quack run: --resume " << s.message() << '\n';
-      return kRunFailed;
-    }
-    if (sw.world.stepCount() > options.steps) {
-      err << "quack run: --resume " << options.resume << ": the snapshot is at step "
-          << sw.world.stepCount() << ", after --steps " << options.steps << '\n';
-      return kRunFailed;
-    }
-    if (snapshotWanted && options.snapshotAt < sw.world.stepCount()) {
-      err << "quack run: --snapshot-at: step " << options.snapshotAt
-          << " is before the resumed run's first (" << sw.world.stepCount() << ")\n";
-      return kRunFailed;
-    }
+    if (!restoreRun(options, sw.world, totals, err)) return kRunFailed;
+    if (!resumedStepFits(options, sw.world.stepCount(), err)) return kRunFailed;
   }
   const std::uint64_t firstStep = sw.world.stepCount();
   const std::uint64_t stepsToRun = options.steps - firstStep;
@@ -774,13 +786,7 @@ int runScene3(RunContext& run, Scene3& scene, double loadMs,
     // scene's: one of another scene (other bodies or shapes) is refused, or the state file
     // would give this scene's names to another's bodies.
     const std::size_t bodies = sw.world.bodyCount(), shapes = sw.world.shapeCount();
-    if (Status s = readRunSnapshot(
-            options.resume, [&](std::span<const std::uint8_t> b) { return sw.world.restore(b); },
-            totals);
-        !s) {
-      err << "quack run: --resume " << s.message() << '\n';
-      return kRunFailed;
-    }
+    if (!restoreRun(options, sw.world, totals, err)) return kRunFailed;
     const bool same = sw.world.bodyCount() == bodies && sw.world.shapeCount() == shapes &&
                       std::all_of(sw.bodies.begin(), sw.bodies.end(),
                                   [&](BodyId3 b) { return sw.world.isValid(b); });
@@ -790,16 +796,7 @@ int runScene3(RunContext& run, Scene3& scene, double loadMs,
           << options.scene << " has " << bodies << " and " << shapes << ")\n";
       return kRunFailed;
     }
-    if (sw.world.stepCount() > options.steps) {
-      err << "quack run: --resume " << options.resume << ": the snapshot is at step "
-          << sw.world.stepCount() << ", after --steps " << options.steps << '\n';
-      return kRunFailed;
-    }
-    if (snapshotWanted && options.snapshotAt < sw.world.stepCount()) {
-      err << "quack run: --snapshot-at: step " << options.snapshotAt
-          << " is before the resumed run's first (" << sw.world.stepCount() << ")\n";
-      return kRunFailed;
-    }
+    if (!resumedStepFits(options, sw.world.stepCount(), err)) return kRunFailed;
   }
   const std::uint64_t firstStep = sw.world.stepCount();
   const std::uint64_t stepsToRun = options.steps - firstStep;

@@ -288,8 +288,7 @@ TEST(Sat3, BoundsSkipOnlyWhatCannotWin) {
     }
     SatOutput3 s = computeSat(a, ta, b, tb);
     // Given each hull's SAT data made beforehand, the answer is the same to the bit.
-    const SatOutput3 withData =
-        computeSat(a, makeHullSatData3(a), ta, b, makeHullSatData3(b), tb);
+    const SatOutput3 withData = computeSat(a, makeHullSatData3(a), ta, b, makeHullSatData3(b), tb);
     EXPECT_EQ(std::bit_cast<std::uint32_t>(withData.separation),
               std::bit_cast<std::uint32_t>(s.separation))
         << "pair " << i;

@@ -79,6 +79,41 @@ class Run : public ::testing::Test {
     return runScene(o, out_, err_);
   }
 
+  // `scene` run 90 steps in one go (straight.json, straight.jsonl), 40 steps with a run
+  // snapshot at step 40 (40.snap), and from that snapshot on to 90 (resumed.json,
+  // resumed.jsonl).
+  void runStraightAndResumed(const std::string& scene) {
+    RunOptions straight = options(scene, 90);
+    straight.out = at("straight.json");
+    straight.events = at("straight.jsonl");
+    ASSERT_EQ(run(straight), kRunOk) << err_.str();
+    RunOptions first = options(scene, 40);
+    first.out = at("first.json");
+    first.snapshotAt = 40;
+    first.snapshotFile = at("40.snap");
+    ASSERT_EQ(run(first), kRunOk) << err_.str();
+    RunOptions resumed = options(scene, 90);
+    resumed.out = at("resumed.json");
+    resumed.resume = at("40.snap");
+    resumed.events = at("resumed.jsonl");
+    ASSERT_EQ(run(resumed), kRunOk) << err_.str();
+  }
+
+  // The event lines after step `step`: from the first whose step number is above it (empty
+  // when there is none).
+  static std::string linesAfterStep(const std::string& events, unsigned long step) {
+    const std::string head = "{\"step\": ";
+    for (std::size_t line = 0; line < events.size();) {
+      if (events.compare(line, head.size(), head) == 0 &&
+          std::stoul(events.substr(line + head.size())) > step)
+        return events.substr(line);
+      const std::size_t end = events.find('\n', line);
+      if (end == std::string::npos) break;
+      line = end + 1;
+    }
+    return {};
+  }
+
   // Every file in the folder, recursively, that is a temporary (".part").
   std::vector<std::string> temporaries() const {
     std::vector<std::string> found;
@@ -318,36 +353,12 @@ TEST_F(Run, EventListAgreesWithTheTotalsAndRepeatsByteForByte) {
 // snapshot. The resumed lines must be the straight run's lines from the snapshot on, byte for
 // byte, step numbers counted from the scene's start.
 TEST_F(Run, ResumedEventLinesCountStepsFromTheScenesStart) {
-  RunOptions straight = options("concave.json", 90);
-  straight.events = at("straight.jsonl");
-  ASSERT_EQ(run(straight), kRunOk) << err_.str();
-  RunOptions first = options("concave.json", 40);
-  first.out = at("first.json");
-  first.snapshotAt = 40;
-  first.snapshotFile = at("40.snap");
-  ASSERT_EQ(run(first), kRunOk) << err_.str();
-  RunOptions resumed = options("concave.json", 90);
-  resumed.out = at("resumed.json");
-  resumed.resume = at("40.snap");
-  resumed.events = at("resumed.jsonl");
-  ASSERT_EQ(run(resumed), kRunOk) << err_.str();
-  const std::string all = read(at("straight.jsonl"));
+  ASSERT_NO_FATAL_FAILURE(runStraightAndResumed("concave.json"));
+  const std::string after = linesAfterStep(read(at("straight.jsonl")), 40);
   const std::string tail = read(at("resumed.jsonl"));
   ASSERT_FALSE(tail.empty());
-  // The straight run's lines after step 40: the first whose step number is above 40.
-  const std::string head = "{\"step\": ";
-  std::size_t from = std::string::npos;
-  for (std::size_t at = 0; at < all.size();) {
-    if (all.compare(at, head.size(), head) == 0 && std::stoul(all.substr(at + head.size())) > 40) {
-      from = at;
-      break;
-    }
-    const std::size_t end = all.find('\n', at);
-    if (end == std::string::npos) break;
-    at = end + 1;
-  }
-  ASSERT_NE(from, std::string::npos) << "no event after step 40 in the straight run";
-  EXPECT_EQ(all.substr(from), tail);
+  ASSERT_FALSE(after.empty()) << "no event after step 40 in the straight run";
+  EXPECT_EQ(after, tail);
   EXPECT_EQ(tail.find("{\"step\": 1,"), std::string::npos);
 }
 
@@ -505,37 +516,13 @@ TEST_F(Run, A3DSceneWritesItsStateEventsAndReplay) {
 // from the scene's start). A snapshot of another 3D scene, or of a step past --steps, is
 // refused naming why, and writes nothing.
 TEST_F(Run, A3DRunResumedFromItsSnapshotEndsAsTheStraightRun) {
-  RunOptions straight = options("hulls-3d.json", 90);
-  straight.out = at("straight.json");
-  straight.events = at("straight.jsonl");
-  ASSERT_EQ(run(straight), kRunOk) << err_.str();
-  RunOptions first = options("hulls-3d.json", 40);
-  first.out = at("first.json");
-  first.snapshotAt = 40;
-  first.snapshotFile = at("40.snap");
-  ASSERT_EQ(run(first), kRunOk) << err_.str();
-  RunOptions resumed = options("hulls-3d.json", 90);
-  resumed.out = at("resumed.json");
-  resumed.resume = at("40.snap");
-  resumed.events = at("resumed.jsonl");
-  ASSERT_EQ(run(resumed), kRunOk) << err_.str();
+  ASSERT_NO_FATAL_FAILURE(runStraightAndResumed("hulls-3d.json"));
   EXPECT_EQ(read(at("resumed.json")), read(at("straight.json")));
-  const std::string all = read(at("straight.jsonl"));
+  const std::string after = linesAfterStep(read(at("straight.jsonl")), 40);
   const std::string tail = read(at("resumed.jsonl"));
   ASSERT_FALSE(tail.empty());
-  // The straight run's lines after step 40: from the first whose step number is above 40.
-  const std::string head = "{\"step\": ";
-  std::size_t from = std::string::npos;
-  for (std::size_t line = 0; line < all.size(); line = all.find('\n', line) + 1) {
-    if (all.compare(line, head.size(), head) == 0 &&
-        std::stoul(all.substr(line + head.size())) > 40) {
-      from = line;
-      break;
-    }
-    if (all.find('\n', line) == std::string::npos) break;
-  }
-  ASSERT_NE(from, std::string::npos) << "the straight run has no events after step 40";
-  EXPECT_EQ(tail, all.substr(from));
+  ASSERT_FALSE(after.empty()) << "no event after step 40 in the straight run";
+  EXPECT_EQ(after, tail);
 
   RunOptions other = options("cards-3d.json", 90);
   other.out = at("other.json");

@@ -81,6 +81,22 @@ ShapeProxy makeProxy(const ShapeGeometry& geometry) noexcept;
 
 namespace detail {
 
+#if defined(__SSE2__)
+// Index of the first maximum over two groups of four products, the second group starting
+// at point `last` (overlapping the first when there are fewer than eight points: a point
+// seen twice changes neither the maximum nor the first index that attains it).
+[[gnu::always_inline]] inline int firstMaxOfTwoGroups(__m128 first, __m128 second,
+                                                      int last) noexcept {
+  __m128 best = _mm_max_ps(second, first);
+  best = _mm_max_ps(best, _mm_shuffle_ps(best, best, _MM_SHUFFLE(2, 3, 0, 1)));
+  best = _mm_max_ps(best, _mm_shuffle_ps(best, best, _MM_SHUFFLE(1, 0, 3, 2)));
+  const unsigned hits =
+      (static_cast<unsigned>(_mm_movemask_ps(_mm_cmpeq_ps(second, best))) << last) |
+      static_cast<unsigned>(_mm_movemask_ps(_mm_cmpeq_ps(first, best)));
+  return hits == 0 ? 0 : std::countr_zero(hits);
+}
+#endif
+
 // Index of the first maximum of dot(points[i], direction) over `count` points: the same
 // answer as scanning with a strict `>`, computed branch-free. A scan's `value > best` is
 // taken at random places for random directions, and its mispredictions cost more than
@@ -108,15 +124,7 @@ inline int findFirstMaxDot(const Vec2* points, int count, Vec2 direction) noexce
     if (count <= 8) {
       // Boxes and the usual polygons: one or two groups, each formed once, no loop (the
       // same maximum, compared in the same order, as the loop below).
-      const __m128 first = dots(0);
-      const __m128 second = dots(last);
-      __m128 best = _mm_max_ps(second, first);
-      best = _mm_max_ps(best, _mm_shuffle_ps(best, best, _MM_SHUFFLE(2, 3, 0, 1)));
-      best = _mm_max_ps(best, _mm_shuffle_ps(best, best, _MM_SHUFFLE(1, 0, 3, 2)));
-      const unsigned hits =
-          (static_cast<unsigned>(_mm_movemask_ps(_mm_cmpeq_ps(second, best))) << last) |
-          static_cast<unsigned>(_mm_movemask_ps(_mm_cmpeq_ps(first, best)));
-      return hits == 0 ? 0 : std::countr_zero(hits);
+      return firstMaxOfTwoGroups(dots(0), dots(last), last);
     }
     __m128 best = dots(last);
     for (int i = 0; i < last; i += 4)
@@ -166,15 +174,8 @@ class PointSearch {
     if (columns_) {
       const __m128 dx = _mm_set1_ps(direction.x);
       const __m128 dy = _mm_set1_ps(direction.y);
-      const __m128 first = _mm_add_ps(_mm_mul_ps(xs0_, dx), _mm_mul_ps(ys0_, dy));
-      const __m128 second = _mm_add_ps(_mm_mul_ps(xs1_, dx), _mm_mul_ps(ys1_, dy));
-      __m128 best = _mm_max_ps(second, first);
-      best = _mm_max_ps(best, _mm_shuffle_ps(best, best, _MM_SHUFFLE(2, 3, 0, 1)));
-      best = _mm_max_ps(best, _mm_shuffle_ps(best, best, _MM_SHUFFLE(1, 0, 3, 2)));
-      const unsigned hits =
-          (static_cast<unsigned>(_mm_movemask_ps(_mm_cmpeq_ps(second, best))) << last_) |
-          static_cast<unsigned>(_mm_movemask_ps(_mm_cmpeq_ps(first, best)));
-      return hits == 0 ? 0 : std::countr_zero(hits);
+      return firstMaxOfTwoGroups(_mm_add_ps(_mm_mul_ps(xs0_, dx), _mm_mul_ps(ys0_, dy)),
+                                 _mm_add_ps(_mm_mul_ps(xs1_, dx), _mm_mul_ps(ys1_, dy)), last_);
     }
 #endif
     return detail::findFirstMaxDot(points_, count_, direction);
