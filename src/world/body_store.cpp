@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <limits>
 
-#include "geometry_key.hpp"
 #include "quack/collision/proxy.hpp"
 #include "quack/collision/toi.hpp"
 #include "quack/geometry/bounds.hpp"
@@ -83,16 +82,10 @@ Result<std::shared_ptr<const ShapeGeometry>> SharedGeometries::intern(
     return std::make_shared<const ShapeGeometry>(geometry);
   }
   std::string key = polygonKey(*polygon);
-  if (const auto found = polygons_.find(key); found != polygons_.end()) {
-    if (std::shared_ptr<const ShapeGeometry> held = found->second.lock()) return held;
-  }
+  if (std::shared_ptr<const ShapeGeometry> held = polygons_.find(key)) return held;
   if (Status s = validate(geometry); !s) return Error{s.message()};
   auto made = std::make_shared<const ShapeGeometry>(geometry);
-  polygons_.insert_or_assign(std::move(key), made);
-  if (polygons_.size() > 2 * swept_ + 64) {
-    std::erase_if(polygons_, [](const auto& kv) { return kv.second.expired(); });
-    swept_ = polygons_.size();
-  }
+  polygons_.insert(std::move(key), made);
   return made;
 }
 

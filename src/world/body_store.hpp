@@ -5,10 +5,9 @@
 
 #include <cstdint>
 #include <memory>
-#include <string>
-#include <unordered_map>
 #include <vector>
 
+#include "geometry_key.hpp"
 #include "ghost_edges.hpp"
 #include "quack/broadphase/broad_phase.hpp"
 #include "quack/core/id_pool.hpp"
@@ -73,9 +72,7 @@ class SharedGeometries {
                                                       Status (*validate)(const ShapeGeometry&));
 
  private:
-  // Entries of polygons no shape holds any more expire and are swept when the map doubled.
-  std::unordered_map<std::string, std::weak_ptr<const ShapeGeometry>> polygons_;
-  std::size_t swept_ = 0;
+  InternTable<ShapeGeometry> polygons_;
 };
 
 struct Shape {

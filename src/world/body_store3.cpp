@@ -6,7 +6,6 @@
 #include <limits>
 #include <type_traits>
 
-#include "geometry_key.hpp"
 #include "quack/collision/proxy3.hpp"
 #include "quack/geometry/mass3.hpp"
 
@@ -142,16 +141,10 @@ Result<StoredGeometry3> SharedGeometries3::intern(const ShapeGeometry3& geometry
     return StoredGeometry3{std::shared_ptr<const ShapeGeometry3>(h, &h->geometry), &h->sat};
   };
   std::string key = hullKey(*hull);
-  if (const auto found = hulls_.find(key); found != hulls_.end()) {
-    if (std::shared_ptr<const Hull> held = found->second.lock()) return share(held);
-  }
+  if (std::shared_ptr<const Hull> held = hulls_.find(key)) return share(held);
   if (Status s = validate(geometry); !s) return Error{s.message()};
   auto made = std::make_shared<const Hull>(Hull{geometry, makeHullSatData3(*hull)});
-  hulls_.insert_or_assign(std::move(key), made);
-  if (hulls_.size() > 2 * swept_ + 64) {
-    std::erase_if(hulls_, [](const auto& kv) { return kv.second.expired(); });
-    swept_ = hulls_.size();
-  }
+  hulls_.insert(std::move(key), made);
   return share(made);
 }
 

@@ -8,10 +8,9 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
-#include <string>
-#include <unordered_map>
 #include <vector>
 
+#include "geometry_key.hpp"
 #include "quack/broadphase/broad_phase3.hpp"
 #include "quack/collision/sat3.hpp"
 #include "quack/core/id_pool.hpp"
@@ -90,13 +89,14 @@ struct Shape3 {
   ProxyId proxy;
 };
 
-// Shapes' geometries, stored once for all the shapes whose bytes are equal (every used
-// field, bit for bit): a pile of one hull reads one copy, and validates it once.
+// A shape's stored geometry and, for a hull, its SAT data.
 struct StoredGeometry3 {
   std::shared_ptr<const ShapeGeometry3> geometry;
   const HullSatData3* hullSat = nullptr;  // lives as long as geometry; null but for hulls
 };
 
+// Shapes' geometries, stored once for all the shapes whose bytes are equal (every used
+// field, bit for bit): a pile of one hull reads one copy, and validates it once.
 class SharedGeometries3 {
  public:
   // The stored copy of `geometry`: the one already held when one is equal, else a new one,
@@ -110,10 +110,8 @@ class SharedGeometries3 {
     ShapeGeometry3 geometry;
     HullSatData3 sat;
   };
-  // Hulls by their bytes (the other kinds are small: each shape gets its own). Entries of
-  // hulls no shape holds any more expire and are swept when the map has doubled.
-  std::unordered_map<std::string, std::weak_ptr<const Hull>> hulls_;
-  std::size_t swept_ = 0;
+  // Hulls by their bytes (the other kinds are small: each shape gets its own).
+  InternTable<Hull> hulls_;
 };
 
 class BodyStore3 {

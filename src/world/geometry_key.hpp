@@ -6,8 +6,10 @@
 
 #include <cstddef>
 #include <cstring>
+#include <memory>
 #include <string>
 #include <type_traits>
+#include <unordered_map>
 
 #include "quack/math/vec2.hpp"
 #include "quack/math/vec3.hpp"
@@ -46,6 +48,30 @@ class KeyWriter {
  private:
   std::string key_;
   char* at_;
+};
+
+// Stored geometries by their keys, held weakly: an entry lives as long as some shape holds
+// its geometry. Entries that expired are swept when the table has doubled since the last
+// sweep, so a world that makes and drops many shapes does not keep their keys for ever.
+template <class Stored>
+class InternTable {
+ public:
+  // The stored geometry with this key, or null when there is none (or it expired).
+  std::shared_ptr<const Stored> find(const std::string& key) const {
+    const auto found = entries_.find(key);
+    return found == entries_.end() ? nullptr : found->second.lock();
+  }
+  void insert(std::string key, const std::shared_ptr<const Stored>& stored) {
+    entries_.insert_or_assign(std::move(key), stored);
+    if (entries_.size() > 2 * swept_ + 64) {
+      std::erase_if(entries_, [](const auto& kv) { return kv.second.expired(); });
+      swept_ = entries_.size();
+    }
+  }
+
+ private:
+  std::unordered_map<std::string, std::weak_ptr<const Stored>> entries_;
+  std::size_t swept_ = 0;
 };
 
 }  // namespace quack::detail
