@@ -346,11 +346,10 @@ std::string writeRunSnapshot(const EventTotals& totals, const std::vector<std::u
 // Reads a run snapshot file into the world and the totals; the message names the file.
 // The header is read and checked before the rest, so that a file that is not a snapshot
 // (or an endless one, /dev/zero) is refused without reading it whole.
-// `restore` puts the world's part of the file into the world (World::restore or
-// World3::restore); the run snapshot's header is the same for 2D and 3D.
-Status readRunSnapshot(const std::string& path,
-                       const std::function<Status(std::span<const std::uint8_t>)>& restore,
-                       EventTotals& totals) {
+// The world is a World or a World3 (its restore takes the rest of the file): the run
+// snapshot's header is the same for 2D and 3D.
+template <class AnyWorld>
+Status readRunSnapshot(const std::string& path, AnyWorld& world, EventTotals& totals) {
   std::error_code ec;
   if (fs::is_directory(path, ec)) return fail(path + ": is a directory");
   std::FILE* f = std::fopen(path.c_str(), "rb");
@@ -384,7 +383,7 @@ Status readRunSnapshot(const std::string& path,
   if (std::ferror(f) != 0) return closed(fail(path + ": read error"));
   std::fclose(f);
   EventTotals t{get(12, 8), get(20, 8), get(28, 8), get(36, 8)};
-  Status s = restore(std::span<const std::uint8_t>(bytes).subspan(kRunHeader));
+  Status s = world.restore(std::span<const std::uint8_t>(bytes).subspan(kRunHeader));
   if (!s) return fail(path + ": " + s.message());
   totals = t;
   return {};
@@ -567,8 +566,7 @@ auto buildTimed(RunContext& run, std::size_t bodies, double& buildMs, Build&& bu
 template <class AnyWorld>
 bool restoreRun(const RunOptions& options, AnyWorld& world, EventTotals& totals,
                 std::ostream& err) {
-  const Status s = readRunSnapshot(
-      options.resume, [&](std::span<const std::uint8_t> b) { return world.restore(b); }, totals);
+  const Status s = readRunSnapshot(options.resume, world, totals);
   if (!s) err << "quack run: --resume " << s.message() << '\n';
   return s.ok();
 }

@@ -686,9 +686,6 @@ Status SnapshotCodec::readStructure(std::span<const std::uint8_t> structure, std
       r.fail("shape " + std::to_string(i) + " names dead body " + std::to_string(sh.body));
     proxyOf[i] = r.u32("shape proxy");
     const ShapeGeometry geometry = readGeometry(r);
-    // A placeholder until the geometry is known good: the checks below read it even when
-    // the bytes have gone bad, before the reader's error is returned.
-    sh.geometry = std::make_shared<const ShapeGeometry>();
     if (r.ok()) {
       // Validated, and shared as when the shapes were made.
       Result<std::shared_ptr<const ShapeGeometry>> stored =
@@ -698,6 +695,9 @@ Status SnapshotCodec::readStructure(std::span<const std::uint8_t> structure, std
       else
         r.fail("shape " + std::to_string(i) + " geometry: " + stored.error().message);
     }
+    // Bad bytes leave a placeholder: the checks below read the geometry before the reader's
+    // error is returned.
+    if (!sh.geometry) sh.geometry = std::make_shared<const ShapeGeometry>();
     sh.def.density = r.f32("shape density");
     sh.def.friction = r.f32("shape friction");
     sh.def.restitution = r.f32("shape restitution");
