@@ -15,8 +15,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
-#include <map>
 #include <string>
 
 #include "ghost_edges.hpp"
@@ -76,6 +76,82 @@ Cell cellOf(Vec2 p) {
   return {cellIndexOf(p.x, size), cellIndexOf(p.y, size)};
 }
 
+// An edge entered in a cell. Sorted by cell, then edge, a list of these is the grid: a
+// cell's edges are a run, in the order a std::map of vectors filled edge by edge iterates
+// them (which it replaced: one allocation per cell cost 5 ms for 2,500 floor tiles), so
+// the covered intervals and the stored spans are the same bits.
+struct CellEntry {
+  long long x, y;
+  std::size_t edge;
+};
+struct CellOrder {
+  bool operator()(const CellEntry& a, const CellEntry& b) const noexcept {
+    if (a.x != b.x) return a.x < b.x;
+    if (a.y != b.y) return a.y < b.y;
+    return a.edge < b.edge;
+  }
+};
+
+// Edges grouped by cell, each cell's edges in the order they were added, found through an
+// open-addressing hash (a binary search per lookup was most of the update's time; filled by
+// counting, so nothing is sorted).
+class CellRuns {
+ public:
+  explicit CellRuns(const std::vector<CellEntry>& entries) {
+    std::size_t size = 16;
+    while (size < 2 * entries.size())
+      size *= 2;
+    slots_.assign(size, Slot{});
+    std::vector<std::size_t> slotOfEntry(entries.size());
+    for (std::size_t k = 0; k < entries.size(); ++k) {
+      std::size_t i = find(entries[k].x, entries[k].y);
+      Slot& slot = slots_[i];
+      if (slot.count == 0) {
+        slot.x = entries[k].x;
+        slot.y = entries[k].y;
+      }
+      ++slot.count;
+      slotOfEntry[k] = i;
+    }
+    std::size_t at = 0;
+    for (Slot& slot : slots_) {
+      slot.begin = at;
+      at += slot.count;
+    }
+    edges_.resize(entries.size());
+    std::vector<std::size_t> next(slots_.size());
+    for (std::size_t i = 0; i < slots_.size(); ++i)
+      next[i] = slots_[i].begin;
+    for (std::size_t k = 0; k < entries.size(); ++k)
+      edges_[next[slotOfEntry[k]]++] = entries[k].edge;
+  }
+  // f(edge) for the edges entered in cell (x, y), in the order they were added.
+  template <class F>
+  void forEach(long long x, long long y, F&& f) const {
+    const Slot& slot = slots_[find(x, y)];
+    for (std::size_t k = slot.begin; k < slot.begin + slot.count; ++k)
+      f(edges_[k]);
+  }
+
+ private:
+  struct Slot {
+    long long x = 0, y = 0;
+    std::size_t begin = 0, count = 0;  // count 0: an empty slot
+  };
+  // The slot of cell (x, y), or the empty slot where it would go.
+  std::size_t find(long long x, long long y) const noexcept {
+    const auto h = static_cast<std::uint64_t>(x) * 0x9E3779B97F4A7C15ull ^
+                   static_cast<std::uint64_t>(y) * 0xC2B2AE3D27D4EB4Full;
+    const std::size_t mask = slots_.size() - 1;
+    std::size_t i = static_cast<std::size_t>(h >> 20) & mask;
+    while (slots_[i].count != 0 && (slots_[i].x != x || slots_[i].y != y))
+      i = (i + 1) & mask;
+    return i;
+  }
+  std::vector<Slot> slots_;
+  std::vector<std::size_t> edges_;
+};
+
 bool near(Vec2 a, Vec2 b) {
   return distanceSquared(a, b) <= kFlushEdgeTolerance * kFlushEdgeTolerance;
 }
@@ -89,6 +165,8 @@ void GhostEdges::update(BodyStore& store, bool removeGhostCollisions) {
     std::uint32_t shape;
     int edge;
     Vec2 a, b, n;
+    Vec2 d;     // normalize(b - a), computed once: the pair tests below use it many times
+    float len;  // length(b - a)
   };
   std::vector<WorldEdge> edges;
   for (std::uint32_t s = 0; s < store.shapes.size(); ++s) {
@@ -125,9 +203,9 @@ void GhostEdges::update(BodyStore& store, bool removeGhostCollisions) {
     if (p == nullptr) continue;
     const Transform xf = store.bodies[shape.body].xf;
     for (int i = 0; i < p->count; ++i) {
-      edges.push_back({s, i, transformPoint(xf, p->vertices[i]),
-                       transformPoint(xf, p->vertices[(i + 1) % p->count]),
-                       rotate(xf.q, p->normals[i])});
+      const Vec2 a = transformPoint(xf, p->vertices[i]);
+      const Vec2 b = transformPoint(xf, p->vertices[(i + 1) % p->count]);
+      edges.push_back({s, i, a, b, rotate(xf.q, p->normals[i]), normalize(b - a), length(b - a)});
     }
   }
   if (edges.empty()) return;
@@ -137,11 +215,11 @@ void GhostEdges::update(BodyStore& store, bool removeGhostCollisions) {
   // cells about one mean edge long, each edge entered in the cells its box touches.
   float meanLength = 0.0f;
   for (const WorldEdge& w : edges)
-    meanLength += length(w.b - w.a);
+    meanLength += w.len;
   meanLength /= static_cast<float>(edges.size());
   const float cellSize = maxf(meanLength, 16.0f * kFlushEdgeTolerance);
   auto cellIndex = [&](float x) { return cellIndexOf(x, cellSize); };
-  std::map<Cell, std::vector<std::size_t>> grid;
+  std::vector<CellEntry> grid;
   for (std::size_t k = 0; k < edges.size(); ++k) {
     Vec2 lo = minv(edges[k].a, edges[k].b), hi = maxv(edges[k].a, edges[k].b);
     long long x0 = cellIndex(lo.x - kFlushEdgeTolerance),
@@ -158,14 +236,15 @@ void GhostEdges::update(BodyStore& store, bool removeGhostCollisions) {
     }
     for (long long x = x0; x <= x1; ++x)
       for (long long y = y0; y <= y1; ++y)
-        grid[{x, y}].push_back(k);
+        grid.push_back({x, y, k});
   }
+  std::sort(grid.begin(), grid.end(), CellOrder{});
   struct Interval {
     float t0, t1;  // metres along the edge from its start
   };
   std::vector<std::vector<Interval>> covered(edges.size());
   auto addCover = [&](std::size_t k, float t0, float t1) {
-    float len = length(edges[k].b - edges[k].a);
+    const float len = edges[k].len;
     t0 = maxf(t0, 0.0f);
     t1 = minf(t1, len);
     if (t1 - t0 <= kFlushEdgeTolerance) return;
@@ -180,15 +259,18 @@ void GhostEdges::update(BodyStore& store, bool removeGhostCollisions) {
     list.push_back({t0, t1});
   };
   auto lineDistance = [&](std::size_t k, Vec2 p) {
-    return absf(cross(normalize(edges[k].b - edges[k].a), p - edges[k].a));
+    return absf(cross(edges[k].d, p - edges[k].a));
   };
   // A pair that shares several cells is covered once per cell; the intervals merge.
-  for (const auto& [cell, list] : grid) {
-    for (std::size_t x = 0; x < list.size(); ++x) {
-      for (std::size_t y = x + 1; y < list.size(); ++y) {
-        std::size_t k = list[x], j = list[y];
+  for (std::size_t first = 0, last = 0; first < grid.size(); first = last) {
+    last = first + 1;
+    while (last < grid.size() && grid[last].x == grid[first].x && grid[last].y == grid[first].y)
+      ++last;
+    for (std::size_t x = first; x < last; ++x) {
+      for (std::size_t y = x + 1; y < last; ++y) {
+        std::size_t k = grid[x].edge, j = grid[y].edge;
         if (edges[k].shape == edges[j].shape) continue;
-        Vec2 dk = normalize(edges[k].b - edges[k].a), dj = normalize(edges[j].b - edges[j].a);
+        const Vec2 dk = edges[k].d, dj = edges[j].d;
         if (dot(dk, dj) >= 0.0f || absf(cross(dk, dj)) > kFlatJointSine) continue;
         if (lineDistance(k, edges[j].a) > kFlushEdgeTolerance ||
             lineDistance(k, edges[j].b) > kFlushEdgeTolerance) {
@@ -207,19 +289,25 @@ void GhostEdges::update(BodyStore& store, bool removeGhostCollisions) {
     return false;
   };
 
-  std::map<Cell, std::vector<std::size_t>> starts, ends;
+  std::vector<CellEntry> startList, endList;
+  startList.reserve(edges.size());
+  endList.reserve(edges.size());
   for (std::size_t k = 0; k < edges.size(); ++k) {
-    starts[cellOf(edges[k].a)].push_back(k);
-    ends[cellOf(edges[k].b)].push_back(k);
+    const Cell a = cellOf(edges[k].a), b = cellOf(edges[k].b);
+    startList.push_back({a.first, a.second, k});
+    endList.push_back({b.first, b.second, k});
   }
-  auto around = [](const std::map<Cell, std::vector<std::size_t>>& cells, Vec2 p, auto&& f) {
-    Cell c = cellOf(p);
-    for (long long dx = -1; dx <= 1; ++dx) {
-      for (long long dy = -1; dy <= 1; ++dy) {
-        auto it = cells.find({c.first + dx, c.second + dy});
-        if (it == cells.end()) continue;
-        for (std::size_t k : it->second)
-          f(k);
+  const CellRuns starts(startList), ends(endList);
+  auto around = [](const CellRuns& cells, Vec2 p, auto&& f) {
+    // The cells a point near p (within the tolerance, with room for the rounding of
+    // near()'s squared distance) can be in: one or two along each axis, as the cells are
+    // four tolerances wide. Those points are all a caller keeps; its counts and its last
+    // match do not depend on which other edges it is shown.
+    const float reach = 1.01f * kFlushEdgeTolerance;
+    const Cell lo = cellOf(p - Vec2{reach, reach}), hi = cellOf(p + Vec2{reach, reach});
+    for (long long cx = lo.first; cx <= hi.first; ++cx) {
+      for (long long cy = lo.second; cy <= hi.second; ++cy) {
+        cells.forEach(cx, cy, f);
       }
     }
   };
@@ -238,7 +326,7 @@ void GhostEdges::update(BodyStore& store, bool removeGhostCollisions) {
     for (const Interval& i : covered[k])
       e.covered.push_back({edges[k].edge, i.t0, i.t1});
     const Rot q = store.bodies[shape.body].xf.q;
-    const float len = length(edges[k].b - edges[k].a);
+    const float len = edges[k].len;
     // Edge i joins vertices i and i + 1.
     for (int end = 0; end < 2; ++end) {
       if (!coveredAt(k, end == 0 ? 0.0f : len)) continue;
@@ -247,7 +335,7 @@ void GhostEdges::update(BodyStore& store, bool removeGhostCollisions) {
       int inCount = 0, outCount = 0;
       std::size_t in = 0, out = 0;
       around(ends, at, [&](std::size_t j) {
-        if (near(edges[j].b, at) && !coveredAt(j, length(edges[j].b - edges[j].a))) {
+        if (near(edges[j].b, at) && !coveredAt(j, edges[j].len)) {
           ++inCount;
           in = j;
         }
@@ -260,8 +348,8 @@ void GhostEdges::update(BodyStore& store, bool removeGhostCollisions) {
       });
       EdgeCone cone;
       if (inCount == 1 && outCount == 1) {
-        Vec2 dIn = normalize(edges[in].b - edges[in].a);
-        Vec2 dOut = normalize(edges[out].b - edges[out].a);
+        const Vec2 dIn = edges[in].d;
+        const Vec2 dOut = edges[out].d;
         cone = coneBetween(dIn, edges[in].n, dOut, edges[out].n);
         cone.lo = invRotate(q, cone.lo);
         cone.hi = invRotate(q, cone.hi);
