@@ -78,8 +78,8 @@ Cell cellOf(Vec2 p) {
 
 // An edge entered in a cell. Sorted by cell, then edge, a list of these is the grid: a
 // cell's edges are a run, in the order a std::map of vectors filled edge by edge iterates
-// them (which it replaced: one allocation per cell cost 5 ms for 2,500 floor tiles), so
-// the covered intervals and the stored spans are the same bits.
+// them, so the covered intervals and the stored spans are the same bits as with the map it
+// replaced (a node and a vector per cell: 56 M instructions for 2,505 floor tiles, now 26 M).
 struct CellEntry {
   long long x, y;
   std::size_t edge;
