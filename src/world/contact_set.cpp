@@ -86,6 +86,51 @@ void ContactSet::destroy(std::uint32_t index, BodyStore& store, EventDispatcher&
   --count_;
 }
 
+namespace {
+
+// Pairs by (a.index, b.index). Many pairs (a churning pile's step finds tens of thousands)
+// are sorted by radix, least significant digit first, on the two indices packed into one
+// key of just the bits they use: a few stable counting passes where std::sort spent 2 to 5%
+// of the step. A pair's key is its two indices, and pairs with equal keys are equal, so the
+// order is exactly std::sort's.
+void sortPairs(std::vector<ProxyPair>& pairs, std::vector<ProxyPair>& scratch) {
+  auto byIndices = [](const ProxyPair& x, const ProxyPair& y) {
+    return x.a.index != y.a.index ? x.a.index < y.a.index : x.b.index < y.b.index;
+  };
+  constexpr std::size_t kMinRadix = 1024;
+  if (pairs.size() < kMinRadix) {
+    std::sort(pairs.begin(), pairs.end(), byIndices);
+    return;
+  }
+  std::uint32_t most = 1;
+  for (const ProxyPair& p : pairs)
+    most |= p.a.index | p.b.index;
+  const int bits = 32 - __builtin_clz(most);  // of each index
+  auto key = [bits](const ProxyPair& p) {
+    return (std::uint64_t{p.a.index} << bits) | std::uint64_t{p.b.index};
+  };
+  constexpr int kDigit = 11;
+  constexpr std::size_t kBuckets = std::size_t{1} << kDigit;
+  scratch.resize(pairs.size());
+  std::size_t count[kBuckets];
+  for (int shift = 0; shift < 2 * bits; shift += kDigit) {
+    std::fill(count, count + kBuckets, std::size_t{0});
+    for (const ProxyPair& p : pairs)
+      ++count[(key(p) >> shift) & (kBuckets - 1)];
+    std::size_t at = 0;
+    for (std::size_t& c : count) {
+      const std::size_t n = c;
+      c = at;
+      at += n;
+    }
+    for (const ProxyPair& p : pairs)
+      scratch[count[(key(p) >> shift) & (kBuckets - 1)]++] = p;
+    pairs.swap(scratch);
+  }
+}
+
+}  // namespace
+
 void ContactSet::findNew(StepContext& step) {
   BroadPhase& broadPhase = step.broadPhase;
   BodyStore& store = step.store;
@@ -101,9 +146,7 @@ void ContactSet::findNew(StepContext& step) {
   });
   // Structure-independent order, so contacts (and the solver) run in the same order
   // whichever broad phase found them.
-  std::sort(pairScratch_.begin(), pairScratch_.end(), [](const ProxyPair& x, const ProxyPair& y) {
-    return x.a.index != y.a.index ? x.a.index < y.a.index : x.b.index < y.b.index;
-  });
+  sortPairs(pairScratch_, pairSortScratch_);
   for (const ProxyPair& pair : pairScratch_) {
     auto sa = static_cast<std::uint32_t>(broadPhase.userData(pair.a));
     auto sb = static_cast<std::uint32_t>(broadPhase.userData(pair.b));

@@ -212,6 +212,7 @@ class ContactSet {
   std::vector<std::uint32_t> free_;
   PairMap byPair_;
   std::vector<ProxyPair> pairScratch_;
+  std::vector<ProxyPair> pairSortScratch_;  // sortPairs' other buffer
   ContactChanges changes_;
   std::vector<ContactHead> heads_;
   std::size_t count_ = 0;
