@@ -86,13 +86,11 @@ void ContactSet::destroy(std::uint32_t index, BodyStore& store, EventDispatcher&
   --count_;
 }
 
-namespace {
-
-// Pairs by (a.index, b.index). Many pairs (a churning pile's step finds tens of thousands)
-// are sorted by radix, least significant digit first, on the two indices packed into one
-// key of just the bits they use: a few stable counting passes where std::sort spent 2 to 5%
-// of the step. A pair's key is its two indices, and pairs with equal keys are equal, so the
-// order is exactly std::sort's.
+// Many pairs (a churning pile's step finds tens of thousands) are sorted by radix, least
+// significant digit first, on the two indices packed into one key of just the bits they
+// use: a few stable counting passes where std::sort spent 2 to 5% of the step. Pairs with
+// equal keys are equal within a step (an index names one live proxy), so the order is
+// exactly std::sort's (tests/world/index_test.cpp checks it).
 void sortPairs(std::vector<ProxyPair>& pairs, std::vector<ProxyPair>& scratch) {
   auto byIndices = [](const ProxyPair& x, const ProxyPair& y) {
     return x.a.index != y.a.index ? x.a.index < y.a.index : x.b.index < y.b.index;
@@ -128,8 +126,6 @@ void sortPairs(std::vector<ProxyPair>& pairs, std::vector<ProxyPair>& scratch) {
     pairs.swap(scratch);
   }
 }
-
-}  // namespace
 
 void ContactSet::findNew(StepContext& step) {
   BroadPhase& broadPhase = step.broadPhase;

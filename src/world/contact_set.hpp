@@ -69,6 +69,11 @@ struct Contact {
   float baseSeparation[kMaxManifoldPoints] = {};
 };
 
+/// Sorts pairs by (a.index, b.index), the order the contact set creates contacts in
+/// whichever broad phase found them. Equal to std::sort by that key; by radix when there
+/// are many (`scratch` is its second buffer).
+void sortPairs(std::vector<ProxyPair>& pairs, std::vector<ProxyPair>& scratch);
+
 /// What preparing a touching contact's constraint reads, written by the narrow phase in
 /// contact order while it has the contact and both bodies at hand: the solver then reads
 /// this short record (two cache lines) for each lane instead of the contact record and both

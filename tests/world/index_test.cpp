@@ -10,6 +10,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "../../src/world/contact_set.hpp"
 #include "../../src/world/continuous.hpp"
 #include "../../src/world/pair_map.hpp"
 
@@ -106,6 +107,34 @@ TEST(BoxGrid, QueriesReportEveryOverlappingBoxOnceAsAScanDoes) {
       ASSERT_TRUE(std::adjacent_find(got.begin(), got.end()) == got.end())
           << "an item reported twice, round " << round << " query " << q;
       ASSERT_EQ(got, want) << "round " << round << " query " << q;
+    }
+  }
+}
+
+// The contact set's pair sort against std::sort by the same key, on both of its paths (a
+// plain sort under 1,024 pairs, radix above) and index ranges from a few bits to 31.
+TEST(SortPairs, GivesStdSortsOrderOnBothPaths) {
+  std::mt19937 rng(4242);
+  std::vector<ProxyPair> scratch;
+  for (std::uint32_t maxIndex : {40u, 5000u, 70000u, 0x7ffffff0u}) {
+    for (std::size_t n : {10u, 1023u, 1024u, 30000u}) {
+      std::uniform_int_distribution<std::uint32_t> index(0, maxIndex);
+      std::vector<ProxyPair> pairs;
+      for (std::size_t k = 0; k < n; ++k) {
+        std::uint32_t a = index(rng), b = index(rng);
+        if (a > b) std::swap(a, b);
+        pairs.push_back({ProxyId{a, 1}, ProxyId{b, 1}});
+      }
+      // Some pairs twice, as a broad phase may report them.
+      for (std::size_t k = 0; k < n / 10; ++k)
+        pairs.push_back(pairs[k * 7 % pairs.size()]);
+      std::shuffle(pairs.begin(), pairs.end(), rng);
+      std::vector<ProxyPair> expected = pairs;
+      std::sort(expected.begin(), expected.end(), [](const ProxyPair& x, const ProxyPair& y) {
+        return x.a.index != y.a.index ? x.a.index < y.a.index : x.b.index < y.b.index;
+      });
+      sortPairs(pairs, scratch);
+      EXPECT_EQ(pairs, expected) << "max index " << maxIndex << ", " << n << " pairs";
     }
   }
 }
