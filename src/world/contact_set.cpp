@@ -244,7 +244,8 @@ void ContactSet::update(StepContext& step, const GhostEdges& edges,
                });
   updateOutcome_.resize(updateList_.size());
   ++simStamp_;
-  if (sims.size() < contacts.size()) sims.resize(contacts.size());
+  if (simLane_.size() < contacts.size()) simLane_.resize(contacts.size(), kNoSimLane);
+  if (sims.size() < simLanes_ + contacts.size()) sims.resize(simLanes_ + contacts.size());
   const std::uint64_t stamp = simStamp_;
   // Each contact on its own, on any worker: it reads shapes and bodies and writes only
   // itself and its outcome (docs/world.md, "Threads").
@@ -256,7 +257,7 @@ void ContactSet::update(StepContext& step, const GhostEdges& edges,
           const auto at = static_cast<std::size_t>(k);
           const std::uint32_t i = updateList_[at];
           updateOutcome_[at] =
-              updateOne(contacts[i], sims[i], stamp, def, broadPhase, cstore, edges);
+              updateOne(contacts[i], sims[simIndex(i)], stamp, def, broadPhase, cstore, edges);
           heads_[i].touching = contacts[i].touching;
         }
       },
@@ -287,6 +288,20 @@ void ContactSet::update(StepContext& step, const GhostEdges& edges,
         break;
     }
   }
+}
+
+void ContactSet::placeSims(std::span<const std::uint32_t> touching,
+                           std::span<const std::uint32_t> lanes, std::size_t laneCount) {
+  QUACK_ASSERT(touching.size() == lanes.size());
+  for (const std::uint32_t ci : simPlaced_)
+    if (ci < simLane_.size()) simLane_[ci] = kNoSimLane;
+  if (simLane_.size() < contacts.size()) simLane_.resize(contacts.size(), kNoSimLane);
+  simPlaced_.assign(touching.begin(), touching.end());
+  for (std::size_t k = 0; k < touching.size(); ++k) {
+    QUACK_ASSERT(lanes[k] < laneCount);
+    simLane_[touching[k]] = lanes[k];
+  }
+  simLanes_ = laneCount;
 }
 
 void fillContactSim(ContactSim& sim, const Contact& c, Vec2 centerA, Vec2 localCenterA,

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "pair_map.hpp"
@@ -116,7 +117,21 @@ struct ContactHead {
 class ContactSet {
  public:
   std::vector<Contact> contacts;  // live where Contact::alive
-  std::vector<ContactSim> sims;   // by contact index (ContactSim)
+  /// The narrow phase's sims (ContactSim), where simIndex says: a contact that the
+  /// solver's last step put in lane L writes lane L's record, so that preparing, which
+  /// walks the lanes in order, reads this array nearly in order (the lanes change little
+  /// from step to step); any other contact writes past the lanes, by its index.
+  std::vector<ContactSim> sims;
+  /// Where contact `ci`'s sim lies in `sims`.
+  std::size_t simIndex(std::uint32_t ci) const noexcept {
+    const std::uint32_t lane = ci < simLane_.size() ? simLane_[ci] : kNoSimLane;
+    return lane != kNoSimLane ? lane : simLanes_ + ci;
+  }
+  /// The solver's lanes of this step, for the next step's narrow phase: touching[k] went to
+  /// lane lanes[k] of laneCount. Any assignment works (the stamp says whether a sim is
+  /// current); each lane holds one contact, so no two contacts share a record.
+  void placeSims(std::span<const std::uint32_t> touching, std::span<const std::uint32_t> lanes,
+                 std::size_t laneCount);
   /// By contact index: each contact's ContactHead, kept equal to the contact's fields.
   const std::vector<ContactHead>& heads() const noexcept { return heads_; }
   /// Rebuilds the heads from the contacts (after a snapshot is restored).
@@ -222,6 +237,10 @@ class ContactSet {
   std::vector<ContactHead> heads_;
   std::size_t count_ = 0;
   std::uint64_t simStamp_ = 0;  // bumped by each update; 0 marks no sim current
+  static constexpr std::uint32_t kNoSimLane = 0xffffffffu;
+  std::vector<std::uint32_t> simLane_;    // by contact index: its lane (placeSims) or none
+  std::vector<std::uint32_t> simPlaced_;  // the contacts that have one
+  std::size_t simLanes_ = 0;              // lanes of the last placeSims; past them, by index
   std::vector<std::uint64_t> awake_;
   bool allAwake_ = true;
 };

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 
 #include "solver.hpp"
 
@@ -15,6 +16,7 @@
 #include "contact_set.hpp"
 #include "event_dispatcher.hpp"
 #include "joint_set.hpp"
+#include "joint_lanes.hpp"
 #include "joint_solver.hpp"
 #include "quack/math/trig.hpp"
 #include "quack/world/tasks.hpp"
@@ -27,9 +29,13 @@ namespace quack::detail {
 
 namespace {
 std::atomic<bool> testReadsRecords{false};
+std::atomic<bool> testJointsOneAtATime{false};
 }  // namespace
 void setTestSolverReadsRecords(bool on) noexcept {
   testReadsRecords.store(on, std::memory_order_relaxed);
+}
+void setTestJointsOneAtATime(bool on) noexcept {
+  testJointsOneAtATime.store(on, std::memory_order_relaxed);
 }
 
 namespace {
@@ -329,6 +335,19 @@ struct SolverScratch {
   std::vector<JointSim> joints;
   std::vector<std::uint8_t> jointColor;      // per found joint
   std::size_t jointStart[kColors + 2] = {};  // overflow [0, [0]), colour c [c], [c + 1])
+  // The joint passes' work items: in each colour, blocks of plain revolute joints
+  // (joint_lanes.hpp; those come first in the colour's joints) then its other joints one
+  // by one; the overflow set's joints one by one. An item is kJointBlockItem | block, or
+  // an index into `joints`. Ranges as jointStart's, over items.
+  static constexpr std::uint32_t kJointBlockItem = 0x80000000u;
+  std::vector<std::uint32_t> jointItems;
+  std::size_t jointItemStart[kColors + 1] = {};
+  struct JointBlockJoints {
+    std::uint32_t first, count;  // the block's joints in `joints`
+  };
+  std::vector<JointBlockJoints> jointBlockJoints;
+  std::vector<JointBlock<FloatW>> jointWide;
+  std::vector<JointBlock<FloatS>> jointNarrow;
   std::vector<std::uint32_t> broken;         // joints past their break force, in index order
 };
 
@@ -341,27 +360,57 @@ struct StepParams {
 };
 
 // Colours the joints first, with the colours their bodies take (as a contact's, below),
-// and lays them out: the overflow set, then each colour's in joint order.
-void layoutJoints(SolverScratch& s, std::uint32_t* used) {
+// and lays them out: the overflow set, then each colour's in joint order, the plain
+// revolute joints of a colour (solvedInLanes) before its others, `width` to a block.
+void layoutJoints(SolverScratch& s, std::uint32_t* used, const JointSet& jointSet, int width) {
   const std::size_t n = s.jointsFound.size();
+  const bool lanes = !testJointsOneAtATime.load(std::memory_order_relaxed);
   s.jointColor.resize(n);
   std::size_t perColor[kColors + 1] = {};
+  std::size_t plainPerColor[kColors + 1] = {};
   for (std::size_t k = 0; k < n; ++k) {
     const JointSim& j = s.jointsFound[k];
     const int color = takeColor(used, j.slotA, j.slotB, j.writeA, j.writeB);
     s.jointColor[k] = static_cast<std::uint8_t>(color);
     ++perColor[color];
+    if (lanes && color != kOverflow && solvedInLanes(jointSet.joints[j.joint].def))
+      ++plainPerColor[color];
   }
   s.jointStart[0] = perColor[kOverflow];
   for (int c = 0; c < kColors; ++c)
     s.jointStart[c + 1] = s.jointStart[c] + perColor[c];
-  std::size_t fill[kColors + 1];
+  std::size_t fill[kColors + 1], fillOther[kColors + 1];
   fill[kOverflow] = 0;
-  for (int c = 0; c < kColors; ++c)
+  fillOther[kOverflow] = 0;
+  for (int c = 0; c < kColors; ++c) {
     fill[c] = s.jointStart[c];
+    fillOther[c] = s.jointStart[c] + plainPerColor[c];
+  }
   s.joints.resize(n);
-  for (std::size_t k = 0; k < n; ++k)
-    s.joints[fill[s.jointColor[k]]++] = s.jointsFound[k];
+  for (std::size_t k = 0; k < n; ++k) {
+    const int c = s.jointColor[k];
+    const bool plain = plainPerColor[c] != 0 && solvedInLanes(jointSet.joints[s.jointsFound[k].joint].def);
+    s.joints[plain ? fill[c]++ : fillOther[c]++] = s.jointsFound[k];
+  }
+  // The work items.
+  const auto w = static_cast<std::size_t>(width);
+  s.jointItems.clear();
+  s.jointBlockJoints.clear();
+  for (std::size_t k = 0; k < s.jointStart[0]; ++k)
+    s.jointItems.push_back(static_cast<std::uint32_t>(k));
+  for (int c = 0; c < kColors; ++c) {
+    s.jointItemStart[c] = s.jointItems.size();
+    const std::size_t first = s.jointStart[c], plainEnd = first + plainPerColor[c];
+    for (std::size_t k = first; k < plainEnd; k += w) {
+      s.jointItems.push_back(SolverScratch::kJointBlockItem |
+                             static_cast<std::uint32_t>(s.jointBlockJoints.size()));
+      s.jointBlockJoints.push_back({static_cast<std::uint32_t>(k),
+                                    static_cast<std::uint32_t>(std::min(w, plainEnd - k))});
+    }
+    for (std::size_t k = plainEnd; k < s.jointStart[c + 1]; ++k)
+      s.jointItems.push_back(static_cast<std::uint32_t>(k));
+  }
+  s.jointItemStart[kColors] = s.jointItems.size();
 }
 
 // Colours the touching contacts and lays them out in blocks: the overflow set first (one
@@ -370,12 +419,12 @@ void layoutJoints(SolverScratch& s, std::uint32_t* used) {
 template <class F>
 [[gnu::noinline]] std::size_t layoutBlocks(SolverScratch& s, std::vector<ContactBlock<F>>& blocks,
                                            std::size_t* colorStart, std::size_t* colorCount,
-                                           Solver::Stats& stats) {
+                                           Solver::Stats& stats, const JointSet& jointSet) {
   constexpr int W = F::width;
   // Per slot, the colours its body is already in (bit c; takeColor).
   s.slotColors.assign(s.states.size(), 0);
   std::uint32_t* used = s.slotColors.data();
-  layoutJoints(s, used);
+  layoutJoints(s, used, jointSet, W);
   std::size_t perColor[kColors + 1] = {};
   s.color.resize(s.touching.size());
   for (std::size_t k = 0; k < s.touching.size(); ++k) {
@@ -525,20 +574,25 @@ template <class F>
   const Contact* contacts = contactSet.contacts.data();
   const ContactSim* sims = contactSet.sims.data();
   const std::size_t simCount = contactSet.sims.size();
-  // 0 matches no sim (simStamp starts at 1): every lane from the records (the tests' switch).
-  const std::uint64_t stamp =
-      testReadsRecords.load(std::memory_order_relaxed) ? 0 : contactSet.simStamp();
+  // The largest stamp matches no sim (stamps count up from 1; a sim never written has 0):
+  // every lane from the records (the tests' switch).
+  const std::uint64_t stamp = testReadsRecords.load(std::memory_order_relaxed)
+                                  ? std::numeric_limits<std::uint64_t>::max()
+                                  : contactSet.simStamp();
   const SolverScratch::Pair* lanes = s.lanePairs.data();
-  // Each lane's contact, bodies and states lie anywhere in memory (contacts in index order,
-  // lanes in colour order): the time went to waiting for them (a fifth of a pyramid step
-  // for a tenth of its instructions). They are fetched a few blocks ahead.
+  // Each lane's sim lies where the narrow phase wrote it: in the lane its contact had in the
+  // last step (ContactSet::placeSims), so nearly in the order read here. By contact index,
+  // in a pile of many colours, preparing waited on them (a fifth of a pyramid step for a
+  // tenth of its instructions). The bodies' states lie anywhere. Both are fetched a few
+  // blocks ahead.
   constexpr std::size_t kAhead = 4;
   auto fetch = [&](std::size_t bi) {
     for (int lane = 0; lane < W; ++lane) {
       const SolverScratch::Pair& pair = lanes[bi * W + static_cast<std::size_t>(lane)];
       if (pair.contact == SolverScratch::kNoContact) continue;
-      if (pair.contact >= simCount) continue;
-      const char* c = reinterpret_cast<const char*>(sims + pair.contact);
+      const std::size_t simAt = contactSet.simIndex(pair.contact);
+      if (simAt >= simCount) continue;
+      const char* c = reinterpret_cast<const char*>(sims + simAt);
       for (std::size_t at = 0; at < sizeof(ContactSim); at += 64)
         __builtin_prefetch(c + at);
       __builtin_prefetch(c + sizeof(ContactSim) - 1);
@@ -568,7 +622,8 @@ template <class F>
       if (pair.contact == SolverScratch::kNoContact) continue;
       const PrepBody bodyA = prepBody(pair.bodyA, pair.slotA, pair.dynamicA);
       const PrepBody bodyB = prepBody(pair.bodyB, pair.slotB, pair.dynamicB);
-      const ContactSim* sim = pair.contact < simCount ? sims + pair.contact : nullptr;
+      const std::size_t simAt = contactSet.simIndex(pair.contact);
+      const ContactSim* sim = simAt < simCount ? sims + simAt : nullptr;
       if (sim == nullptr || sim->stamp != stamp) {
         // Not updated by this step's narrow phase (ContactSim): from the records.
         fillContactSim(local, contacts[pair.contact], bodyA.center, bodyA.localCenter, bodyB.center,
@@ -642,12 +697,15 @@ void reportHits(const SolverScratch& s, const BodyStore& store, const ContactSet
 // The contact part of a step: colour, prepare, then per sub-step integrate velocities,
 // warm start, solve, integrate positions, relax; then restitution and the impulses stored.
 template <class F>
-void runStep(SolverScratch& s, std::vector<ContactBlock<F>>& blocks, const WorldDef& def,
+void runStep(SolverScratch& s, std::vector<ContactBlock<F>>& blocks,
+             std::vector<JointBlock<F>>& jointBlocks, const WorldDef& def,
              BodyStore& store, ContactSet& contactSet, JointSet& jointSet, EventDispatcher& events,
              const StepParams& params, int substeps, Solver::Stats& stats, TaskRunner& tasks) {
   constexpr int W = F::width;
   std::size_t colorStart[kColors + 1], colorCount[kColors + 1];
-  const std::size_t blockCount = layoutBlocks<F>(s, blocks, colorStart, colorCount, stats);
+  const std::size_t blockCount =
+      layoutBlocks<F>(s, blocks, colorStart, colorCount, stats, jointSet);
+  jointBlocks.resize(s.jointBlockJoints.size());  // cleared as they are prepared
   // Which contact each lane holds, so that blocks can be prepared apart (a block's lanes
   // share its write masks): every constraint's pair into its lane, on the workers (each
   // lane is written once), then the empty lanes marked: lanes 1.. of the overflow blocks
@@ -718,7 +776,7 @@ void runStep(SolverScratch& s, std::vector<ContactBlock<F>>& blocks, const World
     stages.push_back(st);
     stageBlocks.push_back(blocksOf + static_cast<int>(st.jointBlocks));
   };
-  const std::size_t* js = s.jointStart;
+  const std::size_t* js = s.jointItemStart;
   auto addPass = [&](Kind kind, bool odd) {
     // The overflow set: its joints then its contacts, one at a time (they share bodies).
     if (colorStart[0] != 0 || js[0] != 0) {
@@ -735,7 +793,7 @@ void runStep(SolverScratch& s, std::vector<ContactBlock<F>>& blocks, const World
   };
   const std::size_t slots = s.states.size() - 1;  // slot 0 is the resting dummy
   add(Kind::prepare, false, 0, blockCount, kMinBlocks, TaskRunner::kHeavyRangesPerWorker, 0,
-      s.joints.size());
+      s.jointItems.size());
   for (int stepIndex = 0; stepIndex < substeps; ++stepIndex) {
     const bool odd = (stepIndex & 1) != 0;
     add(Kind::velocities, false, 1, slots, kMinSlots);
@@ -750,30 +808,62 @@ void runStep(SolverScratch& s, std::vector<ContactBlock<F>>& blocks, const World
   add(Kind::impulses, false, 0, blockCount, kMinBlocks);
 
   JointSim* jointSims = s.joints.data();
-  auto runJoints = [&](Kind kind, std::size_t first, std::size_t count) {
-    for (std::size_t k = first; k < first + count; ++k) {
-      JointSim& sim = jointSims[k];
-      switch (kind) {
-        case Kind::prepare: {
-          const Joint& joint = jointSet.joints[sim.joint];
-          auto body = [&](std::uint32_t index, std::int32_t slot, bool moved) {
-            JointBody jb;
-            if (index == kNoBody) return jb;
-            const Body& b = store.bodies[index];
-            if (moved) {
-              jb.invMass = b.invMass;
-              jb.invInertia = b.invInertia;
-            }
-            (void)slot;
-            jb.center = b.center;
-            jb.localCenter = b.localCenter;
-            jb.q = b.xf.q;
-            return jb;
-          };
-          prepareJoint(sim, joint, body(joint.bodyA, sim.slotA, sim.writeA),
-                       body(joint.bodyB, sim.slotB, sim.writeB), params.joint);
-          break;
+  auto prepareOne = [&](JointSim& sim) {
+    const Joint& joint = jointSet.joints[sim.joint];
+    auto body = [&](std::uint32_t index, bool moved) {
+      JointBody jb;
+      if (index == kNoBody) return jb;
+      const Body& b = store.bodies[index];
+      if (moved) {
+        jb.invMass = b.invMass;
+        jb.invInertia = b.invInertia;
+      }
+      jb.center = b.center;
+      jb.localCenter = b.localCenter;
+      jb.q = b.xf.q;
+      return jb;
+    };
+    prepareJoint(sim, joint, body(joint.bodyA, sim.writeA), body(joint.bodyB, sim.writeB),
+                 params.joint);
+  };
+  auto runJointBlock = [&](Kind kind, std::uint32_t bi) {
+    JointBlock<F>& jb = jointBlocks[bi];
+    switch (kind) {
+      case Kind::prepare: {
+        const SolverScratch::JointBlockJoints r = s.jointBlockJoints[bi];
+        jb = JointBlock<F>{};
+        for (std::uint32_t lane = 0; lane < r.count; ++lane) {
+          JointSim& sim = jointSims[r.first + lane];
+          prepareOne(sim);
+          fillJointLane(jb, static_cast<int>(lane), sim);
         }
+        break;
+      }
+      case Kind::warm:
+        warmStartJointBlock(jb, states);
+        break;
+      case Kind::solve:
+        solveJointBlock<true>(jb, states, params.joint.jointSoft);
+        break;
+      case Kind::relax:
+        solveJointBlock<false>(jb, states, params.joint.jointSoft);
+        break;
+      default:
+        break;
+    }
+  };
+  auto runJoints = [&](Kind kind, std::size_t first, std::size_t count) {
+    for (std::size_t item = first; item < first + count; ++item) {
+      const std::uint32_t code = s.jointItems[item];
+      if ((code & SolverScratch::kJointBlockItem) != 0) {
+        runJointBlock(kind, code & ~SolverScratch::kJointBlockItem);
+        continue;
+      }
+      JointSim& sim = jointSims[code];
+      switch (kind) {
+        case Kind::prepare:
+          prepareOne(sim);
+          break;
         case Kind::warm:
           warmStartJoint(sim, states);
           break;
@@ -834,6 +924,15 @@ void runStep(SolverScratch& s, std::vector<ContactBlock<F>>& blocks, const World
     }
   });
   reportHits(s, store, contactSet, events);
+  // The lanes' joint impulses back to their joints (finishJoint reads them there).
+  for (std::size_t bi = 0; bi < s.jointBlockJoints.size(); ++bi) {
+    const SolverScratch::JointBlockJoints r = s.jointBlockJoints[bi];
+    for (std::uint32_t lane = 0; lane < r.count; ++lane)
+      jointSims[r.first + lane].run.linearImpulse = {jointBlocks[bi].px[lane],
+                                                     jointBlocks[bi].py[lane]};
+  }
+  // The next step's narrow phase writes each sim in this step's lane of its contact.
+  contactSet.placeSims(s.touching, s.lane, blockCount * W);
 }
 
 }  // namespace
@@ -964,9 +1063,9 @@ std::span<const std::uint32_t> Solver::solve(StepContext& step, ContactSet& cont
   stats_.joints = s.jointsFound.size();
 
   if (def.scalarSolver) {
-    runStep(s, s.narrow, def, store, contactSet, jointSet, events, params, substeps, stats_, tasks);
+    runStep(s, s.narrow, s.jointNarrow, def, store, contactSet, jointSet, events, params, substeps, stats_, tasks);
   } else {
-    runStep(s, s.wide, def, store, contactSet, jointSet, events, params, substeps, stats_, tasks);
+    runStep(s, s.wide, s.jointWide, def, store, contactSet, jointSet, events, params, substeps, stats_, tasks);
   }
   // The joints' force and torque of this step, and those past their break thresholds.
   s.broken.clear();

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "quack/world/tasks.hpp"
 #include "quack/world/world.hpp"
 #include "world_test_util.hpp"
 
@@ -724,6 +725,27 @@ TEST(JointDeterminism, SameBitsOnAnyNumberOfWorkersAndLanes) {
     EXPECT_EQ(hashes({.workerCount = workers}, kSteps), one);
   }
   EXPECT_EQ(hashes({.scalarSolver = true}, kSteps), one);
+}
+
+// Plain revolute joints (no limit, motor or spring: the chain's twelve, the pivots of the
+// ragdoll's that have none) are solved a block of lanes at a time; solving every joint one
+// at a time must give the same bits, step by step, on one worker and on two, with the
+// lanes of this build and with the one-lane path.
+TEST(JointDeterminism, PlainRevoluteJointsInLanesGiveTheOneAtATimeBits) {
+  constexpr int kSteps = 240;
+  for (const WorldDef& def : {WorldDef{.workerCount = 1}, WorldDef{.workerCount = 2},
+                             WorldDef{.scalarSolver = true}}) {
+    SCOPED_TRACE("workers " + std::to_string(def.workerCount) +
+                 (def.scalarSolver ? ", one lane" : ""));
+    const std::vector<std::uint64_t> lanes = hashes(def, kSteps);
+    detail::setTestJointsOneAtATime(true);
+    const std::vector<std::uint64_t> oneByOne = hashes(def, kSteps);
+    detail::setTestJointsOneAtATime(false);
+    ASSERT_EQ(lanes.size(), oneByOne.size());
+    for (int s = 0; s < kSteps; ++s)
+      ASSERT_EQ(lanes[s], oneByOne[s]) << "the paths part at step " << s + 1;
+    EXPECT_NE(lanes.front(), lanes.back());
+  }
 }
 
 // Ties every build (scalar, SSE2, AVX2, NEON, clang, wasm) to the same bits with joints:

@@ -36,6 +36,9 @@ void setTestWorkerCount(int workers) noexcept;
 /// and body records, as it does for a contact the step's narrow phase did not update,
 /// instead of from the narrow phase's compact record; the two must give the same bits.
 void setTestSolverReadsRecords(bool on) noexcept;
+/// For Quack's own tests: when true, the solver solves every joint one at a time, plain
+/// revolute joints too, which it otherwise solves in lanes; the two must give the same bits.
+void setTestJointsOneAtATime(bool on) noexcept;
 }  // namespace detail
 
 }  // namespace quack
