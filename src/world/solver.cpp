@@ -15,8 +15,8 @@
 #include "body_store.hpp"
 #include "contact_set.hpp"
 #include "event_dispatcher.hpp"
-#include "joint_set.hpp"
 #include "joint_lanes.hpp"
+#include "joint_set.hpp"
 #include "joint_solver.hpp"
 #include "quack/math/trig.hpp"
 #include "quack/world/tasks.hpp"
@@ -348,7 +348,7 @@ struct SolverScratch {
   std::vector<JointBlockJoints> jointBlockJoints;
   std::vector<JointBlock<FloatW>> jointWide;
   std::vector<JointBlock<FloatS>> jointNarrow;
-  std::vector<std::uint32_t> broken;         // joints past their break force, in index order
+  std::vector<std::uint32_t> broken;  // joints past their break force, in index order
 };
 
 namespace {
@@ -389,7 +389,8 @@ void layoutJoints(SolverScratch& s, std::uint32_t* used, const JointSet& jointSe
   s.joints.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
     const int c = s.jointColor[k];
-    const bool plain = plainPerColor[c] != 0 && solvedInLanes(jointSet.joints[s.jointsFound[k].joint].def);
+    const bool plain =
+        plainPerColor[c] != 0 && solvedInLanes(jointSet.joints[s.jointsFound[k].joint].def);
     s.joints[plain ? fill[c]++ : fillOther[c]++] = s.jointsFound[k];
   }
   // The work items.
@@ -404,8 +405,8 @@ void layoutJoints(SolverScratch& s, std::uint32_t* used, const JointSet& jointSe
     for (std::size_t k = first; k < plainEnd; k += w) {
       s.jointItems.push_back(SolverScratch::kJointBlockItem |
                              static_cast<std::uint32_t>(s.jointBlockJoints.size()));
-      s.jointBlockJoints.push_back({static_cast<std::uint32_t>(k),
-                                    static_cast<std::uint32_t>(std::min(w, plainEnd - k))});
+      s.jointBlockJoints.push_back(
+          {static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(std::min(w, plainEnd - k))});
     }
     for (std::size_t k = plainEnd; k < s.jointStart[c + 1]; ++k)
       s.jointItems.push_back(static_cast<std::uint32_t>(k));
@@ -698,8 +699,8 @@ void reportHits(const SolverScratch& s, const BodyStore& store, const ContactSet
 // warm start, solve, integrate positions, relax; then restitution and the impulses stored.
 template <class F>
 void runStep(SolverScratch& s, std::vector<ContactBlock<F>>& blocks,
-             std::vector<JointBlock<F>>& jointBlocks, const WorldDef& def,
-             BodyStore& store, ContactSet& contactSet, JointSet& jointSet, EventDispatcher& events,
+             std::vector<JointBlock<F>>& jointBlocks, const WorldDef& def, BodyStore& store,
+             ContactSet& contactSet, JointSet& jointSet, EventDispatcher& events,
              const StepParams& params, int substeps, Solver::Stats& stats, TaskRunner& tasks) {
   constexpr int W = F::width;
   std::size_t colorStart[kColors + 1], colorCount[kColors + 1];
@@ -1063,9 +1064,11 @@ std::span<const std::uint32_t> Solver::solve(StepContext& step, ContactSet& cont
   stats_.joints = s.jointsFound.size();
 
   if (def.scalarSolver) {
-    runStep(s, s.narrow, s.jointNarrow, def, store, contactSet, jointSet, events, params, substeps, stats_, tasks);
+    runStep(s, s.narrow, s.jointNarrow, def, store, contactSet, jointSet, events, params, substeps,
+            stats_, tasks);
   } else {
-    runStep(s, s.wide, s.jointWide, def, store, contactSet, jointSet, events, params, substeps, stats_, tasks);
+    runStep(s, s.wide, s.jointWide, def, store, contactSet, jointSet, events, params, substeps,
+            stats_, tasks);
   }
   // The joints' force and torque of this step, and those past their break thresholds.
   s.broken.clear();

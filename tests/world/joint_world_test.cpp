@@ -770,8 +770,8 @@ TEST(JointDeterminism, SameBitsOnAnyNumberOfWorkersAndLanes) {
 // lanes of this build and with the one-lane path.
 TEST(JointDeterminism, PlainRevoluteJointsInLanesGiveTheOneAtATimeBits) {
   constexpr int kSteps = 240;
-  for (const WorldDef& def : {WorldDef{.workerCount = 1}, WorldDef{.workerCount = 2},
-                             WorldDef{.scalarSolver = true}}) {
+  for (const WorldDef& def :
+       {WorldDef{.workerCount = 1}, WorldDef{.workerCount = 2}, WorldDef{.scalarSolver = true}}) {
     SCOPED_TRACE("workers " + std::to_string(def.workerCount) +
                  (def.scalarSolver ? ", one lane" : ""));
     const std::vector<std::uint64_t> lanes = hashes(def, kSteps);
