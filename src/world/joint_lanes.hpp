@@ -31,28 +31,45 @@ struct alignas(F::width * sizeof(float)) JointBlock {
   std::uint32_t writeA = 0, writeB = 0;  // lanes whose body is written (bit per lane)
 };
 
-/// A prepared joint into its lane (the block starts zeroed: empty lanes change nothing).
+/// A plain revolute joint prepared straight into its lane: what prepareJoint would put in
+/// its JointSim for the lanes to read, by the same expressions (the block starts zeroed:
+/// empty lanes change nothing).
 template <class F>
-void fillJointLane(JointBlock<F>& b, int lane, const JointSim& sim) {
-  const JointRun& j = sim.run;
-  b.mA[lane] = sim.mA;
-  b.iA[lane] = sim.iA;
-  b.mB[lane] = sim.mB;
-  b.iB[lane] = sim.iB;
-  b.rAx[lane] = sim.rA.x;
-  b.rAy[lane] = sim.rA.y;
-  b.rBx[lane] = sim.rB.x;
-  b.rBy[lane] = sim.rB.y;
-  b.dcx[lane] = sim.deltaCenter.x;
-  b.dcy[lane] = sim.deltaCenter.y;
+void prepareJointLane(JointBlock<F>& b, int lane, const JointSim& slots, const Joint& joint,
+                      const JointBody& a, const JointBody& bb) {
+  b.mA[lane] = a.invMass;
+  b.iA[lane] = a.invInertia;
+  b.mB[lane] = bb.invMass;
+  b.iB[lane] = bb.invInertia;
+  const Vec2 rA = rotate(a.q, joint.localAnchorA - a.localCenter);
+  const Vec2 rB = rotate(bb.q, joint.localAnchorB - bb.localCenter);
+  const Vec2 deltaCenter = bb.center - a.center;
+  b.rAx[lane] = rA.x;
+  b.rAy[lane] = rA.y;
+  b.rBx[lane] = rB.x;
+  b.rBy[lane] = rB.y;
+  b.dcx[lane] = deltaCenter.x;
+  b.dcy[lane] = deltaCenter.y;
   // As warmStartJoint sums it; the impulses do not change in a plain joint's step.
-  b.axial[lane] = j.springImpulse + j.motorImpulse + j.lowerImpulse - j.upperImpulse;
-  b.px[lane] = j.linearImpulse.x;
-  b.py[lane] = j.linearImpulse.y;
-  b.slotA[lane] = sim.slotA;
-  b.slotB[lane] = sim.slotB;
-  if (sim.writeA) b.writeA |= 1u << lane;
-  if (sim.writeB) b.writeB |= 1u << lane;
+  b.axial[lane] =
+      joint.springImpulse + joint.motorImpulse + joint.lowerImpulse - joint.upperImpulse;
+  b.px[lane] = joint.linearImpulse.x;
+  b.py[lane] = joint.linearImpulse.y;
+  b.slotA[lane] = slots.slotA;
+  b.slotB[lane] = slots.slotB;
+  if (slots.writeA) b.writeA |= 1u << lane;
+  if (slots.writeB) b.writeB |= 1u << lane;
+}
+
+/// finishJoint for the joint in `lane`: its impulse back to the record, and the step's
+/// force and torque (its other impulses are the record's own, unchanged).
+template <class F>
+void finishJointLane(const JointBlock<F>& b, int lane, Joint& joint, float invH) {
+  joint.linearImpulse = {b.px[lane], b.py[lane]};
+  const float L =
+      joint.springImpulse + joint.motorImpulse + joint.lowerImpulse - joint.upperImpulse;
+  joint.force = invH * joint.linearImpulse;
+  joint.torque = invH * L;
 }
 
 namespace jointlanes {

@@ -53,6 +53,7 @@ struct JointSim {
   std::uint32_t joint = 0;
   std::int32_t slotA = 0, slotB = 0;    // the solver's body states (0: at rest)
   bool writeA = false, writeB = false;  // the body is dynamic and awake: its state is written
+  bool lanes = false;  // solved in lanes (joint_lanes.hpp), which read and finish the record
   float mA = 0.0f, iA = 0.0f, mB = 0.0f, iB = 0.0f;
   Vec2 rA, rB;              // arms from the centres of mass to the anchors, world axes, at start
   Vec2 deltaCenter;         // cB - cA at start (mouse: cB - target)

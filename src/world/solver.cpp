@@ -329,9 +329,15 @@ struct SolverScratch {
   std::vector<Hit> hits;  // per block lane
   std::vector<ContactBlock<FloatW>> wide;
   std::vector<ContactBlock<FloatS>> narrow;
-  // Joints with an awake dynamic body: gathered in joint order, then laid out by colour
-  // (the overflow set first), as the contacts' blocks are.
-  std::vector<JointSim> jointsFound;
+  // Joints with an awake dynamic body: gathered in joint order (what colouring reads), then
+  // laid out by colour (the overflow set first), as the contacts' blocks are.
+  struct JointFound {
+    std::uint32_t joint;
+    std::int32_t slotA, slotB;
+    bool writeA, writeB;
+    bool lanes;  // solvedInLanes
+  };
+  std::vector<JointFound> jointsFound;
   std::vector<JointSim> joints;
   std::vector<std::uint8_t> jointColor;      // per found joint
   std::size_t jointStart[kColors + 2] = {};  // overflow [0, [0]), colour c [c], [c + 1])
@@ -362,19 +368,18 @@ struct StepParams {
 // Colours the joints first, with the colours their bodies take (as a contact's, below),
 // and lays them out: the overflow set, then each colour's in joint order, the plain
 // revolute joints of a colour (solvedInLanes) before its others, `width` to a block.
-void layoutJoints(SolverScratch& s, std::uint32_t* used, const JointSet& jointSet, int width) {
+void layoutJoints(SolverScratch& s, std::uint32_t* used, int width) {
   const std::size_t n = s.jointsFound.size();
   const bool lanes = !testJointsOneAtATime.load(std::memory_order_relaxed);
   s.jointColor.resize(n);
   std::size_t perColor[kColors + 1] = {};
   std::size_t plainPerColor[kColors + 1] = {};
   for (std::size_t k = 0; k < n; ++k) {
-    const JointSim& j = s.jointsFound[k];
+    const SolverScratch::JointFound& j = s.jointsFound[k];
     const int color = takeColor(used, j.slotA, j.slotB, j.writeA, j.writeB);
     s.jointColor[k] = static_cast<std::uint8_t>(color);
     ++perColor[color];
-    if (lanes && color != kOverflow && solvedInLanes(jointSet.joints[j.joint].def))
-      ++plainPerColor[color];
+    if (lanes && color != kOverflow && j.lanes) ++plainPerColor[color];
   }
   s.jointStart[0] = perColor[kOverflow];
   for (int c = 0; c < kColors; ++c)
@@ -386,12 +391,20 @@ void layoutJoints(SolverScratch& s, std::uint32_t* used, const JointSet& jointSe
     fill[c] = s.jointStart[c];
     fillOther[c] = s.jointStart[c] + plainPerColor[c];
   }
+  // Only what the passes read before preparing fills in the rest (prepareJoint); the sims
+  // are kept from step to step, so a warm step writes 16 bytes of each, not all of it.
   s.joints.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
     const int c = s.jointColor[k];
-    const bool plain =
-        plainPerColor[c] != 0 && solvedInLanes(jointSet.joints[s.jointsFound[k].joint].def);
-    s.joints[plain ? fill[c]++ : fillOther[c]++] = s.jointsFound[k];
+    const SolverScratch::JointFound& j = s.jointsFound[k];
+    const bool plain = plainPerColor[c] != 0 && j.lanes;
+    JointSim& sim = s.joints[plain ? fill[c]++ : fillOther[c]++];
+    sim.joint = j.joint;
+    sim.slotA = j.slotA;
+    sim.slotB = j.slotB;
+    sim.writeA = j.writeA;
+    sim.writeB = j.writeB;
+    sim.lanes = plain;
   }
   // The work items.
   const auto w = static_cast<std::size_t>(width);
@@ -420,12 +433,12 @@ void layoutJoints(SolverScratch& s, std::uint32_t* used, const JointSet& jointSe
 template <class F>
 [[gnu::noinline]] std::size_t layoutBlocks(SolverScratch& s, std::vector<ContactBlock<F>>& blocks,
                                            std::size_t* colorStart, std::size_t* colorCount,
-                                           Solver::Stats& stats, const JointSet& jointSet) {
+                                           Solver::Stats& stats) {
   constexpr int W = F::width;
   // Per slot, the colours its body is already in (bit c; takeColor).
   s.slotColors.assign(s.states.size(), 0);
   std::uint32_t* used = s.slotColors.data();
-  layoutJoints(s, used, jointSet, W);
+  layoutJoints(s, used, W);
   std::size_t perColor[kColors + 1] = {};
   s.color.resize(s.touching.size());
   for (std::size_t k = 0; k < s.touching.size(); ++k) {
@@ -704,8 +717,7 @@ void runStep(SolverScratch& s, std::vector<ContactBlock<F>>& blocks,
              const StepParams& params, int substeps, Solver::Stats& stats, TaskRunner& tasks) {
   constexpr int W = F::width;
   std::size_t colorStart[kColors + 1], colorCount[kColors + 1];
-  const std::size_t blockCount =
-      layoutBlocks<F>(s, blocks, colorStart, colorCount, stats, jointSet);
+  const std::size_t blockCount = layoutBlocks<F>(s, blocks, colorStart, colorCount, stats);
   jointBlocks.resize(s.jointBlockJoints.size());  // cleared as they are prepared
   // Which contact each lane holds, so that blocks can be prepared apart (a block's lanes
   // share its write masks): every constraint's pair into its lane, on the workers (each
@@ -809,22 +821,22 @@ void runStep(SolverScratch& s, std::vector<ContactBlock<F>>& blocks,
   add(Kind::impulses, false, 0, blockCount, kMinBlocks);
 
   JointSim* jointSims = s.joints.data();
+  auto jointBody = [&](std::uint32_t index, bool moved) {
+    JointBody jb;
+    if (index == kNoBody) return jb;
+    const Body& b = store.bodies[index];
+    if (moved) {
+      jb.invMass = b.invMass;
+      jb.invInertia = b.invInertia;
+    }
+    jb.center = b.center;
+    jb.localCenter = b.localCenter;
+    jb.q = b.xf.q;
+    return jb;
+  };
   auto prepareOne = [&](JointSim& sim) {
     const Joint& joint = jointSet.joints[sim.joint];
-    auto body = [&](std::uint32_t index, bool moved) {
-      JointBody jb;
-      if (index == kNoBody) return jb;
-      const Body& b = store.bodies[index];
-      if (moved) {
-        jb.invMass = b.invMass;
-        jb.invInertia = b.invInertia;
-      }
-      jb.center = b.center;
-      jb.localCenter = b.localCenter;
-      jb.q = b.xf.q;
-      return jb;
-    };
-    prepareJoint(sim, joint, body(joint.bodyA, sim.writeA), body(joint.bodyB, sim.writeB),
+    prepareJoint(sim, joint, jointBody(joint.bodyA, sim.writeA), jointBody(joint.bodyB, sim.writeB),
                  params.joint);
   };
   auto runJointBlock = [&](Kind kind, std::uint32_t bi) {
@@ -834,9 +846,10 @@ void runStep(SolverScratch& s, std::vector<ContactBlock<F>>& blocks,
         const SolverScratch::JointBlockJoints r = s.jointBlockJoints[bi];
         jb = JointBlock<F>{};
         for (std::uint32_t lane = 0; lane < r.count; ++lane) {
-          JointSim& sim = jointSims[r.first + lane];
-          prepareOne(sim);
-          fillJointLane(jb, static_cast<int>(lane), sim);
+          const JointSim& sim = jointSims[r.first + lane];
+          const Joint& joint = jointSet.joints[sim.joint];
+          prepareJointLane(jb, static_cast<int>(lane), sim, joint,
+                           jointBody(joint.bodyA, sim.writeA), jointBody(joint.bodyB, sim.writeB));
         }
         break;
       }
@@ -925,12 +938,12 @@ void runStep(SolverScratch& s, std::vector<ContactBlock<F>>& blocks,
     }
   });
   reportHits(s, store, contactSet, events);
-  // The lanes' joint impulses back to their joints (finishJoint reads them there).
+  // The lanes' joints finished (the others are, after the step, from their sims).
   for (std::size_t bi = 0; bi < s.jointBlockJoints.size(); ++bi) {
     const SolverScratch::JointBlockJoints r = s.jointBlockJoints[bi];
     for (std::uint32_t lane = 0; lane < r.count; ++lane)
-      jointSims[r.first + lane].run.linearImpulse = {jointBlocks[bi].px[lane],
-                                                     jointBlocks[bi].py[lane]};
+      finishJointLane(jointBlocks[bi], static_cast<int>(lane),
+                      jointSet.joints[jointSims[r.first + lane].joint], params.invH);
   }
   // The next step's narrow phase writes each sim in this step's lane of its contact.
   contactSet.placeSims(s.touching, s.lane, blockCount * W);
@@ -1053,13 +1066,7 @@ std::span<const std::uint32_t> Solver::solve(StepContext& step, ContactSet& cont
     const bool dynA = s.sims[static_cast<std::size_t>(sa)].dynamic;
     const bool dynB = s.sims[static_cast<std::size_t>(sb)].dynamic;
     if (!dynA && !dynB) continue;
-    JointSim sim;
-    sim.joint = j;
-    sim.slotA = sa;
-    sim.slotB = sb;
-    sim.writeA = dynA;
-    sim.writeB = dynB;
-    s.jointsFound.push_back(sim);
+    s.jointsFound.push_back({j, sa, sb, dynA, dynB, solvedInLanes(joint.def)});
   }
   stats_.joints = s.jointsFound.size();
 
@@ -1074,7 +1081,7 @@ std::span<const std::uint32_t> Solver::solve(StepContext& step, ContactSet& cont
   s.broken.clear();
   for (const JointSim& sim : s.joints) {
     Joint& joint = jointSet.joints[sim.joint];
-    finishJoint(sim, joint, params.invH);
+    if (!sim.lanes) finishJoint(sim, joint, params.invH);
     if (length(joint.force) > joint.def.breakForce || absf(joint.torque) > joint.def.breakTorque)
       s.broken.push_back(sim.joint);
   }
