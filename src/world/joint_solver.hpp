@@ -3,9 +3,10 @@
 // in the soft step the contacts use (solver.cpp). Per step a joint is prepared once (its
 // arms, the bodies' offsets and masses at the step's start); per sub-step it is warm
 // started, solved with the position error as a soft bias, and relaxed without it, as the
-// contacts are. Joints are solved one at a time (no lanes): a scene has far fewer of them
-// than contacts. Box2D v3's joint files (revolute_joint.c, prismatic_joint.c, ...) and
-// Catto's "Solver2D" notes showed the constraints (read for understanding; the code is ours).
+// contacts are. Joints are solved one at a time here; plain revolute joints (no limit,
+// motor or spring) go in lanes instead (joint_lanes.hpp), with the same operations. Box2D v3's
+// joint files (revolute_joint.c, prismatic_joint.c, ...) and Catto's "Solver2D" notes showed the
+// constraints (read for understanding; the code is ours).
 
 #include <cstdint>
 
