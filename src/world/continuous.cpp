@@ -77,6 +77,7 @@ std::uint32_t ContinuousPhase::addParticipant(BodyStore& store, std::uint32_t bo
     f.baseW = b.w;
   }
   f.box = sweptBox(store, f);
+  f.anchored = anchoredByJoint(store, body);
   const auto index = static_cast<std::uint32_t>(fast_.size());
   fast_.push_back(f);
   participantOf_[body] = index;
@@ -182,7 +183,8 @@ bool ContinuousPhase::anchoredByJoint(const BodyStore& store, std::uint32_t body
 }
 
 bool ContinuousPhase::heldBySolver(const BodyStore& store, std::uint32_t shapeA,
-                                   std::uint32_t shapeB) const {
+                                   std::uint32_t shapeB, std::uint32_t fastA,
+                                   std::uint32_t fastB) const {
   const Body& a = store.bodies[store.shapes[shapeA].body];
   const Body& b = store.bodies[store.shapes[shapeB].body];
   if (a.bullet || b.bullet || a.type != BodyType::dynamicBody || b.type != BodyType::dynamicBody)
@@ -197,8 +199,9 @@ bool ContinuousPhase::heldBySolver(const BodyStore& store, std::uint32_t shapeA,
   // sweeps: their partners move too, and the solver closes the joints in the next step,
   // while without sweeps a falling ragdoll's limbs sank into what they hit and stayed
   // wedged there with their joints 11 cm open.
-  if (anchoredByJoint(store, store.shapes[shapeA].body) ||
-      anchoredByJoint(store, store.shapes[shapeB].body))
+  if (fast_[fastA].anchored ||
+      (fastB != kNoParticipant ? fast_[fastB].anchored
+                               : anchoredByJoint(store, store.shapes[shapeB].body)))
     return true;
   const std::uint32_t* c = contacts_->find(shapeA, shapeB);
   return c != nullptr && contacts_->contacts[*c].touching && !contacts_->contacts[*c].sensor;
@@ -220,7 +223,7 @@ bool ContinuousPhase::findImpactWith(SearchScratch& scratch, const BodyStore& st
   // A body anchored by a joint meets only static and kinematic shapes and bullets (see
   // heldBySolver): the rest are skipped here, before any search (a 40 m paddle's sweep
   // covers thousands of bodies).
-  const bool anchored = !body.bullet && anchoredByJoint(store, f.body);
+  const bool anchored = !body.bullet && f.anchored;
   auto consider = [&](std::uint32_t s) {
     const Shape& other = store.shapes[s];
     if (other.body == f.body || other.def.sensor) return;
@@ -279,7 +282,7 @@ bool ContinuousPhase::findImpactWith(SearchScratch& scratch, const BodyStore& st
     // them too made the phase a second solver inside piles (world_suite's compounds, 3,000
     // bodies raining into a pit: thousands of queued impacts a step). Bullets are always
     // swept.
-    if (heldBySolver(store, own, s)) return;
+    if (heldBySolver(store, own, s, fast, other)) return;
     const ShapeProxy otherProxy = makeProxy(*otherShape.geometry);
     ++scratch.toiSearches;
     ToiOutput toi = computeToi(proxy, sweep, otherProxy, otherSweep);

@@ -48,6 +48,7 @@ struct FastBody {
   // only what impacts add moves it further.
   Vec2 baseV;
   float baseW = 0.0f;
+  bool anchored = false;  // anchoredByJoint, found once when it joins the phase
 };
 
 // The earliest impact found along a participant's sweep.
@@ -180,8 +181,10 @@ class ContinuousPhase {
 
   // Two dynamic bodies, neither a bullet, that touch at the start of the step (a manifold
   // with points, from the contact set), or of which one is anchored by a joint: the
-  // contact solver holds them (see findImpactWith).
-  bool heldBySolver(const BodyStore& store, std::uint32_t shapeA, std::uint32_t shapeB) const;
+  // contact solver holds them (see findImpactWith). Shape A's body is participant `fastA`;
+  // shape B's is participant `fastB`, or kNoParticipant.
+  bool heldBySolver(const BodyStore& store, std::uint32_t shapeA, std::uint32_t shapeB,
+                    std::uint32_t fastA, std::uint32_t fastB) const;
   // The body has a joint to a static or kinematic body, or a mouse joint.
   bool anchoredByJoint(const BodyStore& store, std::uint32_t body) const;
   const ContactSet* contacts_ = nullptr;  // during run

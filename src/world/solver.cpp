@@ -335,13 +335,14 @@ struct SolverScratch {
     std::uint32_t joint;
     std::int32_t slotA, slotB;
     bool writeA, writeB;
-    bool lanes;  // solvedInLanes
+    std::uint8_t group;  // 0 plain revolute, 1 other revolute (both in lanes), 2 the rest
   };
   std::vector<JointFound> jointsFound;
   std::vector<JointSim> joints;
   std::vector<std::uint8_t> jointColor;      // per found joint
+  std::vector<std::uint8_t> jointGroup;      // per found joint: JointFound::group, or 2
   std::size_t jointStart[kColors + 2] = {};  // overflow [0, [0]), colour c [c], [c + 1])
-  // The joint passes' work items: in each colour, blocks of plain revolute joints
+  // The joint passes' work items: in each colour, blocks of revolute joints
   // (joint_lanes.hpp; those come first in the colour's joints) then its other joints one
   // by one; the overflow set's joints one by one. An item is kJointBlockItem | block, or
   // an index into `joints`. Ranges as jointStart's, over items.
@@ -366,45 +367,49 @@ struct StepParams {
 };
 
 // Colours the joints first, with the colours their bodies take (as a contact's, below),
-// and lays them out: the overflow set, then each colour's in joint order, the plain
-// revolute joints of a colour (solvedInLanes) before its others, `width` to a block.
+// and lays them out: the overflow set, then each colour's in joint order, its plain
+// revolute joints first, then its other revolute joints (those two `width` to a block,
+// joint_lanes.hpp), then the rest.
 void layoutJoints(SolverScratch& s, std::uint32_t* used, int width) {
   const std::size_t n = s.jointsFound.size();
   const bool lanes = !testJointsOneAtATime.load(std::memory_order_relaxed);
+  constexpr int kGroups = 3;  // plain revolute, other revolute, one at a time
   s.jointColor.resize(n);
+  s.jointGroup.resize(n);
   std::size_t perColor[kColors + 1] = {};
-  std::size_t plainPerColor[kColors + 1] = {};
+  std::size_t perGroup[kColors + 1][kGroups] = {};
   for (std::size_t k = 0; k < n; ++k) {
     const SolverScratch::JointFound& j = s.jointsFound[k];
     const int color = takeColor(used, j.slotA, j.slotB, j.writeA, j.writeB);
     s.jointColor[k] = static_cast<std::uint8_t>(color);
+    const int group = lanes && color != kOverflow ? j.group : 2;
+    s.jointGroup[k] = static_cast<std::uint8_t>(group);
     ++perColor[color];
-    if (lanes && color != kOverflow && j.lanes) ++plainPerColor[color];
+    ++perGroup[color][group];
   }
   s.jointStart[0] = perColor[kOverflow];
   for (int c = 0; c < kColors; ++c)
     s.jointStart[c + 1] = s.jointStart[c] + perColor[c];
-  std::size_t fill[kColors + 1], fillOther[kColors + 1];
-  fill[kOverflow] = 0;
-  fillOther[kOverflow] = 0;
+  std::size_t fill[kColors + 1][kGroups];
+  fill[kOverflow][2] = 0;
   for (int c = 0; c < kColors; ++c) {
-    fill[c] = s.jointStart[c];
-    fillOther[c] = s.jointStart[c] + plainPerColor[c];
+    fill[c][0] = s.jointStart[c];
+    fill[c][1] = fill[c][0] + perGroup[c][0];
+    fill[c][2] = fill[c][1] + perGroup[c][1];
   }
   // Only what the passes read before preparing fills in the rest (prepareJoint); the sims
   // are kept from step to step, so a warm step writes 16 bytes of each, not all of it.
   s.joints.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
-    const int c = s.jointColor[k];
     const SolverScratch::JointFound& j = s.jointsFound[k];
-    const bool plain = plainPerColor[c] != 0 && j.lanes;
-    JointSim& sim = s.joints[plain ? fill[c]++ : fillOther[c]++];
+    const int group = s.jointGroup[k];
+    JointSim& sim = s.joints[fill[s.jointColor[k]][group]++];
     sim.joint = j.joint;
     sim.slotA = j.slotA;
     sim.slotB = j.slotB;
     sim.writeA = j.writeA;
     sim.writeB = j.writeB;
-    sim.lanes = plain;
+    sim.lanes = group != 2;
   }
   // The work items.
   const auto w = static_cast<std::size_t>(width);
@@ -414,15 +419,19 @@ void layoutJoints(SolverScratch& s, std::uint32_t* used, int width) {
     s.jointItems.push_back(static_cast<std::uint32_t>(k));
   for (int c = 0; c < kColors; ++c) {
     s.jointItemStart[c] = s.jointItems.size();
-    const std::size_t first = s.jointStart[c], plainEnd = first + plainPerColor[c];
-    for (std::size_t k = first; k < plainEnd; k += w) {
-      s.jointItems.push_back(SolverScratch::kJointBlockItem |
-                             static_cast<std::uint32_t>(s.jointBlockJoints.size()));
-      s.jointBlockJoints.push_back(
-          {static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(std::min(w, plainEnd - k))});
+    std::size_t at = s.jointStart[c];
+    for (int group = 0; group < 2; ++group) {
+      const std::size_t end = at + perGroup[c][group];
+      for (; at < end; at += w) {
+        s.jointItems.push_back(SolverScratch::kJointBlockItem |
+                               static_cast<std::uint32_t>(s.jointBlockJoints.size()));
+        s.jointBlockJoints.push_back(
+            {static_cast<std::uint32_t>(at), static_cast<std::uint32_t>(std::min(w, end - at))});
+      }
+      at = end;
     }
-    for (std::size_t k = plainEnd; k < s.jointStart[c + 1]; ++k)
-      s.jointItems.push_back(static_cast<std::uint32_t>(k));
+    for (; at < s.jointStart[c + 1]; ++at)
+      s.jointItems.push_back(static_cast<std::uint32_t>(at));
   }
   s.jointItemStart[kColors] = s.jointItems.size();
 }
@@ -849,7 +858,8 @@ void runStep(SolverScratch& s, std::vector<ContactBlock<F>>& blocks,
           const JointSim& sim = jointSims[r.first + lane];
           const Joint& joint = jointSet.joints[sim.joint];
           prepareJointLane(jb, static_cast<int>(lane), sim, joint,
-                           jointBody(joint.bodyA, sim.writeA), jointBody(joint.bodyB, sim.writeB));
+                           jointBody(joint.bodyA, sim.writeA), jointBody(joint.bodyB, sim.writeB),
+                           params.joint);
         }
         break;
       }
@@ -857,10 +867,10 @@ void runStep(SolverScratch& s, std::vector<ContactBlock<F>>& blocks,
         warmStartJointBlock(jb, states);
         break;
       case Kind::solve:
-        solveJointBlock<true>(jb, states, params.joint.jointSoft);
+        solveJointBlock<true>(jb, states, s.turned.data(), params.joint);
         break;
       case Kind::relax:
-        solveJointBlock<false>(jb, states, params.joint.jointSoft);
+        solveJointBlock<false>(jb, states, s.turned.data(), params.joint);
         break;
       default:
         break;
@@ -1066,7 +1076,8 @@ std::span<const std::uint32_t> Solver::solve(StepContext& step, ContactSet& cont
     const bool dynA = s.sims[static_cast<std::size_t>(sa)].dynamic;
     const bool dynB = s.sims[static_cast<std::size_t>(sb)].dynamic;
     if (!dynA && !dynB) continue;
-    s.jointsFound.push_back({j, sa, sb, dynA, dynB, solvedInLanes(joint.def)});
+    const std::uint8_t group = !solvedInLanes(joint.def) ? 2 : plainRevolute(joint.def) ? 0 : 1;
+    s.jointsFound.push_back({j, sa, sb, dynA, dynB, group});
   }
   stats_.joints = s.jointsFound.size();
 
