@@ -769,11 +769,11 @@ TEST(JointDeterminism, SameBitsOnAnyNumberOfWorkersAndLanes) {
   EXPECT_EQ(hashes({.scalarSolver = true}, kSteps), one);
 }
 
-// Plain revolute joints (no limit, motor or spring: the chain's twelve, the pivots of the
-// ragdoll's that have none) are solved a block of lanes at a time; solving every joint one
-// at a time must give the same bits, step by step, on one worker and on two, with the
-// lanes of this build and with the one-lane path.
-TEST(JointDeterminism, PlainRevoluteJointsInLanesGiveTheOneAtATimeBits) {
+// Revolute joints are solved a block of lanes at a time: the chain's twelve plain ones in
+// blocks of their own, the ragdoll's with limits, springs and friction motors in others.
+// Solving every joint one at a time must give the same bits, step by step, on one worker
+// and on two, with the lanes of this build and with the one-lane path.
+TEST(JointDeterminism, RevoluteJointsInLanesGiveTheOneAtATimeBits) {
   constexpr int kSteps = 240;
   for (const WorldDef& def :
        {WorldDef{.workerCount = 1}, WorldDef{.workerCount = 2}, WorldDef{.scalarSolver = true}}) {
