@@ -163,10 +163,12 @@ void ContactSet::findNew(StepContext& step) {
     } else {
       index = static_cast<std::uint32_t>(contacts.size());
       contacts.emplace_back();
+      impulses.emplace_back();
       heads_.emplace_back();
     }
     Contact& c = contacts[index];
     c = Contact{};
+    impulses[index] = ContactImpulses{};
     c.alive = true;
     // The sensor, if any, is shape A; otherwise keep the broad phase's order.
     if (shapeB.def.sensor) std::swap(sa, sb);
@@ -256,8 +258,8 @@ void ContactSet::update(StepContext& step, const GhostEdges& edges,
         for (int k = first; k < last; ++k) {
           const auto at = static_cast<std::size_t>(k);
           const std::uint32_t i = updateList_[at];
-          updateOutcome_[at] =
-              updateOne(contacts[i], sims[simIndex(i)], stamp, def, broadPhase, cstore, edges);
+          updateOutcome_[at] = updateOne(contacts[i], impulses[i], sims[simIndex(i)], stamp, def,
+                                         broadPhase, cstore, edges);
           heads_[i].touching = contacts[i].touching;
         }
       },
@@ -304,8 +306,8 @@ void ContactSet::placeSims(std::span<const std::uint32_t> touching,
   simLanes_ = laneCount;
 }
 
-void fillContactSim(ContactSim& sim, const Contact& c, Vec2 centerA, Vec2 localCenterA,
-                    Vec2 centerB, Vec2 localCenterB) {
+void fillContactSim(ContactSim& sim, const Contact& c, const ContactImpulses& impulses,
+                    Vec2 centerA, Vec2 localCenterA, Vec2 centerB, Vec2 localCenterB) {
   const Vec2 n = c.manifold.normal;
   sim.normal = n;
   sim.friction = c.friction;
@@ -329,14 +331,15 @@ void fillContactSim(ContactSim& sim, const Contact& c, Vec2 centerA, Vec2 localC
       p.rB = mp.point - centerB;
     }
     p.baseSeparation = mp.separation - dot(p.rB - p.rA, n);
-    p.normalImpulse = c.normalImpulse[j];
-    p.tangentImpulse = c.tangentImpulse[j];
+    p.normalImpulse = impulses.normal[j];
+    p.tangentImpulse = impulses.tangent[j];
   }
 }
 
-ContactSet::Outcome ContactSet::updateOne(Contact& c, ContactSim& sim, std::uint64_t stamp,
-                                          const WorldDef& def, const BroadPhase& broadPhase,
-                                          const BodyStore& store, const GhostEdges& edges) {
+ContactSet::Outcome ContactSet::updateOne(Contact& c, ContactImpulses& impulses, ContactSim& sim,
+                                          std::uint64_t stamp, const WorldDef& def,
+                                          const BroadPhase& broadPhase, const BodyStore& store,
+                                          const GhostEdges& edges) {
   if (!overlaps(broadPhase.fatBox(c.proxyA), broadPhase.fatBox(c.proxyB))) return Outcome::apart;
   const Body& ba = store.bodies[c.bodyA];
   const Body& bb = store.bodies[c.bodyB];
@@ -355,7 +358,7 @@ ContactSet::Outcome ContactSet::updateOne(Contact& c, ContactSim& sim, std::uint
                recycle(c, xa, xb, ba, bb, def.contactRecycleDistance);
   if (c.recycled) {
     // Still touching; impulses, ids and events as they were.
-    fillContactSim(sim, c, ba.center, ba.localCenter, bb.center, bb.localCenter);
+    fillContactSim(sim, c, impulses, ba.center, ba.localCenter, bb.center, bb.localCenter);
     sim.stamp = stamp;
     return Outcome::kept;
   }
@@ -363,20 +366,20 @@ ContactSet::Outcome ContactSet::updateOne(Contact& c, ContactSim& sim, std::uint
   const Shape& sb = store.shapes[c.shapeB];
   Manifold old = c.manifold;
   float oldNormal[kMaxManifoldPoints], oldTangent[kMaxManifoldPoints];
-  std::copy(c.normalImpulse, c.normalImpulse + kMaxManifoldPoints, oldNormal);
-  std::copy(c.tangentImpulse, c.tangentImpulse + kMaxManifoldPoints, oldTangent);
+  std::copy(impulses.normal, impulses.normal + kMaxManifoldPoints, oldNormal);
+  std::copy(impulses.tangent, impulses.tangent + kMaxManifoldPoints, oldTangent);
   c.manifold = c.fn(*sa.geometry, xa, *sb.geometry, xb, def.speculativeDistance);
   // Ghost collisions: only contacts with flagged static shapes pay for the check.
   if (edges.activeShapes() != 0 && (sa.edges.active || sb.edges.active))
     edges.removeGhostContacts(store, c);
   // Warm start: a point keeps the impulses of the old point with the same feature id.
   for (int k = 0; k < c.manifold.pointCount; ++k) {
-    c.normalImpulse[k] = 0.0f;
-    c.tangentImpulse[k] = 0.0f;
+    impulses.normal[k] = 0.0f;
+    impulses.tangent[k] = 0.0f;
     for (int j = 0; j < old.pointCount; ++j) {
       if (old.points[j].id == c.manifold.points[k].id) {
-        c.normalImpulse[k] = oldNormal[j];
-        c.tangentImpulse[k] = oldTangent[j];
+        impulses.normal[k] = oldNormal[j];
+        impulses.tangent[k] = oldTangent[j];
         break;
       }
     }
@@ -390,7 +393,7 @@ ContactSet::Outcome ContactSet::updateOne(Contact& c, ContactSim& sim, std::uint
   deriveRecycleReference(c);
   c.touching = c.manifold.pointCount > 0;
   if (c.touching) {
-    fillContactSim(sim, c, ba.center, ba.localCenter, bb.center, bb.localCenter);
+    fillContactSim(sim, c, impulses, ba.center, ba.localCenter, bb.center, bb.localCenter);
     sim.stamp = stamp;
   }
   if (c.touching && !wasTouching) return Outcome::began;

@@ -493,7 +493,8 @@ void SnapshotCodec::writeMotion(Writer& w, const WorldState& s) {
   for (const Transform& t : poses)
     w.xf(t);
   w.size(cs.contacts.size());
-  for (const Contact& c : cs.contacts) {
+  for (std::size_t index = 0; index < cs.contacts.size(); ++index) {
+    const Contact& c = cs.contacts[index];
     if (!c.alive) {
       w.u8(0);
       continue;
@@ -516,8 +517,8 @@ void SnapshotCodec::writeMotion(Writer& w, const WorldState& s) {
       w.vec(p.anchorB);
       w.f32(p.separation);
       w.u32(p.id);
-      w.f32(c.normalImpulse[k]);
-      w.f32(c.tangentImpulse[k]);
+      w.f32(cs.impulses[index].normal[k]);
+      w.f32(cs.impulses[index].tangent[k]);
       if (reference) {
         w.vec(c.localA[k]);
         w.vec(c.localB[k]);
@@ -865,6 +866,7 @@ Status SnapshotCodec::readMotion(std::span<const std::uint8_t> motion, std::uint
   for (Transform& t : poses)
     t = m.xf("manifold pose");
   cs.contacts.resize(m.count("contact slots", 1));
+  cs.impulses.assign(cs.contacts.size(), ContactImpulses{});
   for (std::uint32_t i = 0; i < cs.contacts.size() && m.ok(); ++i) {
     Contact& c = cs.contacts[i];
     const std::uint8_t flags = m.u8("contact flags");
@@ -900,8 +902,8 @@ Status SnapshotCodec::readMotion(std::span<const std::uint8_t> motion, std::uint
       p.anchorB = m.vec("manifold anchor");
       p.separation = m.f32("manifold separation");
       p.id = m.u32("manifold feature id");
-      c.normalImpulse[k] = m.f32("normal impulse");
-      c.tangentImpulse[k] = m.f32("tangent impulse");
+      cs.impulses[i].normal[k] = m.f32("normal impulse");
+      cs.impulses[i].tangent[k] = m.f32("tangent impulse");
       if (c.recycleValid && !derived) {
         c.localA[k] = m.vec("recycled point");
         c.localB[k] = m.vec("recycled point");

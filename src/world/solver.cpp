@@ -649,8 +649,8 @@ template <class F>
       const ContactSim* sim = simAt < simCount ? sims + simAt : nullptr;
       if (sim == nullptr || sim->stamp != stamp) {
         // Not updated by this step's narrow phase (ContactSim): from the records.
-        fillContactSim(local, contacts[pair.contact], bodyA.center, bodyA.localCenter, bodyB.center,
-                       bodyB.localCenter);
+        fillContactSim(local, contacts[pair.contact], contactSet.impulses[pair.contact],
+                       bodyA.center, bodyA.localCenter, bodyB.center, bodyB.localCenter);
         sim = &local;
       }
       prepareLane(blocks[bi], lane, *sim, bodyA, bodyB, pair,
@@ -660,21 +660,20 @@ template <class F>
   }
 }
 
-// Accumulated impulses back to the contacts for the next step's warm start, and hit
-// events (in contact order).
+// Accumulated impulses back to the contacts (ContactSet::impulses) for the next step's
+// warm start, and hit events (in contact order).
 template <class F>
 [[gnu::noinline]] void storeImpulses(SolverScratch& s, const std::vector<ContactBlock<F>>& blocks,
-                                     const WorldDef& def, std::vector<Contact>& contacts,
+                                     const WorldDef& def, std::vector<ContactImpulses>& impulses,
                                      std::size_t first, std::size_t last) {
   constexpr int W = F::width;
-  // Block by block (the blocks read in order, each lane's contact written where it lies,
-  // fetched a few blocks ahead): in contact order, each contact read its block's lanes
-  // from all over the block array.
+  // Block by block (the blocks read in order, each lane's impulses written where they lie,
+  // fetched a few blocks ahead).
   constexpr std::size_t kAhead = 4;
   auto fetch = [&](std::size_t bi) {
     for (int lane = 0; lane < W; ++lane) {
       const std::uint32_t ci = s.lanePairs[bi * W + static_cast<std::size_t>(lane)].contact;
-      if (ci != SolverScratch::kNoContact) __builtin_prefetch(&contacts[ci].normalImpulse[0], 1);
+      if (ci != SolverScratch::kNoContact) __builtin_prefetch(&impulses[ci], 1);
     }
   };
   for (std::size_t bi = first; bi < last && bi < first + kAhead; ++bi)
@@ -686,13 +685,16 @@ template <class F>
       const std::size_t at = bi * W + static_cast<std::size_t>(lane);
       const std::uint32_t ci = s.lanePairs[at].contact;
       if (ci == SolverScratch::kNoContact) continue;
-      Contact& c = contacts[ci];
+      // Both points, without reading the contact's point count: a manifold's second point,
+      // when it has one point only, has no mass, so its impulses past the count (which
+      // nothing reads) are zero and it never hits.
+      ContactImpulses& out = impulses[ci];
       float strongest = 0.0f;
       int point = -1;
-      for (int j = 0; j < c.manifold.pointCount; ++j) {
+      for (int j = 0; j < kMaxManifoldPoints; ++j) {
         const auto& p = b.points[j];
-        c.normalImpulse[j] = p.normalImpulse[lane];
-        c.tangentImpulse[j] = p.tangentImpulse[lane];
+        out.normal[j] = p.normalImpulse[lane];
+        out.tangent[j] = p.tangentImpulse[lane];
         const float approach = -p.relativeVelocity[lane];
         if (p.maxNormalImpulse[lane] > 0.0f && approach > def.hitEventThreshold &&
             approach > strongest) {
@@ -943,7 +945,7 @@ void runStep(SolverScratch& s, std::vector<ContactBlock<F>>& blocks,
         applyRestitution(all + first, count, states, params.restitutionThreshold);
         break;
       case Kind::impulses:
-        storeImpulses(s, blocks, def, contactSet.contacts, first, first + count);
+        storeImpulses(s, blocks, def, contactSet.impulses, first, first + count);
         break;
     }
   });
