@@ -103,8 +103,8 @@ inline BodyLanes<FloatS> gather(const BodyState* states, const std::int32_t* slo
   const BodyState& s = states[slots[0]];
   return {{s.vx}, {s.vy}, {s.w}, {s.pad}, {s.dpx}, {s.dpy}, {s.qc}, {s.qs}};
 }
-inline void scatter(BodyState* states, const std::int32_t* slots, std::uint32_t writeMask,
-                    const BodyLanes<FloatS>& b) {
+[[gnu::always_inline]] inline void scatter(BodyState* states, const std::int32_t* slots,
+                                           std::uint32_t writeMask, const BodyLanes<FloatS>& b) {
   if ((writeMask & 1u) == 0) return;
   BodyState& s = states[slots[0]];
   s.vx = b.vx.v;
@@ -212,7 +212,8 @@ inline void transpose8(__m256 r[8]) {
   }
 }
 
-inline BodyLanes<FloatW> gather(const BodyState* states, const std::int32_t* slots, FloatW) {
+[[gnu::always_inline]] inline BodyLanes<FloatW> gather(const BodyState* states,
+                                                       const std::int32_t* slots, FloatW) {
   __m256 r[8];
   for (int i = 0; i < 8; ++i)
     r[i] = _mm256_load_ps(&states[slots[i]].vx);
@@ -220,8 +221,8 @@ inline BodyLanes<FloatW> gather(const BodyState* states, const std::int32_t* slo
   return {{r[0]}, {r[1]}, {r[2]}, {r[3]}, {r[4]}, {r[5]}, {r[6]}, {r[7]}};
 }
 // Writes the velocities back: vx, vy, w and a zero pad (unused) per body, 16 bytes each.
-inline void scatter(BodyState* states, const std::int32_t* slots, std::uint32_t writeMask,
-                    const BodyLanes<FloatW>& b) {
+[[gnu::always_inline]] inline void scatter(BodyState* states, const std::int32_t* slots,
+                                           std::uint32_t writeMask, const BodyLanes<FloatW>& b) {
   const __m256 zero = _mm256_setzero_ps();
   const __m256 t0 = _mm256_unpacklo_ps(b.vx.v, b.vy.v), t1 = _mm256_unpackhi_ps(b.vx.v, b.vy.v);
   const __m256 t2 = _mm256_unpacklo_ps(b.w.v, zero), t3 = _mm256_unpackhi_ps(b.w.v, zero);
@@ -313,7 +314,8 @@ inline bool any(MaskW m) {
   return _mm_movemask_ps(m.m) != 0;
 }
 
-inline BodyLanes<FloatW> gather(const BodyState* states, const std::int32_t* slots, FloatW) {
+[[gnu::always_inline]] inline BodyLanes<FloatW> gather(const BodyState* states,
+                                                       const std::int32_t* slots, FloatW) {
   __m128 a0 = _mm_load_ps(&states[slots[0]].vx), b0 = _mm_load_ps(&states[slots[0]].dpx);
   __m128 a1 = _mm_load_ps(&states[slots[1]].vx), b1 = _mm_load_ps(&states[slots[1]].dpx);
   __m128 a2 = _mm_load_ps(&states[slots[2]].vx), b2 = _mm_load_ps(&states[slots[2]].dpx);
@@ -322,8 +324,8 @@ inline BodyLanes<FloatW> gather(const BodyState* states, const std::int32_t* slo
   _MM_TRANSPOSE4_PS(b0, b1, b2, b3);
   return {{a0}, {a1}, {a2}, {a3}, {b0}, {b1}, {b2}, {b3}};
 }
-inline void scatter(BodyState* states, const std::int32_t* slots, std::uint32_t writeMask,
-                    const BodyLanes<FloatW>& b) {
+[[gnu::always_inline]] inline void scatter(BodyState* states, const std::int32_t* slots,
+                                           std::uint32_t writeMask, const BodyLanes<FloatW>& b) {
   __m128 r0 = b.vx.v, r1 = b.vy.v, r2 = b.w.v, r3 = _mm_setzero_ps();  // pad: unused
   _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
   if (writeMask & 1u) _mm_store_ps(&states[slots[0]].vx, r0);
@@ -421,7 +423,8 @@ inline void transpose4(float32x4_t& r0, float32x4_t& r1, float32x4_t& r2, float3
   r2 = c23.val[0];
   r3 = c23.val[1];
 }
-inline BodyLanes<FloatW> gather(const BodyState* states, const std::int32_t* slots, FloatW) {
+[[gnu::always_inline]] inline BodyLanes<FloatW> gather(const BodyState* states,
+                                                       const std::int32_t* slots, FloatW) {
   float32x4_t a0 = vld1q_f32(&states[slots[0]].vx), b0 = vld1q_f32(&states[slots[0]].dpx);
   float32x4_t a1 = vld1q_f32(&states[slots[1]].vx), b1 = vld1q_f32(&states[slots[1]].dpx);
   float32x4_t a2 = vld1q_f32(&states[slots[2]].vx), b2 = vld1q_f32(&states[slots[2]].dpx);
@@ -430,8 +433,8 @@ inline BodyLanes<FloatW> gather(const BodyState* states, const std::int32_t* slo
   transpose4(b0, b1, b2, b3);
   return {{a0}, {a1}, {a2}, {a3}, {b0}, {b1}, {b2}, {b3}};
 }
-inline void scatter(BodyState* states, const std::int32_t* slots, std::uint32_t writeMask,
-                    const BodyLanes<FloatW>& b) {
+[[gnu::always_inline]] inline void scatter(BodyState* states, const std::int32_t* slots,
+                                           std::uint32_t writeMask, const BodyLanes<FloatW>& b) {
   float32x4_t r0 = b.vx.v, r1 = b.vy.v, r2 = b.w.v, r3 = vdupq_n_f32(0.0f);  // pad: unused
   transpose4(r0, r1, r2, r3);
   if (writeMask & 1u) vst1q_f32(&states[slots[0]].vx, r0);
