@@ -3,6 +3,7 @@
 // world. It owns what static shapes know about their neighbours and rewrites the manifolds
 // of contacts with flagged static shapes. docs/concave.md explains the method.
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -10,6 +11,17 @@
 #include "quack/math/vec2.hpp"
 
 namespace quack::detail {
+
+/// An edge entered in a cell of the static-edge search's grid (ghost_edges.cpp).
+struct CellEntry {
+  long long x, y;
+  std::size_t edge;
+};
+/// Sorts `entries` by cell (x, then y), then edge: the order of std::sort by (x, y, edge).
+/// Precondition: entries of one cell were added in increasing edge order (the grid adds
+/// them edge by edge). By radix on the cell packed into one key when there are many and
+/// the cells' ranges fit in 64 bits; `scratch` is its second buffer.
+void sortCellEntries(std::vector<CellEntry>& entries, std::vector<CellEntry>& scratch);
 
 class BodyStore;
 struct Contact;

@@ -12,6 +12,7 @@
 
 #include "../../src/world/contact_set.hpp"
 #include "../../src/world/continuous.hpp"
+#include "../../src/world/ghost_edges.hpp"
 #include "../../src/world/pair_map.hpp"
 
 namespace quack::detail {
@@ -135,6 +136,42 @@ TEST(SortPairs, GivesStdSortsOrderOnBothPaths) {
       });
       sortPairs(pairs, scratch);
       EXPECT_EQ(pairs, expected) << "max index " << maxIndex << ", " << n << " pairs";
+    }
+  }
+}
+
+// The static-edge search's grid: entries added edge by edge, each edge in a few cells
+// around its own, sorted by cell and then edge. The radix path (256 entries or more, cells
+// spanning up to 64 bits) and std::sort's must agree, negative cells and shared cells
+// included; spans past 64 bits take std::sort.
+TEST(SortCellEntries, GivesStdSortsOrderOnBothPaths) {
+  std::mt19937 rng(77);
+  std::vector<CellEntry> scratch;
+  for (long long span : {3LL, 200LL, 70000LL, 1LL << 40, 1000000000000000LL}) {
+    for (std::size_t edges : {20u, 255u, 4000u}) {
+      std::uniform_int_distribution<long long> cell(-span, span);
+      std::uniform_int_distribution<int> extra(0, 2);
+      std::vector<CellEntry> entries;
+      for (std::size_t k = 0; k < edges; ++k) {
+        const long long x0 = cell(rng), y0 = cell(rng);
+        const int nx = extra(rng), ny = extra(rng);
+        for (long long x = x0; x <= x0 + nx; ++x)
+          for (long long y = y0; y <= y0 + ny; ++y)
+            entries.push_back({x, y, k});
+      }
+      std::vector<CellEntry> expected = entries;
+      std::sort(expected.begin(), expected.end(), [](const CellEntry& a, const CellEntry& b) {
+        if (a.x != b.x) return a.x < b.x;
+        if (a.y != b.y) return a.y < b.y;
+        return a.edge < b.edge;
+      });
+      sortCellEntries(entries, scratch);
+      ASSERT_EQ(entries.size(), expected.size());
+      for (std::size_t k = 0; k < entries.size(); ++k) {
+        ASSERT_TRUE(entries[k].x == expected[k].x && entries[k].y == expected[k].y &&
+                    entries[k].edge == expected[k].edge)
+            << "span " << span << ", " << edges << " edges, entry " << k;
+      }
     }
   }
 }
