@@ -10,6 +10,7 @@
 #include "joint_set.hpp"
 #include "quack/collision/gjk.hpp"
 #include "quack/world/world.hpp"
+#include "radix_sort.hpp"
 #include "step_context.hpp"
 #include "task_runner.hpp"
 
@@ -107,24 +108,7 @@ void sortPairs(std::vector<ProxyPair>& pairs, std::vector<ProxyPair>& scratch) {
   auto key = [bits](const ProxyPair& p) {
     return (std::uint64_t{p.a.index} << bits) | std::uint64_t{p.b.index};
   };
-  constexpr int kDigit = 11;
-  constexpr std::size_t kBuckets = std::size_t{1} << kDigit;
-  scratch.resize(pairs.size());
-  std::size_t count[kBuckets];
-  for (int shift = 0; shift < 2 * bits; shift += kDigit) {
-    std::fill(count, count + kBuckets, std::size_t{0});
-    for (const ProxyPair& p : pairs)
-      ++count[(key(p) >> shift) & (kBuckets - 1)];
-    std::size_t at = 0;
-    for (std::size_t& c : count) {
-      const std::size_t n = c;
-      c = at;
-      at += n;
-    }
-    for (const ProxyPair& p : pairs)
-      scratch[count[(key(p) >> shift) & (kBuckets - 1)]++] = p;
-    pairs.swap(scratch);
-  }
+  radixSortByKey(pairs, scratch, 2 * bits, key);
 }
 
 void ContactSet::findNew(StepContext& step) {

@@ -25,6 +25,7 @@
 #include "body_store.hpp"
 #include "contact_set.hpp"
 #include "quack/world/world.hpp"
+#include "radix_sort.hpp"
 #include "world_state.hpp"
 
 namespace quack::detail {
@@ -554,26 +555,8 @@ void sortCellEntries(std::vector<CellEntry>& entries, std::vector<CellEntry>& sc
     const std::uint64_t y = static_cast<std::uint64_t>(e.y) - static_cast<std::uint64_t>(minY);
     return bitsY == 64 ? y : (x << bitsY) | y;
   };
-  // Least significant digit first, 11 bits a pass, each pass stable: equal cells keep the
-  // order they were added in, which is the edges' order.
-  constexpr int kDigit = 11;
-  constexpr std::size_t kBuckets = std::size_t{1} << kDigit;
-  scratch.resize(entries.size());
-  std::vector<std::size_t> count(kBuckets);
-  for (int shift = 0; shift < bitsX + bitsY; shift += kDigit) {
-    std::fill(count.begin(), count.end(), 0);
-    for (const CellEntry& e : entries)
-      ++count[(key(e) >> shift) & (kBuckets - 1)];
-    std::size_t at = 0;
-    for (std::size_t& n : count) {
-      const std::size_t here = n;
-      n = at;
-      at += here;
-    }
-    for (const CellEntry& e : entries)
-      scratch[count[(key(e) >> shift) & (kBuckets - 1)]++] = e;
-    entries.swap(scratch);
-  }
+  // Stable: equal cells keep the order they were added in, which is the edges'.
+  radixSortByKey(entries, scratch, bitsX + bitsY, key);
 }
 
 }  // namespace quack::detail

@@ -115,31 +115,11 @@ void finishJointLane(const JointBlock<F>& b, int lane, Joint& joint, float invH)
 
 namespace jointlanes {
 
-template <class F>
-F ld(const float* p) {
-  return load(p, F{});
-}
-template <class F>
-F sp(float x) {
-  return splat(x, F{});
-}
 // -x exactly (a product with -1 is exact and flips the sign of zeros as negation does);
 // a subtraction from zero would not (0 - 0 is +0).
 template <class F>
 F neg(F x) {
   return x * sp<F>(-1.0f);
-}
-
-// Pair::applyLinear: -P on A at rA, +P on B at rB.
-template <class F>
-void applyLinear(BodyLanes<F>& A, BodyLanes<F>& B, F mA, F iA, F mB, F iB, F rAx, F rAy, F rBx,
-                 F rBy, F Px, F Py) {
-  A.vx = A.vx - mA * Px;
-  A.vy = A.vy - mA * Py;
-  A.w = A.w - iA * (rAx * Py - rAy * Px);
-  B.vx = B.vx + mB * Px;
-  B.vy = B.vy + mB * Py;
-  B.w = B.w + iB * (rBx * Py - rBy * Px);
 }
 
 // Pair::applyAngular (-L on A, +L on B) in the lanes of `on` only.
@@ -197,7 +177,8 @@ void warmStartJointBlock(const JointBlock<F>& b, BodyState* states) {
   const F rAx = A.qc * rAx0 - A.qs * rAy0, rAy = A.qs * rAx0 + A.qc * rAy0;
   const F rBx = B.qc * rBx0 - B.qs * rBy0, rBy = B.qs * rBx0 + B.qc * rBy0;
   const F mA = ld<F>(b.mA), iA = ld<F>(b.iA), mB = ld<F>(b.mB), iB = ld<F>(b.iB);
-  applyLinear(A, B, mA, iA, mB, iB, rAx, rAy, rBx, rBy, ld<F>(b.px), ld<F>(b.py));
+  // Pair::applyLinear's operations.
+  applyImpulse(A, B, mA, iA, mB, iB, rAx, rAy, rBx, rBy, ld<F>(b.px), ld<F>(b.py));
   const F axial = ((ld<F>(b.springImpulse) + ld<F>(b.motorImpulse)) + ld<F>(b.lowerImpulse)) -
                   ld<F>(b.upperImpulse);
   A.w = A.w - iA * axial;  // Pair::applyAngular
@@ -291,7 +272,7 @@ void solveJointBlock(JointBlock<F>& b, BodyState* states, const float* turned,
   const F iy = minusScale * sy - impulseScale * py;
   store(b.px, px + ix);
   store(b.py, py + iy);
-  applyLinear(A, B, mA, iA, mB, iB, rAx, rAy, rBx, rBy, ix, iy);
+  applyImpulse(A, B, mA, iA, mB, iB, rAx, rAy, rBx, rBy, ix, iy);
   scatter(states, b.slotA, b.writeA, A);
   scatter(states, b.slotB, b.writeB, B);
 }

@@ -484,4 +484,27 @@ using MaskW = MaskS;
 
 #endif
 
+// The solvers' shorthands for any lane type F: a load, a splat.
+template <class F>
+F ld(const float* p) {
+  return load(p, F{});
+}
+template <class F>
+F sp(float x) {
+  return splat(x, F{});
+}
+
+// An impulse P at the arms rA, rB of each lane: -P on A, +P on B (the contacts' and the
+// revolute joints' lanes share it).
+template <class F>
+void applyImpulse(BodyLanes<F>& A, BodyLanes<F>& B, F mA, F iA, F mB, F iB, F rAx, F rAy, F rBx,
+                  F rBy, F Px, F Py) {
+  A.vx = A.vx - mA * Px;
+  A.vy = A.vy - mA * Py;
+  A.w = A.w - iA * (rAx * Py - rAy * Px);
+  B.vx = B.vx + mB * Px;
+  B.vy = B.vy + mB * Py;
+  B.w = B.w + iB * (rBx * Py - rBy * Px);
+}
+
 }  // namespace quack::detail

@@ -73,26 +73,6 @@ struct alignas(F::width * sizeof(float)) ContactBlock {
   std::uint32_t writeA = 0, writeB = 0;  // lanes whose body is dynamic (bit per lane)
 };
 
-template <class F>
-F ld(const float* p) {
-  return load(p, F{});
-}
-template <class F>
-F sp(float x) {
-  return splat(x, F{});
-}
-
-template <class F>
-void applyImpulse(BodyLanes<F>& A, BodyLanes<F>& B, F mA, F iA, F mB, F iB, F rAx, F rAy, F rBx,
-                  F rBy, F Px, F Py) {
-  A.vx = A.vx - mA * Px;
-  A.vy = A.vy - mA * Py;
-  A.w = A.w - iA * (rAx * Py - rAy * Px);
-  B.vx = B.vx + mB * Px;
-  B.vy = B.vy + mB * Py;
-  B.w = B.w + iB * (rBx * Py - rBy * Px);
-}
-
 // Warm start: the accumulated impulses of the last step, applied again.
 template <class F>
 [[gnu::noinline]] void warmStart(ContactBlock<F>* blocks, std::size_t count, BodyState* states) {

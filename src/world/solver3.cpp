@@ -45,14 +45,6 @@ template <class F>
   return {select(m, a.x, b.x), select(m, a.y, b.y), select(m, a.z, b.z)};
 }
 template <class F>
-F ld(const float* p) {
-  return load(p, F{});
-}
-template <class F>
-F sp(float x) {
-  return splat(x, F{});
-}
-template <class F>
 V3<F> ld3(const float* x, const float* y, const float* z) {
   return {ld<F>(x), ld<F>(y), ld<F>(z)};
 }
