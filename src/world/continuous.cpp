@@ -231,7 +231,8 @@ bool ContinuousPhase::findImpactWith(SearchScratch& scratch, const BodyStore& st
     // Jointed bodies do not collide unless the joint says so (JointDef::collideConnected):
     // a pendulum is not stopped at its pivot's post. Between dynamic bodies jointed pairs
     // are still swept: a falling ragdoll's limbs hold each other so, and without it its
-    // joints came to rest up to 17 cm open (JointScenes.RagdollDropped...).
+    // joints came to rest up to 17 cm open
+    // (JointScenes.RagdollDroppedOnAPyramidNeverGainsEnergyAndRests).
     if (store.bodies[other.body].type != BodyType::dynamicBody &&
         joints_->blocksCollision(f.body, other.body))
       return;

@@ -77,13 +77,7 @@ void prepareJointLane(JointBlock<F>& b, int lane, const JointSim& slots, const J
   // As prepareJoint: the relative angle only where a row reads it.
   const bool angled = def.enableLimit || spring;
   const float relative = angled ? invMulRot(a.q, bb.q).angle() : 0.0f;
-  float deltaAngle = relative - joint.referenceAngle;  // wrapAngle
-  if (deltaAngle > kPi) {
-    deltaAngle = deltaAngle - 2.0f * kPi;
-  } else if (deltaAngle < -kPi) {
-    deltaAngle = deltaAngle + 2.0f * kPi;
-  }
-  b.deltaAngle[lane] = angled ? deltaAngle : 0.0f;
+  b.deltaAngle[lane] = angled ? wrapAngle(relative - joint.referenceAngle) : 0.0f;
   const Softness soft = makeSoftness(def.hertz, def.dampingRatio, params.h);
   b.springBiasRate[lane] = soft.biasRate;
   b.springMassScale[lane] = soft.massScale;
@@ -206,7 +200,7 @@ void solveJointBlock(JointBlock<F>& b, BodyState* states, const float* turned,
     const F raw =
         ld<F>(b.deltaAngle) + (turnedOf<F>(turned, b.slotB) - turnedOf<F>(turned, b.slotA));
     const F angle = select(greater(raw, pi), raw - twoPi,
-                           select(greater(neg(pi), raw), raw + twoPi, raw));  // wrapAngle
+                           select(greater(neg(pi), raw), raw + twoPi, raw));  // wrapAngle, in lanes
     const auto spring = turns & greater(ld<F>(b.springOn), zero);
     if (any(spring)) {
       const F acc = ld<F>(b.springImpulse);

@@ -19,12 +19,6 @@ namespace {
 constexpr float kMouseSpinHertz = 1.0f;
 constexpr float kMouseSpinDampingRatio = 0.5f;
 
-float wrapAngle(float a) {
-  if (a > kPi) return a - 2.0f * kPi;
-  if (a < -kPi) return a + 2.0f * kPi;
-  return a;
-}
-
 // x solving [[k11, k12], [k12, k22]] x = b (0 where the matrix is singular).
 Vec2 solve22(float k11, float k12, float k22, Vec2 b) {
   float det = k11 * k22 - k12 * k12;

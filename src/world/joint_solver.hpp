@@ -3,8 +3,8 @@
 // in the soft step the contacts use (solver.cpp). Per step a joint is prepared once (its
 // arms, the bodies' offsets and masses at the step's start); per sub-step it is warm
 // started, solved with the position error as a soft bias, and relaxed without it, as the
-// contacts are. Joints are solved one at a time here; plain revolute joints (no limit,
-// motor or spring) go in lanes instead (joint_lanes.hpp), with the same operations. Box2D v3's
+// contacts are. Joints are solved one at a time here; revolute joints go in lanes instead
+// (joint_lanes.hpp), with the same operations. Box2D v3's
 // joint files (revolute_joint.c, prismatic_joint.c, ...) and Catto's "Solver2D" notes showed the
 // constraints (read for understanding; the code is ours).
 
@@ -15,6 +15,13 @@
 #include "solver.hpp"
 
 namespace quack::detail {
+
+/// An angle brought into [-pi, pi] by one turn (angles here differ by less than 3 pi).
+inline float wrapAngle(float a) noexcept {
+  if (a > kPi) return a - 2.0f * kPi;
+  if (a < -kPi) return a + 2.0f * kPi;
+  return a;
+}
 
 /// What preparing a joint reads of one of its bodies: zero masses for a body the solver
 /// does not move (static, kinematic, asleep, or a mouse joint's missing body A).

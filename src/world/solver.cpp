@@ -320,7 +320,6 @@ struct SolverScratch {
   std::vector<JointFound> jointsFound;
   std::vector<JointSim> joints;
   std::vector<std::uint8_t> jointColor;      // per found joint
-  std::vector<std::uint8_t> jointGroup;      // per found joint: JointFound::group, or 2
   std::size_t jointStart[kColors + 2] = {};  // overflow [0, [0]), colour c [c], [c + 1])
   // The joint passes' work items: in each colour, blocks of revolute joints
   // (joint_lanes.hpp; those come first in the colour's joints) then its other joints one
@@ -355,17 +354,18 @@ void layoutJoints(SolverScratch& s, std::uint32_t* used, int width) {
   const bool lanes = !testJointsOneAtATime.load(std::memory_order_relaxed);
   constexpr int kGroups = 3;  // plain revolute, other revolute, one at a time
   s.jointColor.resize(n);
-  s.jointGroup.resize(n);
   std::size_t perColor[kColors + 1] = {};
   std::size_t perGroup[kColors + 1][kGroups] = {};
+  // The group a found joint is laid out in: its own in a colour's lanes, else one at a time.
+  auto groupOf = [&](std::size_t k) {
+    return lanes && s.jointColor[k] != kOverflow ? int{s.jointsFound[k].group} : 2;
+  };
   for (std::size_t k = 0; k < n; ++k) {
     const SolverScratch::JointFound& j = s.jointsFound[k];
     const int color = takeColor(used, j.slotA, j.slotB, j.writeA, j.writeB);
     s.jointColor[k] = static_cast<std::uint8_t>(color);
-    const int group = lanes && color != kOverflow ? j.group : 2;
-    s.jointGroup[k] = static_cast<std::uint8_t>(group);
     ++perColor[color];
-    ++perGroup[color][group];
+    ++perGroup[color][groupOf(k)];
   }
   s.jointStart[0] = perColor[kOverflow];
   for (int c = 0; c < kColors; ++c)
@@ -382,7 +382,7 @@ void layoutJoints(SolverScratch& s, std::uint32_t* used, int width) {
   s.joints.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
     const SolverScratch::JointFound& j = s.jointsFound[k];
-    const int group = s.jointGroup[k];
+    const int group = groupOf(k);
     JointSim& sim = s.joints[fill[s.jointColor[k]][group]++];
     sim.joint = j.joint;
     sim.slotA = j.slotA;
