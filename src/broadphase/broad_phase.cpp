@@ -161,7 +161,14 @@ void BroadPhase::reinsert(std::uint32_t p, Aabb wanted) {
   const Aabb clamped{maxv(wanted.lower, Vec2{-kMaxCoordinate, -kMaxCoordinate}),
                      minv(wanted.upper, Vec2{kMaxCoordinate, kMaxCoordinate})};
   fat_[p] = clamped;
-  std::visit([&](auto& index) { index.move(p, clamped); }, index_);
+  // The tree grows the moved leaf's ancestors in place and rebuilds that part once, when
+  // the pairs are next found (a step's moves cost a walk up each and one partial build);
+  // the other structures move the proxy now.
+  if (auto* tree = std::get_if<DynamicTree>(&index_)) {
+    tree->enlarge(p, clamped);
+  } else {
+    std::visit([&](auto& index) { index.move(p, clamped); }, index_);
+  }
   buffer(p);
 }
 
@@ -222,6 +229,8 @@ void BroadPhase::updatePairs(std::vector<ProxyPair>& pairs) {
 }
 
 void BroadPhase::beginPairPass() {
+  // The moved proxies' queries (possibly on several threads) read a rebuilt tree.
+  if (auto* tree = std::get_if<DynamicTree>(&index_)) tree->rebuildEnlarged();
   // Keep live, buffered entries once each (a destroyed proxy lost kBuffered; a reused slot
   // may appear twice).
   std::size_t kept = 0;

@@ -61,6 +61,7 @@ std::uint32_t DynamicTree::allocateNode() {
     nodes_.push_back({});
   }
   nodes_[n].height = 1;
+  nodes_[n].enlarged = 0;
   ++nodeCount_;
   return n;
 }
@@ -77,12 +78,14 @@ void DynamicTree::insert(std::uint32_t proxy, Aabb b) {
   QUACK_ASSERT(proxy < kLeafBit);
   if (proxy >= leafParent_.size()) leafParent_.resize(std::size_t{proxy} + 1, kAbsent);
   QUACK_ASSERT_MSG(leafParent_[proxy] == kAbsent, "DynamicTree::insert: proxy already present");
+  rebuildEnlarged();
   insertLeaf(proxy, b);
   ++leafCount_;
 }
 
 void DynamicTree::remove(std::uint32_t proxy) {
   QUACK_ASSERT_MSG(contains(proxy), "DynamicTree::remove: proxy not present");
+  rebuildEnlarged();
   removeLeaf(proxy);
   --leafCount_;
 }
@@ -90,8 +93,119 @@ void DynamicTree::remove(std::uint32_t proxy) {
 void DynamicTree::move(std::uint32_t proxy, Aabb b) {
   QUACK_ASSERT(isValid(b));
   QUACK_ASSERT_MSG(contains(proxy), "DynamicTree::move: proxy not present");
+  // The incremental operations rotate nodes, which would leave enlarged nodes under ones
+  // that are not: the enlarged part is rebuilt first.
+  rebuildEnlarged();
   removeLeaf(proxy);
   insertLeaf(proxy, b);
+}
+
+// Learned from Box2D v3's b2DynamicTree_EnlargeProxy and b2DynamicTree_Rebuild (read for
+// understanding, not copied): moving a leaf costs a walk up while the boxes grow, and the
+// re-insertions of a whole step are replaced by one top-down build over the enlarged part.
+void DynamicTree::enlarge(std::uint32_t proxy, Aabb b) {
+  QUACK_ASSERT(isValid(b));
+  QUACK_ASSERT_MSG(contains(proxy), "DynamicTree::enlarge: proxy not present");
+  const std::uint32_t ref = leafParent_[proxy];
+  if (ref == kNullIndex) {
+    rootBox_ = b;  // the only leaf: nothing above it
+    return;
+  }
+  // The leaf's own box is exact (it may shrink or move); the boxes above only grow.
+  nodes_[ref >> 1].childBox[ref & 1] = b;
+  std::uint32_t node = ref >> 1;
+  bool growing = true;
+  while (node != kNullIndex) {
+    Node& n = nodes_[node];
+    // Above a node that was enlarged before, every node is marked already.
+    if (!growing && n.enlarged != 0) break;
+    n.enlarged = 1;
+    const std::uint32_t pref = n.parent;
+    if (growing) {
+      Aabb& slot = pref == kNullIndex ? rootBox_ : nodes_[pref >> 1].childBox[pref & 1];
+      const Aabb grown = merge(slot, b);
+      growing = !(grown == slot);
+      slot = grown;
+    }
+    node = pref == kNullIndex ? kNullIndex : pref >> 1;
+  }
+  enlarged_ = true;
+}
+
+void DynamicTree::rebuildEnlarged() {
+  if (!enlarged_) return;
+  enlarged_ = false;
+  if (root_ == kNullIndex || isLeaf(root_) || nodes_[root_].enlarged == 0) return;
+  // Every enlarged node is dropped; what hangs from one and is not enlarged itself (a leaf,
+  // or a subtree no moved leaf is under) becomes an item of the build. Enlarged nodes form
+  // a connected top of the tree, so a walk down from the root finds them all.
+  std::vector<BuildItem>& items = rebuildItems_;
+  std::vector<std::uint32_t>& stack = rebuildStack_;
+  items.clear();
+  stack.clear();
+  stack.push_back(root_);
+  while (!stack.empty()) {
+    const std::uint32_t node = stack.back();
+    stack.pop_back();
+    const Node n = nodes_[node];
+    freeNode(node);
+    for (int s = 0; s < 2; ++s) {
+      const std::uint32_t child = n.child[s];
+      if (!isLeaf(child) && nodes_[child].enlarged != 0) {
+        stack.push_back(child);
+      } else {
+        items.push_back({n.childBox[s], center(n.childBox[s]), child});
+      }
+    }
+  }
+  const Built top = buildMidpoint(items.data(), items.size(), kNullIndex, 0);
+  link(kNullIndex, top.ref, top.box);
+}
+
+// Top-down build over items (leaves and kept subtrees) by the middle of the centres' range
+// along its wider axis: two passes over the items a level, against the binned SAH's
+// binning, a sweep over the bins and a partition. Where every centre falls on one side
+// (equal centres), the split is at the object median.
+DynamicTree::Built DynamicTree::buildMidpoint(BuildItem* items, std::size_t count,
+                                              std::uint32_t parentRef, int depth) {
+  if (count == 1) {
+    setParent(items[0].ref, parentRef);
+    return {items[0].ref, items[0].box, heightOf(items[0].ref)};
+  }
+  std::size_t mid = count / 2;
+  if (count > 2) {
+    Aabb centroids{items[0].centroid, items[0].centroid};
+    for (std::size_t i = 1; i < count; ++i)
+      centroids = merge(centroids, items[i].centroid);
+    const Vec2 extent = centroids.upper - centroids.lower;
+    const bool alongX = extent.x >= extent.y;
+    const float pivot = alongX ? 0.5f * (centroids.lower.x + centroids.upper.x)
+                               : 0.5f * (centroids.lower.y + centroids.upper.y);
+    BuildItem* m = alongX
+                       ? std::partition(items, items + count,
+                                        [&](const BuildItem& it) { return it.centroid.x < pivot; })
+                       : std::partition(items, items + count,
+                                        [&](const BuildItem& it) { return it.centroid.y < pivot; });
+    mid = static_cast<std::size_t>(m - items);
+    if (mid == 0 || mid == count || depth >= kMaxSahDepth) {
+      mid = count / 2;
+      std::nth_element(items, items + mid, items + count,
+                       [&](const BuildItem& x, const BuildItem& y) {
+                         return alongX ? x.centroid.x < y.centroid.x : x.centroid.y < y.centroid.y;
+                       });
+    }
+  }
+  const std::uint32_t node = allocateNode();
+  nodes_[node].parent = parentRef;
+  const Built left = buildMidpoint(items, mid, node << 1, depth + 1);
+  const Built right = buildMidpoint(items + mid, count - mid, (node << 1) | 1u, depth + 1);
+  Node& n = nodes_[node];
+  n.child[0] = left.ref;
+  n.childBox[0] = left.box;
+  n.child[1] = right.ref;
+  n.childBox[1] = right.box;
+  n.height = static_cast<std::int16_t>(1 + std::max(left.height, right.height));
+  return {node, merge(left.box, right.box), n.height};
 }
 
 void DynamicTree::insertLeaf(std::uint32_t proxy, Aabb b) {
@@ -130,7 +244,7 @@ void DynamicTree::insertLeaf(std::uint32_t proxy, Aabb b) {
   p.childBox[0] = siblingBox;
   p.child[1] = leaf;
   p.childBox[1] = b;
-  p.height = heightOf(sibling) + 1;
+  p.height = static_cast<std::int16_t>(heightOf(sibling) + 1);
   setParent(sibling, parent << 1);
   leafParent_[proxy] = (parent << 1) | 1u;
   link(siblingRef, parent, merge(siblingBox, b));
@@ -166,7 +280,7 @@ void DynamicTree::fixUpward(std::uint32_t node) {
     Aabb& slot = pref == kNullIndex ? rootBox_ : nodes_[pref >> 1].childBox[pref & 1];
     // Nothing above can change when this node kept its height and box and did not rotate.
     const bool unchanged = before == node && h == n.height && slot == b;
-    n.height = h;
+    n.height = static_cast<std::int16_t>(h);
     slot = b;
     if (unchanged || pref == kNullIndex) return;
     node = pref >> 1;
@@ -198,7 +312,7 @@ std::uint32_t DynamicTree::balance(std::uint32_t a) {
   A.child[tall] = handed;
   A.childBox[tall] = handedBox;
   setParent(handed, (a << 1) | static_cast<std::uint32_t>(tall));
-  A.height = 1 + std::max(heightOf(A.child[0]), heightOf(A.child[1]));
+  A.height = static_cast<std::int16_t>(1 + std::max(heightOf(A.child[0]), heightOf(A.child[1])));
   C.child[give] = a;
   C.childBox[give] = merge(A.childBox[0], A.childBox[1]);
   A.parent = (c << 1) | static_cast<std::uint32_t>(give);
@@ -211,7 +325,7 @@ void DynamicTree::rebuild() {
   for (std::uint32_t p = 0; p < leafParent_.size(); ++p) {
     if (leafParent_[p] == kAbsent) continue;
     Aabb b = box(p);
-    items.push_back({b, center(b), p});
+    items.push_back({b, center(b), p | kLeafBit});
   }
   // Release the capacity left over from incremental growth: a bulk load ends up exact.
   std::vector<Node>().swap(nodes_);
@@ -220,6 +334,7 @@ void DynamicTree::rebuild() {
   nodeCount_ = 0;
   root_ = kNullIndex;
   rootBox_ = {};
+  enlarged_ = false;
   if (items.empty()) return;
   nodes_.reserve(items.size() - 1);
   Built top = build(items.data(), items.size(), kNullIndex, 0);
@@ -229,8 +344,8 @@ void DynamicTree::rebuild() {
 DynamicTree::Built DynamicTree::build(BuildItem* items, std::size_t count, std::uint32_t parentRef,
                                       int depth) {
   if (count == 1) {
-    leafParent_[items[0].proxy] = parentRef;
-    return {items[0].proxy | kLeafBit, items[0].box, 0};
+    setParent(items[0].ref, parentRef);
+    return {items[0].ref, items[0].box, heightOf(items[0].ref)};
   }
   Aabb centroids{items[0].centroid, items[0].centroid};
   for (std::size_t i = 1; i < count; ++i)
@@ -302,7 +417,7 @@ DynamicTree::Built DynamicTree::build(BuildItem* items, std::size_t count, std::
   n.childBox[0] = left.box;
   n.child[1] = right.ref;
   n.childBox[1] = right.box;
-  n.height = 1 + std::max(left.height, right.height);
+  n.height = static_cast<std::int16_t>(1 + std::max(left.height, right.height));
   return {node, merge(left.box, right.box), n.height};
 }
 
@@ -378,7 +493,16 @@ Status DynamicTree::validate() const {
     if (n.height != 1 + std::max(heightOf(n.child[0]), heightOf(n.child[1]))) {
       return fail(at("wrong height at node", it.ref));
     }
-    if (!(merge(n.childBox[0], n.childBox[1]) == it.box)) {
+    const Aabb merged = merge(n.childBox[0], n.childBox[1]);
+    if (n.enlarged != 0) {
+      if (!quack::contains(it.box, merged)) {
+        return fail(at("enlarged box does not hold its children at node", it.ref));
+      }
+      if (!enlarged_) return fail(at("enlarged node in a tree not marked so:", it.ref));
+      if (n.parent != kNullIndex && nodes_[n.parent >> 1].enlarged == 0) {
+        return fail(at("enlarged node under one that is not:", it.ref));
+      }
+    } else if (!(merge(n.childBox[0], n.childBox[1]) == it.box)) {
       return fail(at("box is not the merge of its children at node", it.ref));
     }
     for (std::uint32_t s = 0; s < 2; ++s) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -97,6 +98,120 @@ TEST(DynamicTree, RandomInsertRemoveMoveStaysValidAndMatchesBruteForce) {
     const double bound = 2.0 * std::log2(std::max<double>(2.0, t.proxyCount())) + 2.0;
     EXPECT_LE(t.height(), bound);
   }
+}
+
+// enlarge grows a moved leaf's ancestors in place; queries must stay exact both in that
+// state and after rebuildEnlarged, and insert/remove in between must rebuild first. The
+// brute-force model is the oracle; validate() checks the enlarged nodes' invariants
+// (their boxes hold their children, their ancestors are enlarged too).
+TEST(DynamicTree, EnlargeAndPartialRebuildMatchBruteForce) {
+  for (std::uint32_t seed : {41u, 42u}) {
+    SCOPED_TRACE("seed=" + std::to_string(seed));
+    std::mt19937 rng(seed);
+    DynamicTree t;
+    std::vector<std::optional<Aabb>> model(400);
+    for (std::uint32_t p = 0; p < 300; ++p) {
+      model[p] = test::randomBox(rng, 40.0f, 0.1f, 2.0f);
+      t.insert(p, *model[p]);
+    }
+    std::uniform_int_distribution<std::uint32_t> pick(0, 399);
+    std::uniform_real_distribution<float> unit(0, 1);
+    auto checkQueries = [&](int round) {
+      for (int k = 0; k < 5; ++k) {
+        const Aabb q = test::randomBox(rng, 40.0f, 0.5f, 6.0f);
+        std::vector<std::uint32_t> expected;
+        for (std::uint32_t i = 0; i < model.size(); ++i)
+          if (model[i] && overlaps(*model[i], q)) expected.push_back(i);
+        ASSERT_EQ(queryAll(t, q), expected) << "round " << round;
+      }
+    };
+    for (int round = 0; round < 60; ++round) {
+      // A step's worth of moves: nearby (a drift) or far (a teleport), some shrinking.
+      const int moves = 1 + static_cast<int>(unit(rng) * 120.0f);
+      for (int m = 0; m < moves; ++m) {
+        const std::uint32_t p = pick(rng);
+        if (!model[p]) continue;
+        Aabb b = test::randomBox(rng, 40.0f, 0.1f, 2.0f);
+        if (unit(rng) < 0.8f) {
+          const Vec2 c = center(*model[p]) + Vec2{unit(rng) - 0.5f, unit(rng) - 0.5f};
+          const Vec2 h = extents(b);
+          b = {c - h, c + h};
+        }
+        t.enlarge(p, b);
+        model[p] = b;
+        ASSERT_TRUE(t.hasEnlarged());
+        ASSERT_EQ(t.box(p), b);
+      }
+      Status v = t.validate();
+      ASSERT_TRUE(v.ok()) << "round " << round << ", enlarged: " << v.message();
+      checkQueries(round);
+      if (round % 3 == 0) {
+        // An insertion or removal while enlarged rebuilds first.
+        const std::uint32_t p = pick(rng);
+        if (model[p]) {
+          t.remove(p);
+          model[p].reset();
+        } else {
+          model[p] = test::randomBox(rng, 40.0f, 0.1f, 2.0f);
+          t.insert(p, *model[p]);
+        }
+        EXPECT_FALSE(t.hasEnlarged());
+      } else {
+        t.rebuildEnlarged();
+        EXPECT_FALSE(t.hasEnlarged());
+      }
+      v = t.validate();
+      ASSERT_TRUE(v.ok()) << "round " << round << ", rebuilt: " << v.message();
+      checkQueries(round);
+    }
+    // Partial rebuilds keep the tree shallow: within twice a balanced tree's height.
+    const double bound = 2.0 * std::log2(std::max<double>(2.0, t.proxyCount())) + 2.0;
+    EXPECT_LE(t.height(), bound);
+  }
+}
+
+// One moved leaf rebuilds only its path: the rest of the hierarchy keeps its quality, and a
+// step in which every leaf moved rebuilds the whole tree as well as the full build does
+// (midpoint against binned SAH, within 25% by the area ratio).
+TEST(DynamicTree, PartialRebuildKeepsQuality) {
+  std::mt19937 rng(43);
+  DynamicTree t;
+  std::vector<Aabb> boxes;
+  for (std::uint32_t i = 0; i < 2000; ++i) {
+    boxes.push_back(test::randomBox(rng, 100.0f, 0.25f, 1.0f));
+    t.insert(i, boxes.back());
+  }
+  t.rebuild();
+  const float built = t.areaRatio();
+  const int height = t.height();
+  t.enlarge(7, boxes[7]);  // same box: only the marks
+  t.rebuildEnlarged();
+  ASSERT_TRUE(t.validate().ok()) << t.validate().message();
+  EXPECT_LE(t.areaRatio(), built * 1.01f);
+  EXPECT_LE(t.height(), height + 1);
+  for (std::uint32_t i = 0; i < 2000; ++i) {
+    const Vec2 shift{0.3f, -0.2f};
+    boxes[i] = {boxes[i].lower + shift, boxes[i].upper + shift};
+    t.enlarge(i, boxes[i]);
+  }
+  t.rebuildEnlarged();
+  ASSERT_TRUE(t.validate().ok()) << t.validate().message();
+  EXPECT_LE(t.areaRatio(), built * 1.25f);
+  for (std::uint32_t i = 0; i < 2000; ++i)
+    ASSERT_EQ(t.box(i), boxes[i]);
+}
+
+// Every centre equal: the midpoint cannot split, the median must (a balanced tree).
+TEST(DynamicTree, PartialRebuildOfIdenticalBoxesIsBalanced) {
+  DynamicTree t;
+  for (std::uint32_t i = 0; i < 1024; ++i)
+    t.insert(i, {{static_cast<float>(i), 0}, {static_cast<float>(i) + 1, 1}});
+  for (std::uint32_t i = 0; i < 1024; ++i)
+    t.enlarge(i, {{0, 0}, {1, 1}});
+  t.rebuildEnlarged();
+  ASSERT_TRUE(t.validate().ok()) << t.validate().message();
+  EXPECT_EQ(t.height(), 10);
+  EXPECT_EQ(queryAll(t, {{0.5f, 0.5f}, {0.5f, 0.5f}}).size(), 1024u);
 }
 
 TEST(DynamicTree, RebuildKeepsProxiesAndImprovesOrKeepsQuality) {

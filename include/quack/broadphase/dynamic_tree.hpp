@@ -44,6 +44,20 @@ class DynamicTree {
   void remove(std::uint32_t proxy);
   /// Replaces the box of a present proxy (removes and re-inserts its leaf).
   void move(std::uint32_t proxy, Aabb box);
+  /// Replaces the box of a present proxy without re-inserting it: the leaf keeps its place,
+  /// its ancestors' boxes grow to hold the new box and are marked enlarged. Queries stay
+  /// exact (every box still holds what is below it) but look at more nodes, until
+  /// `rebuildEnlarged()` rebuilds the enlarged part of the hierarchy. For many proxies
+  /// moved at once (a world step), this with one rebuild costs a fraction of `move` each.
+  void enlarge(std::uint32_t proxy, Aabb box);
+  /// Rebuilds the part of the hierarchy that `enlarge` marked: every enlarged node is
+  /// dropped and the subtrees and leaves hanging from them are joined again top down, by
+  /// splitting at the middle of their centres along the wider axis. Untouched subtrees are
+  /// kept whole. Does nothing when nothing was enlarged. `insert`, `remove`, `move` and
+  /// `rebuild` call it first.
+  void rebuildEnlarged();
+  /// True when `enlarge` has marked nodes that `rebuildEnlarged` has not rebuilt yet.
+  bool hasEnlarged() const noexcept { return enlarged_; }
   /// True when `proxy` is in the tree.
   bool contains(std::uint32_t proxy) const noexcept {
     return proxy < leafParent_.size() && leafParent_[proxy] != kAbsent;
@@ -98,7 +112,11 @@ class DynamicTree {
     Aabb childBox[2];
     std::uint32_t child[2];  // node index, or proxy | kLeafBit
     std::uint32_t parent;    // (node << 1) | slot, kNullIndex at the root; free list link
-    std::int32_t height;     // -1 when free
+    std::int16_t height;     // -1 when free
+    // Set by enlarge on every ancestor of a moved leaf (so every ancestor of an enlarged
+    // node is enlarged); its box in the parent holds its children's boxes, not equals
+    // their merge. Cleared by rebuildEnlarged, which drops these nodes.
+    std::uint16_t enlarged;
   };
 
   struct Built {
@@ -109,7 +127,7 @@ class DynamicTree {
   struct BuildItem {
     Aabb box;
     Vec2 centroid;
-    std::uint32_t proxy;
+    std::uint32_t ref;  // proxy | kLeafBit, or a kept subtree's node
   };
 
   static bool isLeaf(std::uint32_t ref) noexcept { return (ref & kLeafBit) != 0; }
@@ -125,6 +143,7 @@ class DynamicTree {
   void fixUpward(std::uint32_t node);
   std::uint32_t balance(std::uint32_t node);
   Built build(BuildItem* items, std::size_t count, std::uint32_t parentRef, int depth);
+  Built buildMidpoint(BuildItem* items, std::size_t count, std::uint32_t parentRef, int depth);
 
   std::vector<Node> nodes_;
   std::vector<std::uint32_t> leafParent_;  // per proxy: (node << 1) | slot, or kAbsent
@@ -133,6 +152,9 @@ class DynamicTree {
   std::uint32_t freeList_ = kNullIndex;
   std::uint32_t nodeCount_ = 0;
   std::uint32_t leafCount_ = 0;
+  bool enlarged_ = false;
+  std::vector<BuildItem> rebuildItems_;  // rebuildEnlarged's scratch, kept for its capacity
+  std::vector<std::uint32_t> rebuildStack_;
 };
 
 template <class Visit>
