@@ -337,6 +337,7 @@ class BroadPhase {
   std::vector<std::uint32_t> moveBuffer_;
   PairFilterFn pairFilter_ = nullptr;
   void* pairFilterContext_ = nullptr;
+  bool enlargeMoves_ = false;  // the tree enlarges instead of re-inserting (beginPairPass)
 };
 
 template <class ParallelFor>
