@@ -8,6 +8,7 @@
 #include "body_store.hpp"
 #include "contact_set.hpp"
 #include "joint_set.hpp"
+#include "quack/broadphase/broad_phase.hpp"
 #include "quack/world/world.hpp"
 #include "task_runner.hpp"
 
@@ -191,7 +192,8 @@ void IslandSet::unlink(BodyStore& store, std::uint32_t a, std::uint32_t b) {
     islands_[store.bodies[a].island].dirty = true;
 }
 
-void IslandSet::wakeNear(BodyStore& store, const ContactSet& contacts, std::uint32_t body) {
+void IslandSet::wakeNear(BodyStore& store, const BroadPhase& broadPhase, const ContactSet& contacts,
+                         std::uint32_t body) {
   for (std::uint32_t s : store.bodies[body].shapes) {
     for (std::uint32_t ci : store.shapes[s].contacts) {
       const Contact& c = contacts.contacts[ci];
@@ -199,6 +201,14 @@ void IslandSet::wakeNear(BodyStore& store, const ContactSet& contacts, std::uint
       const std::uint32_t a = c.bodyA, b = c.bodyB;
       wake(store, a == body ? b : a);
     }
+    if (store.shapes[s].def.sensor) continue;
+    // The fat box holds the speculative distance: what the next step's contacts may reach.
+    broadPhase.queryAabb(broadPhase.fatBox(store.shapes[s].proxy),
+                         [&](ProxyId, std::uint64_t user) {
+                           const Shape& other = store.shapes[static_cast<std::uint32_t>(user)];
+                           if (other.body != body && !other.def.sensor) wake(store, other.body);
+                           return true;
+                         });
   }
 }
 

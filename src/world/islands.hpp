@@ -15,7 +15,8 @@
 
 namespace quack {
 struct WorldDef;
-}
+class BroadPhase;
+}  // namespace quack
 
 namespace quack::detail {
 
@@ -57,9 +58,12 @@ class IslandSet {
   void link(BodyStore& store, std::uint32_t a, std::uint32_t b);
   /// A joint between them was destroyed: both wake and their island is marked for a split.
   void unlink(BodyStore& store, std::uint32_t a, std::uint32_t b);
-  /// Wakes every body sharing a contact with `body`, touching or not (fat boxes overlap):
-  /// for a body moved by hand, which may now be inside them.
-  void wakeNear(BodyStore& store, const ContactSet& contacts, std::uint32_t body);
+  /// Wakes every body sharing a contact with `body`, touching or not (fat boxes overlap),
+  /// and every body whose shapes' tight boxes meet its shapes' fat boxes where they are
+  /// now: for a body moved by hand, which may now be inside them (a teleport lands where
+  /// it has no contacts yet).
+  void wakeNear(BodyStore& store, const BroadPhase& broadPhase, const ContactSet& contacts,
+                std::uint32_t body);
   /// Puts the body's island (a kinematic body: the body) to sleep now (World::setAwake).
   void sleepNow(BodyStore& store, const ContactSet& contacts, const JointSet& joints,
                 std::uint32_t body);

@@ -63,8 +63,8 @@ std::uint64_t buildFingerprint() {
        {kLinearSlop, kSpeculativeDistance, kContactRecycleDistance, kContactRecycleCosAngle,
         kFlushEdgeTolerance, kGhostVertexRadius, kCcdFastFraction, kTimeToSleep, kMaxTimeStep,
         kMaxGravity, kMaxGravityScale, kMaxLinearSpeed, kMaxAngularSpeed, kMaxBodyMass,
-        kMaxRestitution, kMaxCoordinate, BroadPhaseConfig{}.margin,
-        BroadPhaseConfig{}.displacementScale, BroadPhaseConfig{}.cellSize})
+        kMaxRestitution, kMaxCoordinate, worldBroadPhaseConfig(WorldDef{}).margin,
+        worldBroadPhaseConfig(WorldDef{}).displacementScale, BroadPhaseConfig{}.cellSize})
     w.f32(f);
   return fnv1a(w.bytes);
 }
@@ -641,7 +641,7 @@ Status SnapshotCodec::readStructure(std::span<const std::uint8_t> structure, std
   d.enableSleep = (defFlags & 8) != 0;
   if (!r.ok()) return fail(r.error());
   if (Status st = checkWorldDef(d); !st) return fail("structure section: " + st.message());
-  l.config.kind = d.broadPhase;
+  l.config = worldBroadPhaseConfig(d);
   Result<BroadPhase> empty = BroadPhase::create(l.config);
   if (!empty) return fail("structure section: broad phase: " + empty.error().message);
   l.s = std::make_unique<WorldState>(d, std::move(empty).value(), worldId);

@@ -134,10 +134,23 @@ Status World::checkUsable(const char* function) const {
   return {};
 }
 
-Result<World> World::create(const WorldDef& def) {
-  if (Status s = detail::checkWorldDef(def); !s) return fail(s.message());
+BroadPhaseConfig detail::worldBroadPhaseConfig(const WorldDef& def) noexcept {
   BroadPhaseConfig config;
   config.kind = def.broadPhase;
+  // The world's fat boxes: 5 cm a side, not stretched along the motion (as Box2D v3's, whose
+  // margin is at most 5 cm). The broad phase's default (10 cm, stretched by a step's motion)
+  // made churning piles keep two to three times the contacts, each updated every step;
+  // re-inserting the proxies that leave the tighter boxes is cheap since many moves enlarge
+  // the tree in place (docs/world.md, "Fat boxes"). Never below the speculative distance,
+  // so every pair within it is found (the two boxes' margins add up to twice that).
+  constexpr float kWorldFatMargin = 0.05f;
+  config.margin = std::max(kWorldFatMargin, def.speculativeDistance);
+  return config;
+}
+
+Result<World> World::create(const WorldDef& def) {
+  if (Status s = detail::checkWorldDef(def); !s) return fail(s.message());
+  const BroadPhaseConfig config = detail::worldBroadPhaseConfig(def);
   Result<BroadPhase> bp = BroadPhase::create(config);
   if (!bp) return fail("broad phase: " + bp.error().message);
   return World(
@@ -645,7 +658,7 @@ Status World::setTransform(BodyId id, Vec2 position, float angle) {
   state().contacts.forgetPoses(state().store, id.index);
   state().islands.wake(state().store, id.index);
   // Every body near it wakes, touching or not yet: it may have been moved into them.
-  state().islands.wakeNear(state().store, state().contacts, id.index);
+  state().islands.wakeNear(state().store, state().broadPhase, state().contacts, id.index);
   return {};
 }
 
@@ -776,7 +789,7 @@ Status World::setBodyType(BodyId id, BodyType type) {
   // It and what it touches wake; it leaves its island and joins a new one under its new
   // type.
   state().islands.wake(store, id.index);
-  state().islands.wakeNear(store, state().contacts, id.index);
+  state().islands.wakeNear(store, state().broadPhase, state().contacts, id.index);
   // Contacts end now and are found again under the new rules; proxies are made again with
   // the new kind (a static proxy does not look for pairs with other static ones).
   for (std::uint32_t s : b.shapes) {

@@ -65,5 +65,7 @@ void destroyJointNow(WorldState& w, std::uint32_t joint);
 std::uint32_t nextWorldId();
 // The checks World::create makes of a WorldDef, each failing with a message naming the field.
 Status checkWorldDef(const WorldDef& def);
+// The broad phase a world with `def` runs on (World::create and snapshots both build it).
+BroadPhaseConfig worldBroadPhaseConfig(const WorldDef& def) noexcept;
 
 }  // namespace quack::detail

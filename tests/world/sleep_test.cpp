@@ -351,6 +351,23 @@ TEST(Sleep, BodiesCreatedAsleepSideBySideStayAsleepUntilHit) {
   EXPECT_GT(world.position(crates[1]).x, 0.5f);  // the far crate was pushed
 }
 
+// A teleport lands where the moved body has no contact yet: what its shapes now reach
+// wakes (the broad phase is asked, not only the contacts), and the next steps push apart.
+TEST(Sleep, BodyTeleportedIntoASleepingOneFarAwayWakesIt) {
+  World world = World::create().value();
+  addStaticBox(world, {0, -0.5f}, {40, 0.5f});
+  const BodyId box = addBox(world, {10, 0.5f}, {0.5f, 0.5f});
+  const BodyId other = addBox(world, {-10, 0.5f}, {0.5f, 0.5f});
+  ASSERT_GT(stepUntilAsleep(world, 600), 0);
+  ASSERT_FALSE(world.isAwake(box));
+  ASSERT_FALSE(world.isAwake(other));
+  ASSERT_TRUE(world.setTransform(other, {10.6f, 0.5f}, 0).ok());  // 0.4 m into the box
+  EXPECT_TRUE(world.isAwake(box));
+  for (int s = 0; s < 60; ++s)
+    ASSERT_TRUE(testing::stepAndValidate(world));
+  EXPECT_GT(world.position(other).x - world.position(box).x, 0.95f);  // pushed apart
+}
+
 TEST(Sleep, StaticGeometryMovedIntoASleepingBodyWakesIt) {
   World world = World::create().value();
   addStaticBox(world, {0, -0.5f}, {20, 0.5f});
