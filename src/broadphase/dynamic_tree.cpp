@@ -162,6 +162,17 @@ void DynamicTree::rebuildEnlarged() {
   link(kNullIndex, top.ref, top.box);
 }
 
+// The node made by a top-down build over its two built halves.
+DynamicTree::Built DynamicTree::join(std::uint32_t node, const Built& left, const Built& right) {
+  Node& n = nodes_[node];
+  n.child[0] = left.ref;
+  n.childBox[0] = left.box;
+  n.child[1] = right.ref;
+  n.childBox[1] = right.box;
+  n.height = static_cast<std::int16_t>(1 + std::max(left.height, right.height));
+  return {node, merge(left.box, right.box), n.height};
+}
+
 // Top-down build over items (leaves and kept subtrees) by the middle of the centres' range
 // along its wider axis: two passes over the items a level, against the binned SAH's
 // binning, a sweep over the bins and a partition. Where every centre falls on one side
@@ -199,13 +210,7 @@ DynamicTree::Built DynamicTree::buildMidpoint(BuildItem* items, std::size_t coun
   nodes_[node].parent = parentRef;
   const Built left = buildMidpoint(items, mid, node << 1, depth + 1);
   const Built right = buildMidpoint(items + mid, count - mid, (node << 1) | 1u, depth + 1);
-  Node& n = nodes_[node];
-  n.child[0] = left.ref;
-  n.childBox[0] = left.box;
-  n.child[1] = right.ref;
-  n.childBox[1] = right.box;
-  n.height = static_cast<std::int16_t>(1 + std::max(left.height, right.height));
-  return {node, merge(left.box, right.box), n.height};
+  return join(node, left, right);
 }
 
 void DynamicTree::insertLeaf(std::uint32_t proxy, Aabb b) {
@@ -412,13 +417,7 @@ DynamicTree::Built DynamicTree::build(BuildItem* items, std::size_t count, std::
   nodes_[node].parent = parentRef;
   const Built left = build(items, mid, node << 1, depth + 1);
   const Built right = build(items + mid, count - mid, (node << 1) | 1u, depth + 1);
-  Node& n = nodes_[node];
-  n.child[0] = left.ref;
-  n.childBox[0] = left.box;
-  n.child[1] = right.ref;
-  n.childBox[1] = right.box;
-  n.height = static_cast<std::int16_t>(1 + std::max(left.height, right.height));
-  return {node, merge(left.box, right.box), n.height};
+  return join(node, left, right);
 }
 
 int DynamicTree::height() const noexcept {

@@ -144,6 +144,7 @@ class DynamicTree {
   std::uint32_t balance(std::uint32_t node);
   Built build(BuildItem* items, std::size_t count, std::uint32_t parentRef, int depth);
   Built buildMidpoint(BuildItem* items, std::size_t count, std::uint32_t parentRef, int depth);
+  Built join(std::uint32_t node, const Built& left, const Built& right);
 
   std::vector<Node> nodes_;
   std::vector<std::uint32_t> leafParent_;  // per proxy: (node << 1) | slot, or kAbsent
