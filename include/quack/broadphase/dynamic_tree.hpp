@@ -53,8 +53,8 @@ class DynamicTree {
   /// Rebuilds the part of the hierarchy that `enlarge` marked: every enlarged node is
   /// dropped and the subtrees and leaves hanging from them are joined again top down, by
   /// splitting at the middle of their centres along the wider axis. Untouched subtrees are
-  /// kept whole. Does nothing when nothing was enlarged. `insert`, `remove`, `move` and
-  /// `rebuild` call it first.
+  /// kept whole. Does nothing when nothing was enlarged. `insert`, `remove` and `move` call
+  /// it first; `rebuild` builds everything anew.
   void rebuildEnlarged();
   /// True when `enlarge` has marked nodes that `rebuildEnlarged` has not rebuilt yet.
   bool hasEnlarged() const noexcept { return enlarged_; }
