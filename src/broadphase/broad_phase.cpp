@@ -115,8 +115,10 @@ void BroadPhase::buffer(std::uint32_t proxy) {
 }
 
 Result<ProxyId> BroadPhase::createProxy(Aabb box, std::uint64_t userData, Filter filter,
-                                        ProxyKind kind) {
+                                        ProxyKind kind, std::optional<float> margin) {
   if (Status s = checkBox(box, "createProxy", "box"); !s) return fail(s.message());
+  if (margin && (!isFinite(*margin) || *margin < 0.0f))
+    return fail("createProxy: margin must be finite and >= 0, got " + std::to_string(*margin));
   if (ids_.nextIndex() >= 0x7fffffffu) return fail("createProxy: too many proxies (2^31)");
   // Slots and generations come from the IdPool (core): a fresh slot has generation 1, so
   // the default (null) id never matches a live proxy.
@@ -125,6 +127,7 @@ Result<ProxyId> BroadPhase::createProxy(Aabb box, std::uint64_t userData, Filter
     records_.push_back({});
     fat_.push_back({});
     tight_.push_back({});
+    margins_.push_back(0.0f);
     flags_.push_back(0);
   }
   Record& r = records_[p];
@@ -132,7 +135,8 @@ Result<ProxyId> BroadPhase::createProxy(Aabb box, std::uint64_t userData, Filter
   r.userData = userData;
   flags_[p] = static_cast<std::uint8_t>(kind == ProxyKind::staticProxy ? kStatic : 0);
   tight_[p] = box;
-  fat_[p] = inflate(box, config_.margin);
+  margins_[p] = margin ? *margin : config_.margin;
+  fat_[p] = inflate(box, margins_[p]);
   std::visit([&](auto& index) { index.insert(p, fat_[p]); }, index_);
   buffer(p);
   return ProxyId{p, ids_.generation(p)};
@@ -329,6 +333,7 @@ BroadPhaseRecords BroadPhase::records() const {
   r.freeSlots = ids_.freeSlots();
   r.tight = tight_;
   r.fat = fat_;
+  r.margins = margins_;
   r.kinds.reserve(slots);
   r.buffered.reserve(slots);
   r.filters.reserve(slots);
@@ -350,8 +355,10 @@ Result<BroadPhase> BroadPhase::fromRecords(BroadPhaseConfig config, BroadPhaseRe
   const std::size_t slots = r.generations.size();
   if (slots >= 0x7fffffffu) return fail("BroadPhase::fromRecords: too many proxies (2^31)");
   if (r.tight.size() != slots || r.fat.size() != slots || r.kinds.size() != slots ||
-      r.buffered.size() != slots || r.filters.size() != slots || r.userData.size() != slots)
+      r.buffered.size() != slots || r.filters.size() != slots || r.userData.size() != slots ||
+      (!r.margins.empty() && r.margins.size() != slots))
     return fail("BroadPhase::fromRecords: the per-slot arrays differ in length");
+  if (r.margins.empty()) r.margins.assign(slots, config.margin);
   Result<IdPool> ids = IdPool::fromSlots(std::move(r.generations), std::move(r.freeSlots));
   if (!ids) return fail("BroadPhase::fromRecords: proxy slots: " + ids.error().message);
   BroadPhase& bp = made.value();
@@ -360,6 +367,7 @@ Result<BroadPhase> BroadPhase::fromRecords(BroadPhaseConfig config, BroadPhaseRe
   bp.flags_.assign(slots, 0);
   bp.fat_.assign(slots, Aabb{});
   bp.tight_.assign(slots, Aabb{});
+  bp.margins_.assign(slots, 0.0f);
   for (std::uint32_t p = 0; p < slots; ++p) {
     if (!bp.ids_.isAlive(p)) {
       if (r.buffered[p] != 0)
@@ -378,6 +386,9 @@ Result<BroadPhase> BroadPhase::fromRecords(BroadPhaseConfig config, BroadPhaseRe
       return fail("BroadPhase::fromRecords: " + name + " kind is not a ProxyKind");
     if (r.buffered[p] > 1)
       return fail("BroadPhase::fromRecords: " + name + " buffered flag is not 0 or 1");
+    if (!isFinite(r.margins[p]) || r.margins[p] < 0.0f)
+      return fail("BroadPhase::fromRecords: " + name + " margin must be finite and >= 0");
+    bp.margins_[p] = r.margins[p];
     bp.records_[p] = {r.filters[p], r.userData[p]};
     bp.tight_[p] = r.tight[p];
     bp.fat_[p] = r.fat[p];
@@ -413,7 +424,8 @@ BroadPhaseStats BroadPhase::stats() const {
   s.proxyCount = ids_.liveCount();
   s.structureBytes = std::visit([](const auto& index) { return index.bytesUsed(); }, index_);
   s.recordBytes = (fat_.capacity() + tight_.capacity()) * sizeof(Aabb) +
-                  flags_.capacity() * sizeof(std::uint8_t) + records_.capacity() * sizeof(Record) +
+                  margins_.capacity() * sizeof(float) + flags_.capacity() * sizeof(std::uint8_t) +
+                  records_.capacity() * sizeof(Record) +
                   moveBuffer_.capacity() * sizeof(std::uint32_t) + ids_.memoryBytes();
   if (const auto* t = std::get_if<DynamicTree>(&index_)) {
     s.height = t->height();

@@ -59,12 +59,27 @@ std::uint64_t buildFingerprint() {
   w.u32(static_cast<std::uint32_t>(kMaxManifoldPoints));
   w.u32(static_cast<std::uint32_t>(kMaxPolygonVertices));
   w.u32(static_cast<std::uint32_t>(kMaxToiEventsPerBody));
-  for (float f :
-       {kLinearSlop, kSpeculativeDistance, kContactRecycleDistance, kContactRecycleCosAngle,
-        kFlushEdgeTolerance, kGhostVertexRadius, kCcdFastFraction, kTimeToSleep, kMaxTimeStep,
-        kMaxGravity, kMaxGravityScale, kMaxLinearSpeed, kMaxAngularSpeed, kMaxBodyMass,
-        kMaxRestitution, kMaxCoordinate, worldBroadPhaseConfig(WorldDef{}).margin,
-        worldBroadPhaseConfig(WorldDef{}).displacementScale, BroadPhaseConfig{}.cellSize})
+  for (float f : {kLinearSlop,
+                  kSpeculativeDistance,
+                  kContactRecycleDistance,
+                  kContactRecycleCosAngle,
+                  kFlushEdgeTolerance,
+                  kGhostVertexRadius,
+                  kCcdFastFraction,
+                  kTimeToSleep,
+                  kMaxTimeStep,
+                  kMaxGravity,
+                  kMaxGravityScale,
+                  kMaxLinearSpeed,
+                  kMaxAngularSpeed,
+                  kMaxBodyMass,
+                  kMaxRestitution,
+                  kMaxCoordinate,
+                  worldBroadPhaseConfig(WorldDef{}).margin,
+                  worldBroadPhaseConfig(WorldDef{}).displacementScale,
+                  BroadPhaseConfig{}.cellSize,
+                  kWorldFatMargin,
+                  kWorldFatMarginFraction})
     w.f32(f);
   return fnv1a(w.bytes);
 }
@@ -611,6 +626,17 @@ Result<std::unique_ptr<WorldState>> SnapshotCodec::read(std::span<const std::uin
   SnapshotLoading l;
   if (Status st = readStructure(structure, worldId, l); !st) return fail(st.message());
   if (Status st = readMotion(motion, worldId, l); !st) return fail(st.message());
+  // Each proxy's margin is its shape's (shapeFatMargin): a function of what the snapshot
+  // holds, so it is not stored. A slot no live shape names keeps the config's margin.
+  const BodyStore& store = l.s->store;
+  l.bp.margins.assign(l.bp.generations.size(), l.config.margin);
+  for (std::uint32_t sh = 0; sh < store.shapes.size(); ++sh) {
+    if (!store.shapeAlive(sh)) continue;
+    const Shape& shape = store.shapes[sh];
+    if (shape.proxy.index < l.bp.margins.size())
+      l.bp.margins[shape.proxy.index] =
+          shapeFatMargin(*shape.geometry, store.bodies[shape.body].type, l.s->def);
+  }
   Result<BroadPhase> built = BroadPhase::fromRecords(l.config, std::move(l.bp));
   if (!built) return fail("motion section: " + built.error().message);
   l.s->broadPhase = std::move(built).value();

@@ -8,6 +8,7 @@
 #include <new>
 #include <string>
 
+#include "quack/collision/toi.hpp"
 #include "quack/geometry/bounds.hpp"
 #include "step_context.hpp"
 #include "world_state.hpp"
@@ -137,19 +138,29 @@ Status World::checkUsable(const char* function) const {
 BroadPhaseConfig detail::worldBroadPhaseConfig(const WorldDef& def) noexcept {
   BroadPhaseConfig config;
   config.kind = def.broadPhase;
-  // The world's fat boxes: the speculative distance plus 5 cm a side, not stretched along
-  // the motion (as Box2D v3's, whose shape box holds the speculative distance and whose fat
-  // box adds a margin of at most 5 cm). The broad phase's default (10 cm, stretched by a
-  // step's motion) made churning piles keep two to three times the contacts, each updated
-  // every step: a stretched box trails a fast body by its whole step; re-inserting the
-  // proxies that leave the tighter boxes is cheap since many moves enlarge the tree in place
-  // (docs/world.md, "Fat boxes"). With 5 cm alone, not stretched, the ragdoll of
-  // JointScenes.RagdollDroppedOnAPyramidNeverGainsEnergyAndRests came to rest with a joint
-  // 5.3 cm open (within the test's 3 cm with the speculative distance added).
-  constexpr float kWorldFatMargin = 0.05f;
+  // The world's fat boxes are Box2D v3's (shape.c at 617d32a, read for understanding): the
+  // speculative distance plus an eighth of the shape's extent, at most 5 cm, a side
+  // (shapeFatMargin, given to each proxy), not stretched along the motion. The broad
+  // phase's default (10 cm, stretched by a step's motion) made churning piles keep two to
+  // three times the contacts, each updated every step: a stretched box trails a fast body
+  // by its whole step, and a 10 cm margin around a 20 cm box reaches three rows of
+  // neighbours. Re-inserting the proxies that leave the tighter boxes is the price, and it
+  // is the smaller one since many moves enlarge the tree in place (docs/world.md, "Fat
+  // boxes"). This margin, the largest a shape gets, is only the default for proxies made
+  // without one.
   config.margin = kWorldFatMargin + def.speculativeDistance;
   config.displacementScale = 0.0f;
   return config;
+}
+
+float detail::shapeFatMargin(const ShapeGeometry& geometry, BodyType type,
+                             const WorldDef& def) noexcept {
+  // A static shape never moves: its margin only widens the pairs it finds, and pairs within
+  // the speculative distance are found through the other shape's margin alone.
+  if (type == BodyType::staticBody) return 2.0f * def.speculativeDistance;
+  const ShapeProxy proxy = makeProxy(geometry);
+  const float extent = computeMaxExtent(proxy, proxy.center());
+  return def.speculativeDistance + minf(kWorldFatMargin, kWorldFatMarginFraction * extent);
 }
 
 Result<World> World::create(const WorldDef& def) {
@@ -360,7 +371,8 @@ Result<ShapeId> World::createShape(BodyId bodyId, const ShapeDef& def,
   const std::uint32_t index = store.shapeIds.nextIndex();
   const ProxyKind kind =
       body.type == BodyType::staticBody ? ProxyKind::staticProxy : ProxyKind::dynamicProxy;
-  Result<ProxyId> proxy = state().broadPhase.createProxy(box, index, def.filter, kind);
+  Result<ProxyId> proxy = state().broadPhase.createProxy(
+      box, index, def.filter, kind, detail::shapeFatMargin(geometry, body.type, state().def));
   if (!proxy) return fail("createShape: " + proxy.error().message);
   const std::uint32_t created = store.createShape(bodyId.index, def, std::move(stored).value());
   QUACK_ASSERT(created == index);
@@ -815,8 +827,9 @@ Status World::setBodyType(BodyId id, BodyType type) {
     Status st = state().broadPhase.destroyProxy(shape.proxy);
     QUACK_ASSERT(st.ok());
     (void)st;
-    Result<ProxyId> proxy = state().broadPhase.createProxy(computeAabb(*shape.geometry, b.xf), s,
-                                                           shape.def.filter, kind);
+    Result<ProxyId> proxy =
+        state().broadPhase.createProxy(computeAabb(*shape.geometry, b.xf), s, shape.def.filter,
+                                       kind, detail::shapeFatMargin(*shape.geometry, type, def()));
     // The box was accepted a moment ago under the old kind.
     QUACK_ASSERT(proxy.ok());
     shape.proxy = proxy.valueOr(ProxyId{});

@@ -67,5 +67,11 @@ std::uint32_t nextWorldId();
 Status checkWorldDef(const WorldDef& def);
 // The broad phase a world with `def` runs on (World::create and snapshots both build it).
 BroadPhaseConfig worldBroadPhaseConfig(const WorldDef& def) noexcept;
+// The fat-box margin of a shape's proxy (world.cpp, worldBroadPhaseConfig): the speculative
+// distance plus an eighth of the shape's extent, at most kWorldFatMargin; twice the
+// speculative distance for a static body's shape.
+inline constexpr float kWorldFatMargin = 0.05f;
+inline constexpr float kWorldFatMarginFraction = 0.125f;
+float shapeFatMargin(const ShapeGeometry& geometry, BodyType type, const WorldDef& def) noexcept;
 
 }  // namespace quack::detail

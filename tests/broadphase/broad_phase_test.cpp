@@ -83,10 +83,16 @@ void runScenario(const Scenario& sc, int steps) {
       m.kind =
           sc.withFilters && unit(rng) < 0.3f ? ProxyKind::staticProxy : ProxyKind::dynamicProxy;
       m.user = rng();
-      Result<ProxyId> id = bp.createProxy(m.tight, m.user, m.filter, m.kind);
+      // Half the proxies have their own margin (as the world's shapes do), from none to
+      // three times the config's.
+      std::optional<float> margin;
+      if (unit(rng) < 0.5f) margin = 0.3f * unit(rng);
+      m.margin = margin ? *margin : config.margin;
+      Result<ProxyId> id = bp.createProxy(m.tight, m.user, m.filter, m.kind, margin);
       ASSERT_TRUE(id.ok()) << id.error().message;
       m.id = id.value();
       m.fat = bp.fatBox(m.id);
+      ASSERT_EQ(m.fat, inflate(m.tight, m.margin));
       ASSERT_FALSE(live.count(m.id.index));
       live[m.id.index] = m;
       markBuffered(m.id.index);
@@ -105,6 +111,10 @@ void runScenario(const Scenario& sc, int steps) {
       if (moved.value()) markBuffered(it->first);
       m.fat = bp.fatBox(m.id);
       ASSERT_TRUE(contains(m.fat, m.tight));
+      // Re-inserted with its own margin, stretched along the move.
+      if (moved.value()) {
+        ASSERT_EQ(m.fat, sweep(inflate(m.tight, m.margin), config.displacementScale * d));
+      }
     } else if (op < 0.90f) {
       auto it = pickLive();
       ModelProxy& m = it->second;
@@ -293,6 +303,18 @@ TEST(BroadPhaseInput, BadConfigIsRejectedNamingTheField) {
   r = BroadPhase::create(c);
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.error().message.find("cellSize"), std::string::npos);
+}
+
+TEST(BroadPhaseInput, BadProxyMarginIsRejectedNamingIt) {
+  BroadPhase bp = BroadPhase::create({}).value();
+  for (float bad :
+       {-0.1f, std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+    Result<ProxyId> r = bp.createProxy({{0, 0}, {1, 1}}, 0, {}, ProxyKind::dynamicProxy, bad);
+    ASSERT_FALSE(r.ok());
+    EXPECT_NE(r.error().message.find("margin"), std::string::npos) << r.error().message;
+  }
+  EXPECT_EQ(bp.proxyCount(), 0u);
+  EXPECT_TRUE(bp.validate().ok());
 }
 
 TEST(BroadPhaseInput, BadBoxesAndIdsAreRejectedAndChangeNothing) {

@@ -21,6 +21,7 @@ struct ModelProxy {
   Filter filter;
   ProxyKind kind = ProxyKind::dynamicProxy;
   std::uint64_t user = 0;
+  float margin = 0.0f;  // the proxy's fat-box margin (its own, or the config's)
 };
 
 // The filter rule written out independently of shouldCollide().

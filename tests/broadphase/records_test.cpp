@@ -125,6 +125,38 @@ TEST(BroadPhaseRecords, BadRecordsAreRefusedByName) {
   r = good;
   r.moveBuffer.push_back(99);
   refused(r, "move buffer entry 99 is beyond");
+  r = good;
+  r.margins.pop_back();
+  refused(r, "differ in length");
+  r = good;
+  r.margins[2] = std::numeric_limits<float>::quiet_NaN();
+  refused(r, "proxy 2 margin must be finite and >= 0");
+  r = good;
+  r.margins[1] = -0.01f;
+  refused(r, "proxy 1 margin must be finite and >= 0");
+}
+
+// A proxy's own margin outlives a round trip through the records: a move that leaves the
+// fat box re-inserts it with its margin, not the config's. Empty margins mean the config's.
+TEST(BroadPhaseRecords, ProxyMarginsSurviveTheRoundTrip) {
+  BroadPhaseConfig config;
+  config.margin = 0.1f;
+  config.displacementScale = 0.0f;
+  BroadPhase bp = BroadPhase::create(config).value();
+  const ProxyId own =
+      bp.createProxy(boxAt(0, 0, 0.5f), 0, {}, ProxyKind::dynamicProxy, 0.01f).value();
+  const ProxyId plain = bp.createProxy(boxAt(5, 0, 0.5f)).value();
+  EXPECT_EQ(bp.records().margins, (std::vector<float>{0.01f, 0.1f}));
+  BroadPhase rebuilt = BroadPhase::fromRecords(config, bp.records()).value();
+  ASSERT_TRUE(rebuilt.moveProxy(own, boxAt(1, 0, 0.5f), {}).value());
+  ASSERT_TRUE(rebuilt.moveProxy(plain, boxAt(6, 0, 0.5f), {}).value());
+  EXPECT_EQ(rebuilt.fatBox(own), inflate(boxAt(1, 0, 0.5f), 0.01f));
+  EXPECT_EQ(rebuilt.fatBox(plain), inflate(boxAt(6, 0, 0.5f), 0.1f));
+  BroadPhaseRecords r = bp.records();
+  r.margins.clear();
+  BroadPhase defaulted = BroadPhase::fromRecords(config, std::move(r)).value();
+  ASSERT_TRUE(defaulted.moveProxy(own, boxAt(1, 0, 0.5f), {}).value());
+  EXPECT_EQ(defaulted.fatBox(own), inflate(boxAt(1, 0, 0.5f), 0.1f));
 }
 
 }  // namespace

@@ -28,6 +28,36 @@ World makeWorld(WorldDef def = {}) {
   return World::create(def).value();
 }
 
+// The world's fat boxes (docs/world.md, "Fat boxes"), worked by hand: a dynamic shape's
+// margin is the speculative distance (2 cm) plus an eighth of its extent, at most 5 cm; a
+// static shape's is twice the speculative distance. Two shapes have a contact (touching or
+// not) once their fat boxes overlap, so at a gap below the sum of their margins.
+TEST(World, FatBoxMarginsFollowEachShapesSize) {
+  auto contactsAtGap = [](float halfA, float halfB, bool staticB, float gap) {
+    World world = makeWorld({.gravity = {0.0f, 0.0f}});
+    const BodyId a = world.createBody({.position = {0.0f, 0.0f}}).value();
+    (void)world.createShape(a, {}, makeBox(halfA, halfA).value());
+    const BodyId b =
+        world
+            .createBody({.type = staticB ? BodyType::staticBody : BodyType::dynamicBody,
+                         .position = {halfA + gap + halfB, 0.0f}})
+            .value();
+    (void)world.createShape(b, {}, makeBox(halfB, halfB).value());
+    EXPECT_TRUE(world.step(1.0f / 60.0f, 4).ok());
+    return world.contactCount();
+  };
+  // Boxes of 0.1 m half-size: extent 0.1 sqrt 2 = 0.1414 m, margin 0.02 + 0.0177 m; a pair
+  // within 0.0754 m.
+  EXPECT_EQ(contactsAtGap(0.1f, 0.1f, false, 0.070f), 1u);
+  EXPECT_EQ(contactsAtGap(0.1f, 0.1f, false, 0.080f), 0u);
+  // Boxes of 0.5 m: an eighth of 0.707 m is past the 5 cm cap, margin 0.07 m; within 0.14 m.
+  EXPECT_EQ(contactsAtGap(0.5f, 0.5f, false, 0.135f), 1u);
+  EXPECT_EQ(contactsAtGap(0.5f, 0.5f, false, 0.145f), 0u);
+  // A 0.1 m box beside a static one (margin 0.04 m): within 0.0777 m.
+  EXPECT_EQ(contactsAtGap(0.1f, 0.5f, true, 0.074f), 1u);
+  EXPECT_EQ(contactsAtGap(0.1f, 0.5f, true, 0.082f), 0u);
+}
+
 // Documented in docs/world.md: after 10 s no box of a 20-row pyramid has moved more than
 // this from where it was placed (a tenth of a box's half-size).
 constexpr float kPyramidDrift = 0.05f;

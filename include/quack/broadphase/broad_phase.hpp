@@ -11,8 +11,9 @@
 /// bp.updatePairs(pairs);  // candidate pairs of this step
 /// ```
 ///
-/// Enlarged ("fat") boxes: a proxy's structure box is its tight box grown by `margin` on
-/// every side and stretched by `displacementScale` times its last displacement. `moveProxy`
+/// Enlarged ("fat") boxes: a proxy's structure box is its tight box grown by its margin on
+/// every side (`BroadPhaseConfig::margin`, or the proxy's own, given to `createProxy`) and
+/// stretched by `displacementScale` times its last displacement. `moveProxy`
 /// re-inserts the proxy only when the tight box leaves the fat box (or the fat box has grown
 /// much larger than needed), so slowly moving proxies cost one containment test a step.
 ///
@@ -136,11 +137,14 @@ struct BroadPhaseRecords {
   std::vector<std::uint32_t> generations;  ///< per slot, never 0
   std::vector<std::uint32_t> freeSlots;    ///< in release order (IdPool::freeSlots)
   std::vector<Aabb> tight, fat;            ///< per slot, world frame
-  std::vector<ProxyKind> kinds;            ///< per slot
-  std::vector<std::uint8_t> buffered;      ///< per slot: 1 while in the move buffer
-  std::vector<Filter> filters;             ///< per slot
-  std::vector<std::uint64_t> userData;     ///< per slot
-  std::vector<std::uint32_t> moveBuffer;   ///< slots, in order (may hold stale entries)
+  /// Per slot, metres (finite, >= 0): each proxy's margin. Empty in `fromRecords` means
+  /// the config's margin for every proxy.
+  std::vector<float> margins;
+  std::vector<ProxyKind> kinds;           ///< per slot
+  std::vector<std::uint8_t> buffered;     ///< per slot: 1 while in the move buffer
+  std::vector<Filter> filters;            ///< per slot
+  std::vector<std::uint64_t> userData;    ///< per slot
+  std::vector<std::uint32_t> moveBuffer;  ///< slots, in order (may hold stale entries)
 };
 
 class BroadPhase {
@@ -153,10 +157,12 @@ class BroadPhase {
   const BroadPhaseConfig& config() const noexcept { return config_; }
 
   /// Adds a proxy for the tight box `box` (world frame). `userData` is returned with pairs and
-  /// hits. The new proxy is in the move buffer: its pairs come out of the next
-  /// `updatePairs`. Fails on an invalid or out-of-range box.
+  /// hits. `margin` (metres, finite and >= 0) replaces the config's margin for this proxy,
+  /// for the life of the proxy. The new proxy is in the move buffer: its pairs come out of
+  /// the next `updatePairs`. Fails on an invalid or out-of-range box or a bad margin.
   Result<ProxyId> createProxy(Aabb box, std::uint64_t userData = 0, Filter filter = {},
-                              ProxyKind kind = ProxyKind::dynamicProxy);
+                              ProxyKind kind = ProxyKind::dynamicProxy,
+                              std::optional<float> margin = std::nullopt);
   /// Removes a proxy. Fails on a null, unknown or stale id.
   Status destroyProxy(ProxyId id);
   /// Gives a proxy its new tight box (world frame) and the displacement since the last
@@ -169,7 +175,7 @@ class BroadPhase {
     const std::uint32_t p = id.index;
     tight_[p] = box;
     if (staysInPlace(p, box, displacement)) return false;
-    reinsert(p, wantedBox(box, displacement));
+    reinsert(p, wantedBox(p, box, displacement));
     return true;
   }
   /// moveProxy's common case, for many proxies moved from several threads at once (each
@@ -303,14 +309,14 @@ class BroadPhase {
   explicit BroadPhase(BroadPhaseConfig config);
   Error rejectMove(ProxyId id, Aabb box, Vec2 displacement) const;
   void reinsert(std::uint32_t proxy, Aabb wanted);
-  Aabb wantedBox(Aabb box, Vec2 displacement) const noexcept {
-    return sweep(inflate(box, config_.margin), config_.displacementScale * displacement);
+  Aabb wantedBox(std::uint32_t p, Aabb box, Vec2 displacement) const noexcept {
+    return sweep(inflate(box, margins_[p]), config_.displacementScale * displacement);
   }
   // The fat box still holds the tight box and is not much larger than needed.
   bool staysInPlace(std::uint32_t p, Aabb box, Vec2 displacement) const noexcept {
     const Aabb fat = fat_[p];
     return contains(fat, box) &&
-           contains(inflate(wantedBox(box, displacement), kShrinkMargins * config_.margin), fat);
+           contains(inflate(wantedBox(p, box, displacement), kShrinkMargins * margins_[p]), fat);
   }
   Status checkId(ProxyId id, const char* function) const;
   void buffer(std::uint32_t proxy);
@@ -331,6 +337,7 @@ class BroadPhase {
   Index index_;
   std::vector<Aabb> fat_;
   std::vector<Aabb> tight_;
+  std::vector<float> margins_;  // per slot: the proxy's margin
   std::vector<std::uint8_t> flags_;
   std::vector<Record> records_;
   IdPool ids_;  // slots, generations and the free list of proxies
