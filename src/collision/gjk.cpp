@@ -81,14 +81,17 @@ Vec2 normalizeWithLength(Vec2 v, float len) noexcept {
 // with transformPoint's arithmetic (two points per register: c (x, y) + (-s, s) (y, x) + p,
 // the same products and sums), so that GJK's support point is a load rather than a
 // transform on the chain search -> support -> solve -> direction, which sets the query's
-// time. Larger proxies are transformed point by point when asked.
+// time. The searches run over the placed points too, along a direction in A's frame: the
+// direction need not be turned into B's frame first (a rotation on that chain), and the
+// products are those of the points as GJK uses them. Larger proxies are transformed point
+// by point when asked, and searched in their own frame.
 class PlacedPoints {
  public:
   static constexpr int kPlacedMax = 8;
 
   PlacedPoints(Transform xf, const Vec2* points, int count) noexcept
-      : xf_(xf), points_(points), placed_(count <= kPlacedMax) {
-    if (!placed_) return;
+      : xf_(xf), points_(points), isPlaced_(count <= kPlacedMax) {
+    if (!isPlaced_) return;
     int i = 0;
 #if defined(__SSE2__)
     const __m128 c = _mm_set1_ps(xf.q.c);
@@ -97,27 +100,32 @@ class PlacedPoints {
     for (; i + 2 <= count; i += 2) {
       const __m128 v = _mm_loadu_ps(&points[i].x);
       const __m128 swapped = _mm_shuffle_ps(v, v, _MM_SHUFFLE(2, 3, 0, 1));
-      _mm_store_ps(&placed_xy_[2 * i],
+      _mm_store_ps(&placed_[i].x,
                    _mm_add_ps(_mm_add_ps(_mm_mul_ps(c, v), _mm_mul_ps(s, swapped)), t));
     }
 #endif
-    for (; i < count; ++i) {
-      const Vec2 q = transformPoint(xf, points[i]);
-      placed_xy_[2 * i] = q.x;
-      placed_xy_[2 * i + 1] = q.y;
-    }
+    for (; i < count; ++i)
+      placed_[i] = transformPoint(xf, points[i]);
   }
 
   Vec2 at(int i) const noexcept {
-    if (placed_) return {placed_xy_[2 * i], placed_xy_[2 * i + 1]};
+    if (isPlaced_) return placed_[i];
     return transformPoint(xf_, points_[i]);
+  }
+  // The points to search: the placed ones (A's frame) or, past kPlacedMax, B's own.
+  const Vec2* searchPoints() const noexcept {
+    return isPlaced_ ? placed_ : points_;
+  }
+  // A direction in A's frame as the search over searchPoints() wants it.
+  Vec2 searchDirection(Vec2 directionInA) const noexcept {
+    return isPlaced_ ? directionInA : invRotate(xf_.q, directionInA);
   }
 
  private:
   Transform xf_;
   const Vec2* points_;
-  bool placed_;
-  alignas(16) float placed_xy_[2 * kPlacedMax];  // not zero-filled: written before read
+  bool isPlaced_;
+  alignas(16) Vec2 placed_[kPlacedMax];  // not zero-filled: written before read
 };
 
 }  // namespace
@@ -170,14 +178,15 @@ template <class Observer, bool earlyOut>
   const int countB = b.count();
   const Transform xf = aFromB;
   const PointSearch searchA(pointsA, countA);
-  const PointSearch searchB(pointsB, countB);
   const PlacedPoints placedB(xf, pointsB, countB);
+  const PointSearch searchB(placedB.searchPoints(), countB);
   const bool edgeColumns = searchA.hasColumns() && searchB.hasColumns();
-  // Always inlined: left to itself the compiler calls it for the first search and saves and
-  // restores a dozen registers around the call.
+  // The support point of B - A along -direction (any length): A searched along direction,
+  // B along -direction. Always inlined: left to itself the compiler calls it for the first
+  // search and saves and restores a dozen registers around the call.
   auto support = [&](Vec2 direction) __attribute__((always_inline)) {
     const int indexA = searchA.findFirstMaxDot(-direction);
-    const int indexB = searchB.findFirstMaxDot(invRotate(xf.q, direction));
+    const int indexB = searchB.findFirstMaxDot(placedB.searchDirection(direction));
     GjkVertex s;
     s.w = placedB.at(indexB) - pointsA[indexA];
     s.key = packGjkIndices(indexA, indexB);
@@ -211,14 +220,21 @@ template <class Observer, bool earlyOut>
     // the solve's edge and squared length.
     Vec2 point;
     Vec2 normal;
+    Vec2 perp;  // leftPerp of the kept edge: the normal's direction, exact and not unit
+    // The kept edge's first vertex, for the side test below. When the edge is kept (count
+    // 2) it is v[0] after keepEdge, but read before: keepEdge's choice waits on the solve's
+    // division, and the side test, on the chain to the next search, need not.
+    Vec2 edgeStart;
     if (count == 1) {
       v[0].weight = 1.0f;
       point = v[0].w;
     } else if (count == 2) {
+      edgeStart = v[0].w;
       const SegmentSolve r = solveSegment(v[0].w, v[1].w);
       count = keepEdge(v, 0, 1, r);
       point = r.closest;
       normal = edgeNormal(r);
+      perp = leftPerp(r.edge);
     } else {
       const TriangleAreas t = triangleAreas(v[0].w, v[1].w, v[2].w);
       if (!(t.faces[0] | t.faces[1] | t.faces[2])) {
@@ -250,6 +266,7 @@ template <class Observer, bool earlyOut>
       // divisions overlap the solves' instead of waiting for the comparison.
       const Vec2 normals[2] = {edgeNormal(r0), edgeNormal(r1)};
       normal = normals[static_cast<int>(take1)];
+      perp = leftPerp(take1 ? r1.edge : r0.edge);
       SegmentSolve r2;
       if (t.faces[2]) {
         r2 = solveSegment(v[0].w, v[1].w);
@@ -258,6 +275,7 @@ template <class Observer, bool earlyOut>
           i = 0;
           j = 1;
           normal = edgeNormal(r2);
+          perp = leftPerp(r2.edge);
         }
       }
       if (chosen == nullptr) {
@@ -266,6 +284,7 @@ template <class Observer, bool earlyOut>
         v[0].weight = 1.0f;
         point = v[0].w;
       } else {
+        edgeStart = v[i].w;
         count = keepEdge(v, i, j, *chosen);
         point = chosen->closest;
       }
@@ -329,13 +348,19 @@ template <class Observer, bool earlyOut>
     // Search along the exact edge normal rather than -v (see closestDirection): with a
     // thin B - A and the origin near it, -v can be off by 1e-3 rad and find the wrong
     // support point, stopping GJK on a diagonal instead of an edge.
+    // The searches run along the exact, unnormalised perpendicular of the edge (or along
+    // v itself off an edge): the same direction as the unit one, so the same support
+    // points but for rounding in near-ties, and the searches need not wait for the square
+    // root and the division that make the unit vector. That was about a quarter of each
+    // pass's time on the chain search -> support -> solve -> direction. The unit direction
+    // is still formed, beside the search, for the stopping test and the answer.
     const float vLength = std::sqrt(vv);
     bool onEdge = false;
     bool flipped = false;
     Vec2 dir;
     if (count == 2) {
       const Vec2 n = normal;
-      const float side = dot(n, v[0].w);
+      const float side = dot(perp, edgeStart);
       onEdge = (side < 0.0f) | (side > 0.0f);
       flipped = side < 0.0f;
       // -n when side < 0 (exactly: a product with -1), by a table, not a branch.
@@ -349,20 +374,23 @@ template <class Observer, bool earlyOut>
     run.hasDirection = true;
     GjkVertex w;
     if (onEdge & edgeColumns) {
-      // dir is n or -n, and every product along -n is the one along n negated (exactly),
-      // so both searches run along n and take the first largest or least product once the
-      // side is known: the searches need not wait for the side test and the sign. A is
-      // searched along dir, B along -dir.
+      // dir is along perp or -perp, and every product along -perp is the one along perp
+      // negated (exactly), so both searches run along perp and take the first largest or
+      // least product once the side is known: the searches need not wait for the side test
+      // and the sign. A is searched along dir, B along -dir.
       int mostA = 0, leastA = 0, mostB = 0, leastB = 0;
-      searchA.findFirstMaxAndMinDot(normal, mostA, leastA);
-      searchB.findFirstMaxAndMinDot(invRotate(xf.q, normal), mostB, leastB);
-      const int mask = -static_cast<int>(flipped);  // all ones when dir = -n
+      searchA.findFirstMaxAndMinDot(perp, mostA, leastA);
+      searchB.findFirstMaxAndMinDot(placedB.searchDirection(perp), mostB, leastB);
+      const int mask = -static_cast<int>(flipped);  // all ones when dir = -perp
       const int indexA = mostA ^ ((mostA ^ leastA) & mask);
       const int indexB = leastB ^ ((leastB ^ mostB) & mask);
       w.w = placedB.at(indexB) - pointsA[indexA];
       w.key = packGjkIndices(indexA, indexB);
+    } else if (onEdge) {
+      const Vec2 along = flipped ? -perp : perp;
+      w = support(-along);
     } else {
-      w = support(-dir);
+      w = support(-vPoint);
     }
     ++run.iterations;
     // Seen before the stopping tests: whichever ends the loop, this pass's answer is the
