@@ -351,6 +351,11 @@ bool ContinuousPhase::findImpactWith(SearchScratch& scratch, const BodyStore& st
     }
     for (std::uint32_t p : near_) {
       const FastBody& g = fast_[p];
+      // In the first searches every participant searches, and the tests of a pair are the
+      // same from either side: the participant with the lower index tests it. An impact
+      // it does not queue (it has an earlier one) is found again when that earlier one is
+      // handled, since its body then searches again and every sweep it meets is re-checked.
+      if (!continuation && p < fast) continue;
       if (anchored && !store.bodies[g.body].bullet) continue;
       if (!overlaps(g.box, f.box)) continue;
       // Both sweeps over the same part of the step: from the later of their starts.
