@@ -345,15 +345,14 @@ template <class Observer, bool earlyOut>
     previousClosest = vPoint;
     previousVV = vv;
 
-    // Search along the exact edge normal rather than -v (see closestDirection): with a
-    // thin B - A and the origin near it, -v can be off by 1e-3 rad and find the wrong
-    // support point, stopping GJK on a diagonal instead of an edge.
-    // The searches run along the exact, unnormalised perpendicular of the edge (or along
-    // v itself off an edge): the same direction as the unit one, so the same support
-    // points but for rounding in near-ties, and the searches need not wait for the square
-    // root and the division that make the unit vector. That was about a quarter of each
-    // pass's time on the chain search -> support -> solve -> direction. The unit direction
-    // is still formed, beside the search, for the stopping test and the answer.
+    // On an edge, search along the edge's normal rather than -v (see closestDirection):
+    // with a thin B - A and the origin near it, -v can be off by 1e-3 rad and find the
+    // wrong support point, stopping GJK on a diagonal instead of an edge. The search runs
+    // along the exact, unnormalised perpendicular (off an edge, along v itself): the unit
+    // vector's direction, so the same support points but for rounding in near-ties, without
+    // waiting for the square root and division that make it (about a quarter of each pass's
+    // time on the chain search -> support -> solve -> direction). The unit direction is
+    // still formed, beside the search, for the stopping test and the answer.
     const float vLength = std::sqrt(vv);
     bool onEdge = false;
     bool flipped = false;

@@ -143,11 +143,10 @@ BroadPhaseConfig detail::worldBroadPhaseConfig(const WorldDef& def) noexcept {
   // (shapeFatMargin, given to each proxy), not stretched along the motion. The broad
   // phase's default (10 cm, stretched by a step's motion) made churning piles keep two to
   // three times the contacts, each updated every step: a stretched box trails a fast body
-  // by its whole step, and a 10 cm margin around a 20 cm box reaches three rows of
-  // neighbours. Re-inserting the proxies that leave the tighter boxes is the price, and it
-  // is the smaller one since many moves enlarge the tree in place (docs/world.md, "Fat
-  // boxes"). This margin, the largest a shape gets, is only the default for proxies made
-  // without one.
+  // by its whole step. Re-inserting the proxies that leave the tighter boxes is the price,
+  // and it is the smaller one since many moves enlarge the tree in place (docs/world.md,
+  // "Fat boxes"). This margin, the largest a shape gets, is only the default for proxies
+  // made without one.
   config.margin = kWorldFatMargin + def.speculativeDistance;
   config.displacementScale = 0.0f;
   return config;
