@@ -386,6 +386,9 @@ function installKeys() {
         else return;
     }
     e.preventDefault();
+    // Draw now rather than at the next frame, so that the panel shows the step as soon as
+    // the key is handled (as the 2D page does); a reader of #stepping never sees the old one.
+    render();
   });
 }
 
