@@ -18,16 +18,28 @@ using Poses = py::array_t<double, py::array::c_style | py::array::forcecast>;
 struct ShapeSide {
   std::vector<py::object> keep;
   std::vector<Pieces> pieces;
+  // Each row's proxy, formed once before the loop, when every row is one convex piece
+  // (`convex`): the pair query then runs on the proxies, the work the piece functions
+  // would do for a single piece but for forming the two proxies again for every pair.
+  std::vector<ShapeProxy> proxies;
+  bool convex = true;
   bool single = true;
   std::size_t rows() const { return pieces.size(); }
   Pieces at(std::size_t i) const { return single ? pieces[0] : pieces[i]; }
+  const ShapeProxy& proxyAt(std::size_t i) const { return single ? proxies[0] : proxies[i]; }
+
+  void add(py::handle item, Pieces p) {
+    keep.push_back(py::reinterpret_borrow<py::object>(item));
+    pieces.push_back(p);
+    convex = convex && p.size() == 1;
+    if (convex) proxies.push_back(makeProxy(p[0]));
+  }
 };
 
 ShapeSide toShapeSide(py::handle value, const std::string& name) {
   ShapeSide side;
   if (py::isinstance<PyShape>(value)) {
-    side.keep.push_back(py::reinterpret_borrow<py::object>(value));
-    side.pieces.push_back(value.cast<const PyShape&>().pieces);
+    side.add(value, value.cast<const PyShape&>().pieces);
     return side;
   }
   if (py::isinstance<py::str>(value) || !py::isinstance<py::sequence>(value)) {
@@ -37,9 +49,7 @@ ShapeSide toShapeSide(py::handle value, const std::string& name) {
   side.single = false;
   std::size_t i = 0;
   for (py::handle item : value) {
-    const PyShape& s = toShape(item, name + "[" + std::to_string(i) + "]");
-    side.keep.push_back(py::reinterpret_borrow<py::object>(item));
-    side.pieces.push_back(s.pieces);
+    side.add(item, toShape(item, name + "[" + std::to_string(i) + "]").pieces);
     ++i;
   }
   if (i == 0) raiseValue(name + ": the list of shapes is empty");
@@ -158,6 +168,7 @@ struct PairInputs {
   ShapeSide a, b;
   Rows pa, pb;
   std::size_t n = 0;
+  bool convex() const { return a.convex && b.convex; }
 };
 
 PairInputs toPairInputs(py::handle shapesA, py::handle posesA, py::handle shapesB,
@@ -211,8 +222,13 @@ class BatchResult:
         bool* o = overlap.mutable_data();
         {
           py::gil_scoped_release release;
-          for (std::size_t i = 0; i < in.n; ++i) {
-            o[i] = overlapPieces(in.a.at(i), poseAt(in.pa, i), in.b.at(i), poseAt(in.pb, i));
+          if (in.convex()) {
+            for (std::size_t i = 0; i < in.n; ++i)
+              o[i] =
+                  testOverlap(in.a.proxyAt(i), poseAt(in.pa, i), in.b.proxyAt(i), poseAt(in.pb, i));
+          } else {
+            for (std::size_t i = 0; i < in.n; ++i)
+              o[i] = overlapPieces(in.a.at(i), poseAt(in.pa, i), in.b.at(i), poseAt(in.pb, i));
           }
         }
         return makeResult(m, "overlap", py::dict(py::arg("overlap") = overlap));
@@ -239,7 +255,10 @@ class BatchResult:
           py::gil_scoped_release release;
           for (std::size_t i = 0; i < in.n; ++i) {
             const DistanceOutput d =
-                distancePieces(in.a.at(i), poseAt(in.pa, i), in.b.at(i), poseAt(in.pb, i));
+                in.convex()
+                    ? computeDistance(in.a.proxyAt(i), poseAt(in.pa, i), in.b.proxyAt(i),
+                                      poseAt(in.pb, i))
+                    : distancePieces(in.a.at(i), poseAt(in.pa, i), in.b.at(i), poseAt(in.pb, i));
             dist[i] = static_cast<double>(d.distance);
             put(pa, i, d.pointA);
             put(pb, i, d.pointB);
@@ -279,7 +298,10 @@ class BatchResult:
           py::gil_scoped_release release;
           for (std::size_t i = 0; i < in.n; ++i) {
             const PenetrationOutput p =
-                penetrationPieces(in.a.at(i), poseAt(in.pa, i), in.b.at(i), poseAt(in.pb, i));
+                in.convex()
+                    ? computePenetration(in.a.proxyAt(i), poseAt(in.pa, i), in.b.proxyAt(i),
+                                         poseAt(in.pb, i))
+                    : penetrationPieces(in.a.at(i), poseAt(in.pa, i), in.b.at(i), poseAt(in.pb, i));
             ov[i] = p.overlap;
             dp[i] = static_cast<double>(p.depth);
             put(nrm, i, p.normal);

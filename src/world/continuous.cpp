@@ -35,6 +35,17 @@ bool earlier(const Candidate& x, const Candidate& y) {
   return x.shapeB < y.shapeB;
 }
 
+// Bounding circles: two bodies, each within `reach`'s share (its maxExtent) of its centre
+// of mass, whose centres start `offset` apart (the other's minus this one's) and move
+// apart by `rate` over the sweep, linearly as a sweep moves them. False when the centres
+// never come within `reach`: then no pair of their shapes comes within the target
+// separation, and a time-of-impact search could only answer "separated".
+bool circlesMayMeet(Vec2 offset, Vec2 rate, float reach) {
+  const float rr = lengthSquared(rate);
+  const float u = rr > 0.0f ? clampf(-dot(offset, rate) / rr, 0.0f, 1.0f) : 0.0f;
+  return lengthSquared(offset + u * rate) <= reach * reach;
+}
+
 }  // namespace
 
 Aabb ContinuousPhase::sweptBox(const BodyStore& store, const FastBody& f) const {
@@ -236,10 +247,13 @@ bool ContinuousPhase::findImpactWith(SearchScratch& scratch, const BodyStore& st
     if (store.bodies[other.body].type != BodyType::dynamicBody &&
         joints_->blocksCollision(f.body, other.body))
       return;
-    if (anchored) {
-      const Body& ob = store.bodies[other.body];
-      if (ob.type == BodyType::dynamicBody && !ob.bullet) return;
-    }
+    const Body& ob = store.bodies[other.body];
+    if (anchored && ob.type == BodyType::dynamicBody && !ob.bullet) return;
+    // The other body stands at its end pose (see the tests below). A crowd falling on a
+    // pile meets most of the pile's bodies in its swept boxes and few within reach.
+    if (!circlesMayMeet(ob.center - f.sweep.c1, f.sweep.c1 - f.sweep.c2,
+                        body.maxExtent + ob.maxExtent + kToiTargetSeparation + kToiTolerance))
+      return;
     candidates_.push_back(s);
   };
   if (onlyBody != 0xffffffffu) {
@@ -378,13 +392,10 @@ bool ContinuousPhase::findImpactWith(SearchScratch& scratch, const BodyStore& st
       // Bounding circles (each body within its maxExtent of its centre of mass): when the
       // centres, moving linearly, never come within the sum (plus the target and band), no
       // shape pair can meet. Most neighbours of a crowd end here without a search.
-      const Vec2 offset = theirs.c1 - mine.c1;
-      const Vec2 rate = (theirs.c2 - theirs.c1) - (mine.c2 - mine.c1);
-      const float rr = lengthSquared(rate);
-      const float u = rr > 0.0f ? clampf(-dot(offset, rate) / rr, 0.0f, 1.0f) : 0.0f;
-      const float reach =
-          body.maxExtent + otherBody.maxExtent + kToiTargetSeparation + kToiTolerance;
-      if (lengthSquared(offset + u * rate) > reach * reach) continue;
+      if (!circlesMayMeet(
+              theirs.c1 - mine.c1, (theirs.c2 - theirs.c1) - (mine.c2 - mine.c1),
+              body.maxExtent + otherBody.maxExtent + kToiTargetSeparation + kToiTolerance))
+        continue;
       for (std::uint32_t s : store.bodies[g.body].shapes)
         test(own, proxy, mine, from, s, theirs, p, g.stamp);
     }
