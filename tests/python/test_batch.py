@@ -64,6 +64,28 @@ def test_penetration_many_equals_penetration():
                   ["overlap", "depth", "normal", "pointA", "pointB", "iterations", "status"])
 
 
+def test_batches_of_convex_shapes_equal_the_single_queries():
+    # Every shape one convex piece on both sides: the batch forms each row's proxy once and
+    # queries the proxies (the lists above hold concave shapes, which take the pieces path).
+    a, pa, b, pb = _inputs(5, kinds=("circle", "capsule", "segment", "box", "polygon"))
+    distance = quack.distance_many(a, pa, b, pb)
+    _check_fields(distance, [quack.distance(a[i], tuple(pa[i]), b[i], tuple(pb[i]))
+                             for i in range(N)],
+                  ["distance", "pointA", "pointB", "normal", "iterations", "status"])
+    overlap = quack.overlap_many(a, pa, b, pb)
+    _check_fields(overlap, [quack.overlap(a[i], tuple(pa[i]), b[i], tuple(pb[i]))
+                            for i in range(N)], ["overlap"])
+    assert overlap.overlap.any() and not overlap.overlap.all()
+    penetration = quack.penetration_many(a, pa, b, pb)
+    _check_fields(penetration, [quack.penetration(a[i], tuple(pa[i]), b[i], tuple(pb[i]))
+                                for i in range(N)],
+                  ["overlap", "depth", "normal", "pointA", "pointB", "iterations", "status"])
+    # One convex shape against a list, both ways round.
+    one = quack.distance_many(a[0], pa, b, pb)
+    singles = [quack.distance(a[0], tuple(pa[i]), b[i], tuple(pb[i])) for i in range(N)]
+    _check_fields(one, singles, ["distance", "pointA", "pointB", "normal"])
+
+
 def test_raycast_many_equals_raycast():
     rng = random.Random(4)
     shapes = [quack.shape(random_shape_dict(rng)) for _ in range(N)]
