@@ -738,15 +738,10 @@ std::span<const std::uint32_t> ContinuousPhase::run(StepContext& step,
       }
       waitHead_[body] = kNoParticipant;
     }
-    // Whether each changed body searched along its new sweep: that search tested it against
-    // every followed body its swept box meets (as a re-check below would, from the other
-    // side), and queued the earliest impact it has.
-    bool searched[2] = {false, false};
-    for (std::size_t k = 0; k < changed.size(); ++k) {
-      const std::uint32_t index = changed[k];
-      searched[k] = fast_[index].searching;
+    for (std::uint32_t index : changed) {
       ToiCandidate next;
-      if (searched[k] && findImpact(store, broadPhase, edges, index, true, next)) push(next);
+      if (fast_[index].searching && findImpact(store, broadPhase, edges, index, true, next))
+        push(next);
     }
     for (std::uint32_t index : changed) {
       queryParticipants(fast_[index].box, [&](std::uint32_t g) { recheck_.push_back(g); });
@@ -759,8 +754,7 @@ std::span<const std::uint32_t> ContinuousPhase::run(StepContext& step,
       // Only re-parameterised (same path, and its swept box still holds it): its queued
       // impact stays valid.
       moveTo(p, e.time);
-      for (std::size_t k = 0; k < changed.size(); ++k) {
-        const std::uint32_t index = changed[k];
+      for (std::uint32_t index : changed) {
         const std::uint32_t moved = fast_[index].body;
         ToiCandidate next;
         if (p.bestBody == moved) {
@@ -768,14 +762,9 @@ std::span<const std::uint32_t> ContinuousPhase::run(StepContext& step,
           p.bestTime = 2.0f;
           p.bestBody = 0xffffffffu;
           if (findImpact(store, broadPhase, edges, g, true, next)) push(next);
-        } else if (!searched[k] && overlaps(p.box, fast_[index].box) &&
+        } else if (overlaps(p.box, fast_[index].box) &&
                    findImpact(store, broadPhase, edges, g, true, next, moved) &&
                    next.time < p.bestTime) {
-          // Checked from this side only when the changed body did not search: when it did,
-          // the pair was tested there, and an impact of the two is the changed body's to
-          // queue (its earliest, or later than one it meets first, after which it searches
-          // again). Testing it from both sides was two fifths of the phase's searches in a
-          // falling crowd (world_suite's compounds), as the first searches' pair rule says.
           push(next);
         }
       }
