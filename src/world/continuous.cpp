@@ -249,8 +249,9 @@ bool ContinuousPhase::findImpactWith(SearchScratch& scratch, const BodyStore& st
       return;
     const Body& ob = store.bodies[other.body];
     if (anchored && ob.type == BodyType::dynamicBody && !ob.bullet) return;
-    // The other body stands at its end pose (see the tests below). A crowd falling on a
-    // pile meets most of the pile's bodies in its swept boxes and few within reach.
+    // Bounding circles, as for followed bodies below, with the other body standing at its
+    // end pose (as the tests below place it): a shape too far for any search to hit is
+    // skipped before one runs (and before the contact lookup of heldBySolver).
     if (!circlesMayMeet(ob.center - f.sweep.c1, f.sweep.c1 - f.sweep.c2,
                         body.maxExtent + ob.maxExtent + kToiTargetSeparation + kToiTolerance))
       return;

@@ -84,6 +84,9 @@ def test_batches_of_convex_shapes_equal_the_single_queries():
     one = quack.distance_many(a[0], pa, b, pb)
     singles = [quack.distance(a[0], tuple(pa[i]), b[i], tuple(pb[i])) for i in range(N)]
     _check_fields(one, singles, ["distance", "pointA", "pointB", "normal"])
+    one = quack.distance_many(a, pa, b[0], pb)
+    singles = [quack.distance(a[i], tuple(pa[i]), b[0], tuple(pb[i])) for i in range(N)]
+    _check_fields(one, singles, ["distance", "pointA", "pointB", "normal"])
 
 
 def test_raycast_many_equals_raycast():
