@@ -35,17 +35,6 @@ bool earlier(const Candidate& x, const Candidate& y) {
   return x.shapeB < y.shapeB;
 }
 
-// Bounding circles: two bodies, each within `reach`'s share (its maxExtent) of its centre
-// of mass, whose centres start `offset` apart (the other's minus this one's) and move
-// apart by `rate` over the sweep, linearly as a sweep moves them. False when the centres
-// never come within `reach`: then no pair of their shapes comes within the target
-// separation, and a time-of-impact search could only answer "separated".
-bool circlesMayMeet(Vec2 offset, Vec2 rate, float reach) {
-  const float rr = lengthSquared(rate);
-  const float u = rr > 0.0f ? clampf(-dot(offset, rate) / rr, 0.0f, 1.0f) : 0.0f;
-  return lengthSquared(offset + u * rate) <= reach * reach;
-}
-
 }  // namespace
 
 Aabb ContinuousPhase::sweptBox(const BodyStore& store, const FastBody& f) const {
@@ -247,14 +236,10 @@ bool ContinuousPhase::findImpactWith(SearchScratch& scratch, const BodyStore& st
     if (store.bodies[other.body].type != BodyType::dynamicBody &&
         joints_->blocksCollision(f.body, other.body))
       return;
-    const Body& ob = store.bodies[other.body];
-    if (anchored && ob.type == BodyType::dynamicBody && !ob.bullet) return;
-    // Bounding circles, as for followed bodies below, with the other body standing at its
-    // end pose (as the tests below place it): a shape too far for any search to hit is
-    // skipped before one runs (and before the contact lookup of heldBySolver).
-    if (!circlesMayMeet(ob.center - f.sweep.c1, f.sweep.c1 - f.sweep.c2,
-                        body.maxExtent + ob.maxExtent + kToiTargetSeparation + kToiTolerance))
-      return;
+    if (anchored) {
+      const Body& ob = store.bodies[other.body];
+      if (ob.type == BodyType::dynamicBody && !ob.bullet) return;
+    }
     candidates_.push_back(s);
   };
   if (onlyBody != 0xffffffffu) {
@@ -393,10 +378,13 @@ bool ContinuousPhase::findImpactWith(SearchScratch& scratch, const BodyStore& st
       // Bounding circles (each body within its maxExtent of its centre of mass): when the
       // centres, moving linearly, never come within the sum (plus the target and band), no
       // shape pair can meet. Most neighbours of a crowd end here without a search.
-      if (!circlesMayMeet(
-              theirs.c1 - mine.c1, (theirs.c2 - theirs.c1) - (mine.c2 - mine.c1),
-              body.maxExtent + otherBody.maxExtent + kToiTargetSeparation + kToiTolerance))
-        continue;
+      const Vec2 offset = theirs.c1 - mine.c1;
+      const Vec2 rate = (theirs.c2 - theirs.c1) - (mine.c2 - mine.c1);
+      const float rr = lengthSquared(rate);
+      const float u = rr > 0.0f ? clampf(-dot(offset, rate) / rr, 0.0f, 1.0f) : 0.0f;
+      const float reach =
+          body.maxExtent + otherBody.maxExtent + kToiTargetSeparation + kToiTolerance;
+      if (lengthSquared(offset + u * rate) > reach * reach) continue;
       for (std::uint32_t s : store.bodies[g.body].shapes)
         test(own, proxy, mine, from, s, theirs, p, g.stamp);
     }
