@@ -325,11 +325,11 @@ TEST(CcdDynamic, SameBitsWhateverTheBroadPhase) {
   }
 }
 
-// A search takes the shapes outside the fast bodies from a list when there are at most 64
-// of them (continuous.hpp, kMaxListedShapes) and from a broad-phase query when there are
-// more: the same impacts and the same bits either way. Here 150 fast bodies and 4 walls
-// (listed) against the same with 100 static boxes far outside the walls, which nothing
-// meets (queried).
+// A search takes the shapes outside the fast bodies from a list when there are at most 16
+// of them (continuous.hpp, kMaxListedShapes) and from a grid of them (or a broad-phase
+// query) when there are more: the same impacts and the same bits either way. Here 150 fast
+// bodies and 4 walls (listed) against the same with 100 static boxes far outside the walls,
+// which nothing meets (gridded).
 TEST(CcdDynamic, ListedAndQueriedStillShapesGiveTheSameBits) {
   const BoxRun listed = runClosedBox(150, 60, BroadPhaseKind::tree, 19);
   const BoxRun queried = runClosedBox(150, 60, BroadPhaseKind::tree, 19, 100);
