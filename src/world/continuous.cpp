@@ -82,15 +82,20 @@ std::uint32_t ContinuousPhase::addParticipant(BodyStore& store, std::uint32_t bo
   const auto index = static_cast<std::uint32_t>(fast_.size());
   fast_.push_back(f);
   participantOf_[body] = index;
-  inMoved_.push_back(0);
+  movedSlot_.push_back(0);
   if (indexBuilt_) markMoved(index);  // joined after the index was built
   return index;
 }
 
 void ContinuousPhase::markMoved(std::uint32_t index) {
-  if (inMoved_[index]) return;
-  inMoved_[index] = 1;
-  moved_.push_back(index);
+  // The box is copied beside the id, so that queries scan a compact array rather than the
+  // participants' records; a second change updates the copy in place.
+  if (movedSlot_[index] != 0) {
+    moved_[movedSlot_[index] - 1].box = fast_[index].box;
+    return;
+  }
+  moved_.push_back({fast_[index].box, index});
+  movedSlot_[index] = static_cast<std::uint32_t>(moved_.size());
 }
 
 void BoxGrid::build(std::span<const Item> items) {
@@ -181,8 +186,8 @@ void ContinuousPhase::buildIndex() {
   for (std::uint32_t p = 0; p < fast_.size(); ++p)
     gridItems_.push_back({fast_[p].box, p});
   grid_.build(gridItems_);
-  for (std::uint32_t p : moved_)
-    inMoved_[p] = 0;
+  for (const BoxGrid::Item& m : moved_)
+    movedSlot_[m.id] = 0;
   moved_.clear();
   indexed_ = static_cast<std::uint32_t>(fast_.size());
   indexBuilt_ = true;
@@ -192,10 +197,10 @@ template <class Visit>
 void ContinuousPhase::queryParticipants(Aabb box, Visit&& visit) const {
   // A participant not in moved_ still has the box it was indexed with.
   grid_.query(box, [&](std::uint32_t p) {
-    if (!inMoved_[p]) visit(p);
+    if (movedSlot_[p] == 0) visit(p);
   });
-  for (std::uint32_t p : moved_)
-    if (overlaps(fast_[p].box, box)) visit(p);
+  for (const BoxGrid::Item& m : moved_)
+    if (overlaps(m.box, box)) visit(m.id);
 }
 
 bool ContinuousPhase::anchoredByJoint(const BodyStore& store, std::uint32_t body) const {
@@ -450,7 +455,7 @@ std::span<const std::uint32_t> ContinuousPhase::run(StepContext& step,
   indexed_ = 0;
   waitNodes_.clear();
   moved_.clear();
-  inMoved_.clear();
+  movedSlot_.clear();
   // Entries are reset after each run (only the participants'), so that a step with a few
   // fast bodies among many asleep costs nothing per body.
   if (participantOf_.size() < store.bodies.size()) {

@@ -96,10 +96,11 @@ class BoxGrid {
         const std::uint32_t b = bucketOf(x, y);
         for (std::uint32_t k = bucketStart_[b]; k < bucketStart_[b + 1]; ++k) {
           const Entry& e = entries_[k];
-          if (e.x != x || e.y != y || !overlaps(e.box, box)) continue;
-          // Each item once: from the first cell that both its box and the query cover.
+          if (e.x != x || e.y != y) continue;  // another cell in the same bucket
+          // Each item once: from the first cell that both its box and the query cover (the
+          // integer test before the boxes': most repeats of a box end here).
           if (((e.first & 1u) == 0 && x != x0) || ((e.first & 2u) == 0 && y != y0)) continue;
-          visit(e.id);
+          if (overlaps(e.box, box)) visit(e.id);
         }
       }
     }
@@ -221,8 +222,8 @@ class ContinuousPhase {
   std::vector<BoxGrid::Item> gridItems_;
   std::uint32_t indexed_ = 0;
   bool indexBuilt_ = false;
-  std::vector<std::uint32_t> moved_;
-  std::vector<std::uint8_t> inMoved_;
+  std::vector<BoxGrid::Item> moved_;      // changed since the build: their boxes now
+  std::vector<std::uint32_t> movedSlot_;  // per participant: 1 + its place in moved_, or 0
   std::vector<ToiCandidate> queue_;        // a binary heap, earliest on top
   std::vector<SearchScratch> scratch_{1};  // per worker
   std::vector<ToiCandidate> first_;        // the first searches' results, per participant
