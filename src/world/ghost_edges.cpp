@@ -69,8 +69,12 @@ using Cell = std::pair<long long, long long>;
 // A cell index along one axis, clamped so that a body parked at 1e30 m cannot overflow the
 // integer (the world keeps shapes within kMaxCoordinate, so this is belt and braces).
 long long cellIndexOf(float x, float size) {
-  double c = std::floor(static_cast<double>(x) / static_cast<double>(size));
-  return static_cast<long long>(std::clamp(c, -1e15, 1e15));
+  // floor(x / size) clamped to +-1e15: clamped first (the bounds are integers and floor is
+  // monotonic, so the same integer), then floored by truncation and one correction, which is
+  // exact below 2^53 and a fraction of std::floor's instructions without SSE4.1.
+  const double c = std::clamp(static_cast<double>(x) / static_cast<double>(size), -1e15, 1e15);
+  const auto t = static_cast<long long>(c);
+  return t - static_cast<long long>(c < static_cast<double>(t));
 }
 
 Cell cellOf(Vec2 p) {
@@ -100,7 +104,7 @@ class CellRuns {
     while (size < 2 * entries.size())
       size *= 2;
     slots_.assign(size, Slot{});
-    std::vector<std::size_t> slotOfEntry(entries.size());
+    std::vector<std::uint32_t> slotOfEntry(entries.size());
     for (std::size_t k = 0; k < entries.size(); ++k) {
       std::size_t i = find(entries[k].x, entries[k].y);
       Slot& slot = slots_[i];
@@ -109,19 +113,19 @@ class CellRuns {
         slot.y = entries[k].y;
       }
       ++slot.count;
-      slotOfEntry[k] = i;
+      slotOfEntry[k] = static_cast<std::uint32_t>(i);
     }
-    std::size_t at = 0;
+    std::uint32_t at = 0;
     for (Slot& slot : slots_) {
       slot.begin = at;
       at += slot.count;
     }
+    // Each slot's begin serves as its filling cursor, and is moved back after.
     edges_.resize(entries.size());
-    std::vector<std::size_t> next(slots_.size());
-    for (std::size_t i = 0; i < slots_.size(); ++i)
-      next[i] = slots_[i].begin;
     for (std::size_t k = 0; k < entries.size(); ++k)
-      edges_[next[slotOfEntry[k]]++] = entries[k].edge;
+      edges_[slots_[slotOfEntry[k]].begin++] = static_cast<std::uint32_t>(entries[k].edge);
+    for (Slot& slot : slots_)
+      slot.begin -= slot.count;
   }
   // f(edge) for the edges entered in cell (x, y), in the order they were added.
   template <class F>
@@ -134,7 +138,7 @@ class CellRuns {
  private:
   struct Slot {
     long long x = 0, y = 0;
-    std::size_t begin = 0, count = 0;  // count 0: an empty slot
+    std::uint32_t begin = 0, count = 0;  // count 0: an empty slot
   };
   // The slot of cell (x, y), or the empty slot where it would go.
   std::size_t find(long long x, long long y) const noexcept {
@@ -147,7 +151,7 @@ class CellRuns {
     return i;
   }
   std::vector<Slot> slots_;
-  std::vector<std::size_t> edges_;
+  std::vector<std::uint32_t> edges_;
 };
 
 bool near(Vec2 a, Vec2 b) {
@@ -238,24 +242,43 @@ void GhostEdges::update(BodyStore& store, bool removeGhostCollisions) {
   }
   std::vector<CellEntry> gridScratch;
   sortCellEntries(grid, gridScratch);
+  // Each edge's covered intervals as a list in one pool (first added first), not a vector
+  // per edge: most edges have none or one, and ten thousand small vectors were a third of
+  // the update's instructions in allocation.
   struct Interval {
-    float t0, t1;  // metres along the edge from its start
+    float t0, t1;        // metres along the edge from its start
+    std::uint32_t next;  // the edge's next interval in `pool`, or kNone
   };
-  std::vector<std::vector<Interval>> covered(edges.size());
+  constexpr std::uint32_t kNone = 0xffffffffu;
+  std::vector<Interval> pool;
+  std::vector<std::uint32_t> firstCover(edges.size(), kNone), lastCover(edges.size(), kNone);
+  auto forCovers = [&](std::size_t k, auto&& f) {
+    for (std::uint32_t i = firstCover[k]; i != kNone; i = pool[i].next)
+      if (f(pool[i])) return true;
+    return false;
+  };
   auto addCover = [&](std::size_t k, float t0, float t1) {
     const float len = edges[k].len;
     t0 = maxf(t0, 0.0f);
     t1 = minf(t1, len);
     if (t1 - t0 <= kFlushEdgeTolerance) return;
-    std::vector<Interval>& list = covered[k];
-    for (Interval& i : list) {
+    const bool merged = forCovers(k, [&](Interval& i) {
       if (t0 <= i.t1 + kFlushEdgeTolerance && i.t0 <= t1 + kFlushEdgeTolerance) {
         i.t0 = minf(i.t0, t0);
         i.t1 = maxf(i.t1, t1);
-        return;
+        return true;
       }
+      return false;
+    });
+    if (merged) return;
+    const auto at = static_cast<std::uint32_t>(pool.size());
+    pool.push_back({t0, t1, kNone});
+    if (firstCover[k] == kNone) {
+      firstCover[k] = at;
+    } else {
+      pool[lastCover[k]].next = at;
     }
-    list.push_back({t0, t1});
+    lastCover[k] = at;
   };
   auto lineDistance = [&](std::size_t k, Vec2 p) {
     return absf(cross(edges[k].d, p - edges[k].a));
@@ -283,9 +306,9 @@ void GhostEdges::update(BodyStore& store, bool removeGhostCollisions) {
     }
   }
   auto coveredAt = [&](std::size_t k, float t) {
-    for (const Interval& i : covered[k])
-      if (t >= i.t0 - kFlushEdgeTolerance && t <= i.t1 + kFlushEdgeTolerance) return true;
-    return false;
+    return forCovers(k, [&](const Interval& i) {
+      return t >= i.t0 - kFlushEdgeTolerance && t <= i.t1 + kFlushEdgeTolerance;
+    });
   };
 
   std::vector<CellEntry> startList, endList;
@@ -313,7 +336,7 @@ void GhostEdges::update(BodyStore& store, bool removeGhostCollisions) {
   // Shapes with covered edges get the covered intervals (shape frame: the same lengths) and,
   // at each vertex an edge is covered up to, the faces of the union that meet there.
   for (std::size_t k = 0; k < edges.size(); ++k) {
-    if (covered[k].empty()) continue;
+    if (firstCover[k] == kNone) continue;
     Shape& shape = store.shapes[edges[k].shape];
     StaticEdges& e = shape.edges;
     const Polygon& p = std::get<Polygon>(*shape.geometry);
@@ -322,8 +345,10 @@ void GhostEdges::update(BodyStore& store, bool removeGhostCollisions) {
       e.cones.assign(static_cast<std::size_t>(p.count), EdgeCone{});
       ++activeShapes_;
     }
-    for (const Interval& i : covered[k])
+    forCovers(k, [&](const Interval& i) {
       e.covered.push_back({edges[k].edge, i.t0, i.t1});
+      return false;
+    });
     const Rot q = store.bodies[shape.body].xf.q;
     const float len = edges[k].len;
     // Edge i joins vertices i and i + 1.
