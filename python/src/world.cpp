@@ -911,20 +911,24 @@ del _t, _collections
                       "Rigid bodies carrying shapes, stepped by Quack's solver (docs/world.md). "
                       "World frame, SI units.")
       .def(py::init([](py::handle gravity, py::handle dt, py::handle substeps,
-                       const std::string& broadphase, bool continuous) {
+                       const std::string& broadphase, bool continuous, bool dynamicPairs) {
              WorldDef def;
              def.gravity = toVector(gravity, "gravity", "m/s^2");
              def.timeStep = static_cast<float>(toDouble(dt, "dt"));
              def.substeps = static_cast<int>(toInteger(substeps, "substeps", 1, 64));
              def.broadPhase = toBroadPhase(broadphase);
              def.enableContinuous = continuous;
+             def.sweepDynamicPairs = dynamicPairs;
              World w = valueOrRaise(World::create(def));
              return std::make_unique<PyWorld>(SceneWorld{std::move(w), {}, {}});
            }),
            py::arg("gravity") = py::make_tuple(0.0, -10.0), py::arg("dt") = 1.0 / 60.0,
            py::arg("substeps") = 4, py::arg("broadphase") = "tree", py::arg("continuous") = true,
+           py::arg("dynamic_pairs") = true,
            "A world: gravity (m/s^2), dt (seconds per step()), substeps (1..64), broadphase "
-           "(tree, quadtree, sap, hash, brute), continuous collision on or off.")
+           "(tree, quadtree, sap, hash, brute), continuous collision on or off, and whether "
+           "it sweeps fast dynamic bodies against each other (dynamic_pairs; off: against "
+           "static and kinematic shapes only, as Box2D v3).")
       .def(
           "create_body",
           [](py::object self, const std::string& type, py::handle pos, py::handle angle,

@@ -255,6 +255,9 @@ bool ContinuousPhase::findImpactWith(SearchScratch& scratch, const BodyStore& st
   // heldBySolver): the rest are skipped here, before any search (a 40 m paddle's sweep
   // covers thousands of bodies).
   const bool anchored = !body.bullet && f.anchored;
+  // Without WorldDef::sweepDynamicPairs a body that is not a bullet meets static and
+  // kinematic shapes only (a bullet's own search finds it).
+  const bool staticOnly = !sweepDynamicPairs_ && !body.bullet;
   auto consider = [&](std::uint32_t s) {
     const Shape& other = store.shapes[s];
     if (other.body == f.body || other.def.sensor) return;
@@ -267,9 +270,9 @@ bool ContinuousPhase::findImpactWith(SearchScratch& scratch, const BodyStore& st
     if (store.bodies[other.body].type != BodyType::dynamicBody &&
         joints_->blocksCollision(f.body, other.body))
       return;
-    if (anchored) {
+    if (anchored || staticOnly) {
       const Body& ob = store.bodies[other.body];
-      if (ob.type == BodyType::dynamicBody && !ob.bullet) return;
+      if (ob.type == BodyType::dynamicBody && (staticOnly || !ob.bullet)) return;
     }
     candidates_.push_back(s);
   };
@@ -293,9 +296,11 @@ bool ContinuousPhase::findImpactWith(SearchScratch& scratch, const BodyStore& st
         return true;
       });
     }
-    queryParticipants(f.box, [&](std::uint32_t p) {
-      if (p != fast) near_.push_back(p);
-    });
+    if (!staticOnly) {
+      queryParticipants(f.box, [&](std::uint32_t p) {
+        if (p != fast) near_.push_back(p);
+      });
+    }
   }
   // Not sorted: `best` is the earliest by (time, shapeA, shapeB), a total order over the
   // pairs tested (each at most once), so the order they are tested in cannot change it.
@@ -381,7 +386,7 @@ bool ContinuousPhase::findImpactWith(SearchScratch& scratch, const BodyStore& st
     // it does not queue (it has an earlier one) is found again when that earlier one is
     // handled, since its body then searches again and every sweep it meets is re-checked.
     if (!continuation && p < fast) continue;
-    if (anchored && !store.bodies[g.body].bullet) continue;
+    if ((anchored && !store.bodies[g.body].bullet) || staticOnly) continue;
     if (!overlaps(g.box, f.box)) continue;
     // Both sweeps over the same part of the step: from the later of their starts.
     const float from = maxf(f.t0, g.t0);
@@ -444,6 +449,7 @@ std::span<const std::uint32_t> ContinuousPhase::run(StepContext& step,
   const float dt = step.dt;
   contacts_ = &contacts;
   joints_ = &step.joints;
+  sweepDynamicPairs_ = def.sweepDynamicPairs;
   pushed_.clear();
   stats_ = {};
   for (SearchScratch& scratch : scratch_)

@@ -207,6 +207,7 @@ class ContinuousPhase {
   bool anchoredByJoint(const BodyStore& store, std::uint32_t body) const;
   const ContactSet* contacts_ = nullptr;  // during run
   const JointSet* joints_ = nullptr;      // during run
+  bool sweepDynamicPairs_ = true;         // WorldDef::sweepDynamicPairs, during run
   std::vector<FastBody> fast_;
   std::vector<std::uint32_t> participantOf_;  // per body index: its FastBody, or kNoParticipant
   // The participants' swept boxes, indexed for overlap queries: a BoxGrid built at the
@@ -222,8 +223,8 @@ class ContinuousPhase {
   std::vector<BoxGrid::Item> gridItems_;
   std::uint32_t indexed_ = 0;
   bool indexBuilt_ = false;
-  std::vector<BoxGrid::Item> moved_;      // changed since the build: their boxes now
-  std::vector<std::uint32_t> movedSlot_;  // per participant: 1 + its place in moved_, or 0
+  std::vector<BoxGrid::Item> moved_;       // changed since the build: their boxes now
+  std::vector<std::uint32_t> movedSlot_;   // per participant: 1 + its place in moved_, or 0
   std::vector<ToiCandidate> queue_;        // a binary heap, earliest on top
   std::vector<SearchScratch> scratch_{1};  // per worker
   std::vector<ToiCandidate> first_;        // the first searches' results, per participant

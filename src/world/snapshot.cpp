@@ -380,7 +380,8 @@ void SnapshotCodec::writeStructure(Writer& w, const WorldState& s) {
         d.contactRecycleDistance, d.jointHertz, d.jointDampingRatio})
     w.f32(f);
   w.u8(static_cast<std::uint8_t>((d.enableContinuous ? 1 : 0) | (d.removeGhostCollisions ? 2 : 0) |
-                                 (d.scalarSolver ? 4 : 0) | (d.enableSleep ? 8 : 0)));
+                                 (d.scalarSolver ? 4 : 0) | (d.enableSleep ? 8 : 0) |
+                                 (d.sweepDynamicPairs ? 0 : 16)));
 
   const BodyStore& store = s.store;
   writePool(w, store.bodyIds);
@@ -660,11 +661,13 @@ Status SnapshotCodec::readStructure(std::span<const std::uint8_t> structure, std
         &d.contactRecycleDistance, &d.jointHertz, &d.jointDampingRatio})
     *f = r.f32("WorldDef setting");
   const std::uint8_t defFlags = r.u8("WorldDef flags");
-  if (defFlags > 15) r.fail("WorldDef flags has unknown bits");
+  if (defFlags > 31) r.fail("WorldDef flags has unknown bits");
   d.enableContinuous = (defFlags & 1) != 0;
   d.removeGhostCollisions = (defFlags & 2) != 0;
   d.scalarSolver = (defFlags & 4) != 0;
   d.enableSleep = (defFlags & 8) != 0;
+  // Set when the pairs are not swept, so that snapshots from before the setting read as on.
+  d.sweepDynamicPairs = (defFlags & 16) == 0;
   if (!r.ok()) return fail(r.error());
   if (Status st = checkWorldDef(d); !st) return fail("structure section: " + st.message());
   l.config = worldBroadPhaseConfig(d);

@@ -195,6 +195,26 @@ def test_impacts_between_bullets_come_as_events_and_callbacks():
     assert a.velocity[0] < 0 < b.velocity[0]
 
 
+def test_dynamic_pairs_off_sweeps_fast_bodies_against_static_shapes_only():
+    """dynamic_pairs=False is Box2D v3's rule (the C++ test
+    CcdDynamic.WithoutDynamicPairsOnlyStaticShapesAndBulletsAreSwept has the rest): a disc at
+    600 m/s passes a thin plank at rest untouched, which the default world stops it at."""
+    ends = {}
+    for pairs in (True, False):
+        w = quack.World(gravity=(0, 0), dynamic_pairs=pairs)
+        plank = w.create_body(pos=(5, 0))
+        w.create_shape(plank, quack.box(half=(0.01, 1.0)))
+        disc = w.create_body(pos=(-2.95, 0), vel=(600, 0))
+        w.create_shape(disc, quack.circle(radius=0.05), friction=0.0)
+        tois = []
+        for _ in range(3):
+            w.step()
+            tois.extend(w.events().toi)
+        ends[pairs] = (len(tois), disc.position[0] - plank.position[0], disc.velocity[0])
+    assert ends[True][0] >= 1 and ends[True][1] < 0.0  # still behind the plank it met
+    assert ends[False][0] == 0 and ends[False][1] > 15.0 and ends[False][2] == 600.0
+
+
 class Boom(Exception):
     pass
 

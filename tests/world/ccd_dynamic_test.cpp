@@ -341,6 +341,55 @@ TEST(CcdDynamic, ListedAndQueriedStillShapesGiveTheSameBits) {
   EXPECT_NE(listed.hash, queried.hash);  // the far boxes are in the world's hash
 }
 
+// WorldDef::sweepDynamicPairs off is Box2D v3's rule: a fast body that is not a bullet is
+// swept against static and kinematic shapes only. A disc at 600 m/s (10 m a step, 200 times
+// its radius) aimed at a thin plank at rest passes it untouched, while with the default the
+// phase meets the plank; a second disc still stops at a thin static wall; a bullet still
+// meets the plank; and the setting survives a snapshot.
+TEST(CcdDynamic, WithoutDynamicPairsOnlyStaticShapesAndBulletsAreSwept) {
+  for (bool pairs : {true, false}) {
+    SCOPED_TRACE(pairs ? "dynamic pairs swept" : "static only");
+    WorldDef def{.gravity = {0, 0}};
+    def.sweepDynamicPairs = pairs;
+    World world = World::create(def).value();
+    BodyId wall = world.createBody({.type = BodyType::staticBody, .position = {12, 10}}).value();
+    (void)world.createShape(wall, {}, makeBox(0.01f, 1.0f).value()).value();
+    BodyId plank = world.createBody({.position = {5, 0}}).value();
+    (void)world.createShape(plank, {}, makeBox(0.01f, 1.0f).value()).value();
+    BodyId plank2 = world.createBody({.position = {5, -20}}).value();
+    (void)world.createShape(plank2, {}, makeBox(0.01f, 1.0f).value()).value();
+    const ShapeDef disc{.friction = 0.0f, .restitution = 0.0f};
+    BodyId toPlank = addDisc(world, {-2.95f, 0}, {600, 0}, 0.05f, disc, false);
+    BodyId toWall = addDisc(world, {-2.95f, 10}, {600, 0}, 0.05f, disc, false);
+    BodyId bullet = addDisc(world, {-2.95f, -20}, {600, 0}, 0.05f, disc, true);
+    int plankImpacts = 0, wallImpacts = 0, bulletImpacts = 0;
+    for (int step = 0; step < 3; ++step) {
+      ASSERT_TRUE(testing::stepAndValidate(world));
+      for (const ToiEvent& ev : world.events().toi) {
+        const BodyId a = world.body(ev.shapeA), b = world.body(ev.shapeB);
+        plankImpacts += (a == toPlank && b == plank) || (a == plank && b == toPlank) ? 1 : 0;
+        wallImpacts += a == toWall && b == wall ? 1 : 0;
+        bulletImpacts += (a == bullet && b == plank2) || (a == plank2 && b == bullet) ? 1 : 0;
+      }
+    }
+    EXPECT_GE(wallImpacts, 1);
+    EXPECT_LT(world.position(toWall).x, 12.0f);
+    EXPECT_GE(bulletImpacts, 1);
+    EXPECT_LT(world.position(bullet).x, world.position(plank2).x);
+    if (pairs) {
+      EXPECT_GE(plankImpacts, 1);
+      EXPECT_LT(world.position(toPlank).x, world.position(plank).x);
+    } else {
+      // Through the plank untouched: three steps of 10 m at 600 m/s.
+      EXPECT_EQ(plankImpacts, 0);
+      EXPECT_FLOAT_EQ(world.linearVelocity(toPlank).x, 600.0f);
+      EXPECT_GT(world.position(toPlank).x, 20.0f);
+    }
+    const std::vector<std::uint8_t> bytes = world.snapshot().value();
+    EXPECT_EQ(World::fromSnapshot(bytes).value().def().sweepDynamicPairs, pairs);
+  }
+}
+
 // Impact callbacks select by category, both ways round, like contact callbacks.
 TEST(CcdDynamic, ImpactCallbacksSelectByCategory) {
   World world = World::create({.gravity = {0, 0}}).value();

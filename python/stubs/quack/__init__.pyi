@@ -325,7 +325,8 @@ _ContactCallback = Callable[[ShapeHandle, ShapeHandle], object]
 class World:
     """Rigid bodies carrying shapes, stepped by Quack's solver."""
     def __init__(self, gravity: _Vec = (0.0, -10.0), dt: _Number = 1.0 / 60.0, substeps: int = 4,
-                 broadphase: str = "tree", continuous: bool = True) -> None: ...
+                 broadphase: str = "tree", continuous: bool = True,
+                 dynamic_pairs: bool = True) -> None: ...
     def create_body(self, type: str = "dynamic", pos: _Vec = (0.0, 0.0), angle: _Number = 0.0,
                     vel: _Vec = (0.0, 0.0), angvel: _Number = 0.0,
                     linear_damping: _Number = 0.0, angular_damping: _Number = 0.0,
