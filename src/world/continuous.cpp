@@ -36,6 +36,41 @@ bool earlier(const Candidate& x, const Candidate& y) {
   return x.shapeB < y.shapeB;
 }
 
+// merge(computeAabb(g, {p1, q}), computeAabb(g, {p2, q})) with the shape's points rotated
+// once: computeAabb takes the least and most of rotate(q, v) + p, and as rounding is
+// monotonic that is the least and most of rotate(q, v), plus p (the same numbers; a zero
+// bound may differ in sign, which no comparison sees). Then the radius, as computeAabb.
+Aabb boxAtBothEnds(const ShapeGeometry& geometry, Rot q, Vec2 p1, Vec2 p2) {
+  Vec2 lo, hi;
+  float radius = 0.0f;
+  auto extents = [&](const Vec2* points, int count) {
+    lo = hi = rotate(q, points[0]);
+    for (int i = 1; i < count; ++i) {
+      const Vec2 v = rotate(q, points[i]);
+      lo = minv(lo, v);
+      hi = maxv(hi, v);
+    }
+  };
+  if (const Polygon* polygon = std::get_if<Polygon>(&geometry)) {
+    extents(polygon->vertices, polygon->count);
+    radius = polygon->radius;
+  } else if (const Circle* circle = std::get_if<Circle>(&geometry)) {
+    extents(&circle->center, 1);
+    radius = circle->radius;
+  } else if (const Capsule* capsule = std::get_if<Capsule>(&geometry)) {
+    const Vec2 points[2] = {capsule->p1, capsule->p2};
+    extents(points, 2);
+    radius = capsule->radius;
+  } else {
+    const Segment& segment = std::get<Segment>(geometry);
+    const Vec2 points[2] = {segment.p1, segment.p2};
+    extents(points, 2);
+    // A segment's box has no radius term: (x + p) - 0 is x + p, so the same code serves.
+  }
+  const Vec2 r{radius, radius};
+  return merge(Aabb{(lo + p1) - r, (hi + p1) + r}, Aabb{(lo + p2) - r, (hi + p2) + r});
+}
+
 }  // namespace
 
 Aabb ContinuousPhase::sweptBox(const BodyStore& store, const FastBody& f) const {
@@ -51,8 +86,7 @@ Aabb ContinuousPhase::sweptBox(const BodyStore& store, const FastBody& f) const 
     const Transform end{f.sweep.c2 - rotate(q, f.sweep.localCenter), q};
     bool first = true;
     for (std::uint32_t s : b.shapes) {
-      Aabb u = merge(computeAabb(*store.shapes[s].geometry, start),
-                     computeAabb(*store.shapes[s].geometry, end));
+      const Aabb u = boxAtBothEnds(*store.shapes[s].geometry, q, start.p, end.p);
       box = first ? u : merge(box, u);
       first = false;
     }
