@@ -17,6 +17,7 @@
 #include "ghost_edges.hpp"
 #include "joint_set.hpp"
 #include "quack/world/world.hpp"
+#include "radix_sort.hpp"
 #include "step_context.hpp"
 #include "task_runner.hpp"
 
@@ -185,32 +186,22 @@ void ContinuousPhase::sortByLowerX() {
   // A stable radix sort of the participants (taken in index order) by their boxes' lower x:
   // ties stay in index order, so the order is the same whatever the broad phase. The key
   // is the float's bits made to compare as unsigned integers (negative numbers reversed,
-  // -0 taken as +0, as the comparison of floats takes it). Four passes of a byte each cost
-  // about a tenth of std::sort's comparisons of keys read through the indices.
+  // -0 taken as +0, as the comparison of floats takes it), above the participant's index.
+  // A tenth of the instructions of std::sort's comparisons of keys read through the indices.
   const auto n = static_cast<std::uint32_t>(fast_.size());
-  sorted_.resize(n);
-  sortKeys_.resize(2 * static_cast<std::size_t>(n));
-  std::uint64_t* from = sortKeys_.data();
-  std::uint64_t* to = from + n;
+  sortKeys_.resize(n);
   for (std::uint32_t i = 0; i < n; ++i) {
     const float x = fast_[i].box.lower.x + 0.0f;  // -0 + 0 is +0
     std::uint32_t bits;
     std::memcpy(&bits, &x, sizeof bits);
     bits = (bits & 0x80000000u) != 0 ? ~bits : bits | 0x80000000u;
-    from[i] = (std::uint64_t{bits} << 32) | i;
+    sortKeys_[i] = (std::uint64_t{bits} << 32) | i;
   }
-  for (int shift = 32; shift < 64; shift += 8) {
-    std::uint32_t start[257] = {};
-    for (std::uint32_t i = 0; i < n; ++i)
-      ++start[((from[i] >> shift) & 0xffu) + 1];
-    for (int b = 0; b < 256; ++b)
-      start[b + 1] += start[b];
-    for (std::uint32_t i = 0; i < n; ++i)
-      to[start[(from[i] >> shift) & 0xffu]++] = from[i];
-    std::swap(from, to);
-  }
+  // Bytes: a few thousand participants at most, for which 2,048 counts a pass cost more.
+  radixSortByKey<8>(sortKeys_, sortScratch_, 32, [](std::uint64_t k) { return k >> 32; });
+  sorted_.resize(n);
   for (std::uint32_t i = 0; i < n; ++i)
-    sorted_[i] = static_cast<std::uint32_t>(from[i]);
+    sorted_[i] = static_cast<std::uint32_t>(sortKeys_[i]);
 }
 
 void ContinuousPhase::buildIndex() {

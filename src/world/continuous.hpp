@@ -216,8 +216,8 @@ class ContinuousPhase {
   // scanned a window as wide as the widest box (a 40 m paddle's sweep: every participant)
   // and a whole column of falling bodies.
   void buildIndex();
-  std::vector<std::uint32_t> sorted_;    // participants by swept box lower x (first searches)
-  std::vector<std::uint64_t> sortKeys_;  // sortByLowerX's keys and their copy
+  std::vector<std::uint32_t> sorted_;  // participants by swept box lower x (first searches)
+  std::vector<std::uint64_t> sortKeys_, sortScratch_;  // sortByLowerX's keys, buffer
   void sortByLowerX();
   BoxGrid grid_;  // participants [0, indexed_) as they were at the last build
   std::vector<BoxGrid::Item> gridItems_;

@@ -10,11 +10,11 @@
 
 namespace quack::detail {
 
-/// Sorts `items` by key(item), a std::uint64_t of at most `bits` significant bits, 11 bits a
-/// pass; items with equal keys keep their order. `scratch` is the second buffer.
-template <class T, class Key>
+/// Sorts `items` by key(item), a std::uint64_t of at most `bits` significant bits, kDigit bits
+/// a pass; items with equal keys keep their order. `scratch` is the second buffer. Shorter
+/// digits suit short lists, where clearing and summing the counts would dominate.
+template <int kDigit = 11, class T, class Key>
 void radixSortByKey(std::vector<T>& items, std::vector<T>& scratch, int bits, Key key) {
-  constexpr int kDigit = 11;
   constexpr std::size_t kBuckets = std::size_t{1} << kDigit;
   scratch.resize(items.size());
   std::size_t count[kBuckets];

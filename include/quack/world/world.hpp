@@ -83,7 +83,7 @@ struct WorldDef {
   /// Continuous collision between two dynamic bodies, neither a bullet: a fast body is swept
   /// against the other's sweep, in time order (docs/continuous.md). On by default. Off, a
   /// fast body that is not a bullet is swept against static and kinematic shapes only, as
-  /// Box2D v3 does: cheaper in churning piles (about a third of the step in world_suite's
+  /// Box2D v3 does: cheaper in churning piles (about half the step's time in world_suite's
   /// spinner), but a fast body may pass through a thin dynamic one. Bullets are always
   /// swept against everything.
   bool sweepDynamicPairs = true;
