@@ -4,7 +4,6 @@
 // time-ordered handling of the impacts (the execution phase of docs/background.md).
 // docs/continuous.md, "In the world", explains the choices.
 
-#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>

@@ -213,6 +213,8 @@ def test_dynamic_pairs_off_sweeps_fast_bodies_against_static_shapes_only():
         ends[pairs] = (len(tois), disc.position[0] - plank.position[0], disc.velocity[0])
     assert ends[True][0] >= 1 and ends[True][1] < 0.0  # still behind the plank it met
     assert ends[False][0] == 0 and ends[False][1] > 15.0 and ends[False][2] == 600.0
+    with pytest.raises(TypeError):
+        quack.World(dynamic_pairs="no")
 
 
 class Boom(Exception):
