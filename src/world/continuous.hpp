@@ -93,13 +93,21 @@ class BoxGrid {
     for (std::int32_t y = y0; y <= y1; ++y) {
       for (std::int32_t x = x0; x <= x1; ++x) {
         const std::uint32_t b = bucketOf(x, y);
+        // The tests as one mask: an entry is another cell in the same bucket, a repeat of
+        // a box (each item is taken once, from the first cell that both its box and the
+        // query cover) or a box that misses the query in proportions no branch predicts.
+        // Dense piles scan several entries a cell, and their branches cost a sixth of the
+        // continuous phase.
+        const std::uint32_t notFirstX = x != x0 ? 1u : 0u;
+        const std::uint32_t notFirstY = y != y0 ? 2u : 0u;
+        const std::uint32_t repeat = notFirstX | notFirstY;
         for (std::uint32_t k = bucketStart_[b]; k < bucketStart_[b + 1]; ++k) {
           const Entry& e = entries_[k];
-          if (e.x != x || e.y != y) continue;  // another cell in the same bucket
-          // Each item once: from the first cell that both its box and the query cover (the
-          // integer test before the boxes': most repeats of a box end here).
-          if (((e.first & 1u) == 0 && x != x0) || ((e.first & 2u) == 0 && y != y0)) continue;
-          if (overlaps(e.box, box)) visit(e.id);
+          const bool sameCell = (e.x == x) & (e.y == y);
+          const bool firstHere = (repeat & ~e.first) == 0;
+          const bool apart = (e.box.lower.x > box.upper.x) | (e.box.lower.y > box.upper.y) |
+                             (box.lower.x > e.box.upper.x) | (box.lower.y > e.box.upper.y);
+          if (sameCell & firstHere & !apart) visit(e.id);
         }
       }
     }
