@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include "continuous.hpp"
 #include "quack/collision/toi.hpp"
@@ -162,24 +163,40 @@ void BoxGrid::build(std::span<const Item> items) {
     buckets *= 2;
   bucketMask_ = buckets - 1;
   bucketStart_.assign(buckets + 1, 0);
-  entries_.resize(count);
   for (const CellRange& r : ranges_)
     for (std::int32_t y = r.y0; r.x0 <= r.x1 && y <= r.y1; ++y)
       for (std::int32_t x = r.x0; x <= r.x1; ++x)
         ++bucketStart_[bucketOf(x, y) + 1];
+  // Each bucket padded to a multiple of four entries, so that a query tests whole groups
+  // of four: the padding's cell matches no cell (cells are clamped to +-1e9).
   for (std::uint32_t b = 0; b < buckets; ++b)
-    bucketStart_[b + 1] += bucketStart_[b];
+    bucketStart_[b + 1] = bucketStart_[b] + ((bucketStart_[b + 1] + 3u) & ~3u);
+  const std::uint32_t slots = bucketStart_[buckets];
+  entryCount_ = count;
+  for (auto* column : {&lowerX_, &lowerY_, &upperX_, &upperY_})
+    column->resize(slots);
+  ids_.resize(slots);
+  cellX_.assign(slots, std::numeric_limits<std::int32_t>::min());
+  cellY_.resize(slots);
+  first_.resize(slots);
+  cursor_.assign(bucketStart_.begin(), bucketStart_.end() - 1);
   for (std::size_t i = 0; i < items.size(); ++i) {
     const CellRange& r = ranges_[i];
-    for (std::int32_t y = r.y0; r.x0 <= r.x1 && y <= r.y1; ++y)
-      for (std::int32_t x = r.x0; x <= r.x1; ++x)
-        entries_[bucketStart_[bucketOf(x, y)]++] = {items[i].box, items[i].id, x, y,
-                                                    (x == r.x0 ? 1u : 0u) | (y == r.y0 ? 2u : 0u)};
+    const Aabb box = items[i].box;
+    for (std::int32_t y = r.y0; r.x0 <= r.x1 && y <= r.y1; ++y) {
+      for (std::int32_t x = r.x0; x <= r.x1; ++x) {
+        const std::uint32_t k = cursor_[bucketOf(x, y)]++;
+        lowerX_[k] = box.lower.x;
+        lowerY_[k] = box.lower.y;
+        upperX_[k] = box.upper.x;
+        upperY_[k] = box.upper.y;
+        ids_[k] = items[i].id;
+        cellX_[k] = x;
+        cellY_[k] = y;
+        first_[k] = (x == r.x0 ? 1u : 0u) | (y == r.y0 ? 2u : 0u);
+      }
+    }
   }
-  // Filling moved each bucket's start to the next one's: shift back.
-  for (std::uint32_t b = buckets; b > 0; --b)
-    bucketStart_[b] = bucketStart_[b - 1];
-  bucketStart_[0] = 0;
 }
 
 void ContinuousPhase::sortByLowerX() {

@@ -8,6 +8,10 @@
 #include <span>
 #include <vector>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "quack/math/aabb.hpp"
 #include "quack/math/sweep.hpp"
 
@@ -82,7 +86,7 @@ class BoxGrid {
     const std::int32_t x0 = cellOf(box.lower.x), x1 = cellOf(box.upper.x);
     const std::int32_t y0 = cellOf(box.lower.y), y1 = cellOf(box.upper.y);
     const std::int64_t cells = (std::int64_t{x1} - x0 + 1) * (std::int64_t{y1} - y0 + 1);
-    if (cells > static_cast<std::int64_t>(entries_.size() / 2 + 16)) {
+    if (cells > static_cast<std::int64_t>(entryCount_ / 2 + 16)) {
       // More cells than entries: scan the items instead (each once).
       for (const Item& item : all_)
         if (overlaps(item.box, box)) visit(item.id);
@@ -96,30 +100,49 @@ class BoxGrid {
         // The tests as one mask: an entry is another cell in the same bucket, a repeat of
         // a box (each item is taken once, from the first cell that both its box and the
         // query cover) or a box that misses the query in proportions no branch predicts.
-        // Dense piles scan several entries a cell, and their branches cost a sixth of the
-        // continuous phase.
-        const std::uint32_t notFirstX = x != x0 ? 1u : 0u;
-        const std::uint32_t notFirstY = y != y0 ? 2u : 0u;
-        const std::uint32_t repeat = notFirstX | notFirstY;
-        for (std::uint32_t k = bucketStart_[b]; k < bucketStart_[b + 1]; ++k) {
-          const Entry& e = entries_[k];
-          const bool sameCell = (e.x == x) & (e.y == y);
-          const bool firstHere = (repeat & ~e.first) == 0;
-          const bool apart = (e.box.lower.x > box.upper.x) | (e.box.lower.y > box.upper.y) |
-                             (box.lower.x > e.box.upper.x) | (box.lower.y > e.box.upper.y);
-          if (sameCell & firstHere & !apart) visit(e.id);
+        // Dense piles scan several entries a cell (the spinner's about 43 a query, to
+        // report 9): as branches, these tests took a sixth of its continuous phase. Four
+        // entries at a time where SSE2 is there, reported in the order of a scan.
+        const std::uint32_t repeat = (x != x0 ? 1u : 0u) | (y != y0 ? 2u : 0u);
+        std::uint32_t k = bucketStart_[b];
+        const std::uint32_t end = bucketStart_[b + 1];  // a multiple of four past k
+#if defined(__SSE2__)
+        const __m128 qlx = _mm_set1_ps(box.lower.x), qly = _mm_set1_ps(box.lower.y);
+        const __m128 qux = _mm_set1_ps(box.upper.x), quy = _mm_set1_ps(box.upper.y);
+        const __m128i cx = _mm_set1_epi32(x), cy = _mm_set1_epi32(y);
+        const __m128i rep = _mm_set1_epi32(static_cast<std::int32_t>(repeat));
+        for (; k + 4 <= end; k += 4) {
+          const __m128 apart = _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(_mm_loadu_ps(&lowerX_[k]), qux),
+                                                   _mm_cmpgt_ps(_mm_loadu_ps(&lowerY_[k]), quy)),
+                                         _mm_or_ps(_mm_cmpgt_ps(qlx, _mm_loadu_ps(&upperX_[k])),
+                                                   _mm_cmpgt_ps(qly, _mm_loadu_ps(&upperY_[k]))));
+          const __m128i sameCell = _mm_and_si128(
+              _mm_cmpeq_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(&cellX_[k])), cx),
+              _mm_cmpeq_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(&cellY_[k])), cy));
+          const __m128i firstHere = _mm_cmpeq_epi32(
+              _mm_andnot_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(&first_[k])), rep),
+              _mm_setzero_si128());
+          const __m128 keep =
+              _mm_andnot_ps(apart, _mm_castsi128_ps(_mm_and_si128(sameCell, firstHere)));
+          for (auto m = static_cast<std::uint32_t>(_mm_movemask_ps(keep)); m != 0; m &= m - 1)
+            visit(ids_[k + static_cast<std::uint32_t>(__builtin_ctz(m))]);
+        }
+#endif
+        for (; k < end; ++k) {
+          const auto sameCell =
+              static_cast<unsigned>(cellX_[k] == x) & static_cast<unsigned>(cellY_[k] == y);
+          const auto firstHere = static_cast<unsigned>((repeat & ~first_[k]) == 0);
+          const auto apart = static_cast<unsigned>(lowerX_[k] > box.upper.x) |
+                             static_cast<unsigned>(lowerY_[k] > box.upper.y) |
+                             static_cast<unsigned>(box.lower.x > upperX_[k]) |
+                             static_cast<unsigned>(box.lower.y > upperY_[k]);
+          if ((sameCell & firstHere & ~apart) != 0) visit(ids_[k]);
         }
       }
     }
   }
 
  private:
-  struct Entry {
-    Aabb box;
-    std::uint32_t id;
-    std::int32_t x, y;    // the cell
-    std::uint32_t first;  // bit 0: the box's first column; bit 1: its first row
-  };
   std::int32_t cellOf(float v) const noexcept {
     // floor(v / cell), clamped well inside int32 so that a range's size always fits in 64
     // bits. Clamping first gives the same integer (the bounds are integers and floor is
@@ -138,9 +161,18 @@ class BoxGrid {
   struct CellRange {
     std::int32_t x0, x1, y0, y1;  // x1 < x0: in large_ (no cells)
   };
-  std::vector<CellRange> ranges_;           // build's per-item cells, found once
-  std::vector<std::uint32_t> bucketStart_;  // bucket b's entries: [start[b], start[b + 1])
-  std::vector<Entry> entries_;
+  std::vector<CellRange> ranges_;  // build's per-item cells, found once
+  // Bucket b's entries: [start[b], start[b + 1]), padded to a multiple of four (see build).
+  std::vector<std::uint32_t> bucketStart_;
+  std::vector<std::uint32_t> cursor_;  // build's filling position per bucket
+  std::size_t entryCount_ = 0;         // entries, not counting the padding
+  // The entries, one per cell a box covers, as columns (four at a time in a query): the
+  // box, its item's id, the cell, and bit 0 / bit 1 set when the cell is in the box's first
+  // column / row.
+  std::vector<float> lowerX_, lowerY_, upperX_, upperY_;
+  std::vector<std::uint32_t> ids_;
+  std::vector<std::int32_t> cellX_, cellY_;
+  std::vector<std::uint32_t> first_;
   std::vector<Item> large_;
   std::vector<Item> all_;
   std::uint32_t bucketMask_ = 0;
