@@ -101,7 +101,7 @@ class BoxGrid {
         // a box (each item is taken once, from the first cell that both its box and the
         // query cover) or a box that misses the query in proportions no branch predicts.
         // Dense piles scan several entries a cell (the spinner's about 43 a query, to
-        // report 9): as branches, these tests took a sixth of its continuous phase. Four
+        // report 9): as branches, this scan took about a tenth of the spinner's step. Four
         // entries at a time where SSE2 is there, reported in the order of a scan.
         const std::uint32_t repeat = (x != x0 ? 1u : 0u) | (y != y0 ? 2u : 0u);
         std::uint32_t k = bucketStart_[b];
