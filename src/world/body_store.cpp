@@ -90,7 +90,8 @@ Result<std::shared_ptr<const ShapeGeometry>> SharedGeometries::intern(
 }
 
 std::uint32_t BodyStore::createShape(std::uint32_t body, const ShapeDef& def,
-                                     std::shared_ptr<const ShapeGeometry> geometry) {
+                                     std::shared_ptr<const ShapeGeometry> geometry,
+                                     const BodyMass* mass) {
   const std::uint32_t index = shapeIds.allocate();
   if (index == shapes.size()) shapes.emplace_back();
   Shape& s = shapes[index];
@@ -104,7 +105,7 @@ std::uint32_t BodyStore::createShape(std::uint32_t body, const ShapeDef& def,
   if (bodies[body].type == BodyType::staticBody)
     addExtents(bodies[body], *s.geometry);
   else
-    updateMass(body);
+    updateMass(body, mass);
   return index;
 }
 
@@ -153,12 +154,12 @@ void BodyStore::addExtents(Body& b, const ShapeGeometry& g) {
   b.minExtent = b.minExtent == 0.0f ? thickness : minf(b.minExtent, thickness);
 }
 
-void BodyStore::updateMass(std::uint32_t index) {
+void BodyStore::updateMass(std::uint32_t index, const BodyMass* mass) {
   Body& b = bodies[index];
   b.mass = b.invMass = b.inertia = b.invInertia = 0.0f;
   b.localCenter = {};
   if (b.type == BodyType::dynamicBody) {
-    const BodyMass m = sumMass([&](const auto& f) {
+    const BodyMass m = mass != nullptr ? *mass : sumMass([&](const auto& f) {
       for (std::uint32_t s : b.shapes)
         f(*shapes[s].geometry, shapes[s].def.density);
     });

@@ -349,13 +349,16 @@ Result<ShapeId> World::createShape(BodyId bodyId, const ShapeDef& def,
       store.geometries.intern(geometry, validateShape);
   if (!stored) return fail("createShape: geometry: " + stored.error().message);
   const Body& body = store.bodies[bodyId.index];
+  // The body's mass with the new shape, summed as BodyStore::updateMass would sum it (the
+  // stored geometry last), so that the store takes it rather than summing again.
+  detail::BodyMass m;
   if (body.type == BodyType::dynamicBody) {
     // The body's mass with the new shape must stay a usable float (kMaxBodyMass), and so
     // must its inverse: refuse here rather than let a mass of infinity into the solver.
-    const detail::BodyMass m = detail::sumMass([&](const auto& f) {
+    m = detail::sumMass([&](const auto& f) {
       for (std::uint32_t s : body.shapes)
         f(*store.shapes[s].geometry, store.shapes[s].def.density);
-      f(geometry, def.density);
+      f(*stored.value(), def.density);
     });
     if (!isFinite(m.mass) || m.mass > kMaxBodyMass || !isFinite(m.inertia))
       return fail("createShape: ShapeDef.density " + std::to_string(def.density) +
@@ -373,7 +376,9 @@ Result<ShapeId> World::createShape(BodyId bodyId, const ShapeDef& def,
   Result<ProxyId> proxy = state().broadPhase.createProxy(
       box, index, def.filter, kind, detail::shapeFatMargin(geometry, body.type, state().def));
   if (!proxy) return fail("createShape: " + proxy.error().message);
-  const std::uint32_t created = store.createShape(bodyId.index, def, std::move(stored).value());
+  const std::uint32_t created =
+      store.createShape(bodyId.index, def, std::move(stored).value(),
+                        body.type == BodyType::dynamicBody ? &m : nullptr);
   QUACK_ASSERT(created == index);
   store.shapes[created].proxy = proxy.value();
   if (body.type == BodyType::staticBody) state().edges.markDirty();
