@@ -165,7 +165,8 @@ BodyMass sumMass(const Each& each) {
   Vec2 moment;
   // The first shapes' properties are kept for the second pass (the inertia about the
   // centre of mass) rather than computed again: a rounded polygon's take two arc tangents
-  // and two sines a corner, and building a world of boxes spent a sixth of its time here.
+  // and two sines a corner, and building a world of boxes spent a sixth of its
+  // instructions here.
   constexpr int kKept = 8;
   MassProperties kept[kKept];
   int count = 0;
