@@ -164,8 +164,8 @@ BodyMass sumMass(const Each& each) {
   BodyMass out;
   Vec2 moment;
   // The first shapes' properties are kept for the second pass (the inertia about the
-  // centre of mass) rather than computed again: a rounded polygon's take two arc tangents
-  // and two sines a corner, and building a world of boxes spent a sixth of its
+  // centre of mass) rather than computed again: a rounded polygon's take an arc tangent
+  // and a sine a corner, and building a world of boxes spent a sixth of its
   // instructions here.
   constexpr int kKept = 8;
   MassProperties kept[kKept];
