@@ -795,9 +795,10 @@ Status World::setBodyType(BodyId id, BodyType type) {
   detail::BodyStore& store = state().store;
   Body& b = store.bodies[id.index];
   if (b.type == type) return {};
+  detail::BodyMass m;  // summed once: the check below, then updateMass
   if (type == BodyType::dynamicBody) {
     // Its shapes' mass must be usable, as createShape demands.
-    const detail::BodyMass m = detail::sumMass([&](const auto& f) {
+    m = detail::sumMass([&](const auto& f) {
       for (std::uint32_t s : b.shapes)
         f(*store.shapes[s].geometry, store.shapes[s].def.density);
     });
@@ -838,7 +839,7 @@ Status World::setBodyType(BodyId id, BodyType type) {
     QUACK_ASSERT(proxy.ok());
     shape.proxy = proxy.valueOr(ProxyId{});
   }
-  store.updateMass(id.index);
+  store.updateMass(id.index, type == BodyType::dynamicBody ? &m : nullptr);
   state().islands.removeBody(store, id.index);
   applyContactChanges(*s_);
   state().islands.addBody(store, id.index, true);
