@@ -150,6 +150,24 @@ TEST(WorldApi, TorqueAndAngularImpulseFollowTheInertia) {
   EXPECT_FALSE(world.applyTorque(b, std::nanf("")).ok());
 }
 
+// A body's mass sums its shapes' (the first eight are computed once and kept for the
+// inertia pass, the rest computed again): twelve unit boxes in a row, closed forms.
+TEST(WorldApi, MassOfTwelveBoxesMatchesTheClosedForm) {
+  World world = World::create({}).value();
+  BodyId b = world.createBody({.position = {0, 5}}).value();
+  for (int i = 0; i < 12; ++i)
+    ASSERT_TRUE(
+        world.createShape(b, {}, makeBox(0.5f, 0.5f, {static_cast<float>(i), 0}).value()).ok());
+  EXPECT_NEAR(world.mass(b), 12.0f, 1e-4f);
+  // Centre of mass at x = 5.5; each box: 1/6 about its own centre, plus (i - 5.5)^2.
+  float inertia = 0.0f;
+  for (int i = 0; i < 12; ++i)
+    inertia += 1.0f / 6.0f + (static_cast<float>(i) - 5.5f) * (static_cast<float>(i) - 5.5f);
+  EXPECT_NEAR(world.rotationalInertia(b), inertia, 1e-3f * inertia);
+  EXPECT_NEAR(world.worldCenterOfMass(b).x, 5.5f, 1e-5f);
+  EXPECT_NEAR(world.worldCenterOfMass(b).y, 5.0f, 1e-5f);
+}
+
 TEST(WorldApi, SetBodyTypeEndsContactsAndChangesTheMotion) {
   World world = World::create({}).value();
   addStaticBox(world, {0, -0.5f}, {10, 0.5f});
